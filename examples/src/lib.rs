@@ -1,0 +1,5 @@
+//! Mechanisms declared with `linkage::mechanism!`, shared by the examples and the tests.
+
+pub mod rps;
+pub mod rss_hexapod;
+pub mod stewart;

@@ -1,0 +1,364 @@
+//! The `mechanism!` surface syntax, parsed into a tree that keeps every token's span.
+//!
+//! ```text
+//! mechanism   := attrs vis "struct" IDENT ";" section*
+//! section     := "params" "{" (IDENT "=" number ","?)* "}"
+//!              | "base" "{" pivot* "}"
+//!              | "platform" ("(" "frame" "=" "[" IDENT "," IDENT "," IDENT "]" ")")? "{" pivot* "}"
+//!              | "link" IDENT "{" (pivot | "length" "=" coord ","?)* "}"
+//!              | "chain" IDENT "=" item ("-" item)* ";"
+//! pivot       := IDENT "=" "[" coord "," coord "," coord "]" ","?
+//! coord       := number | IDENT            (a literal, or a parameter declared in `params`)
+//! item        := IDENT                     (a link: `base`, `platform` or a declared link)
+//!              | PAIR "(" arg ("," arg)* ")"
+//! PAIR        := "R" | "P" | "C" | "H" | "S" | "U"
+//! arg         := "active" IDENT | "passive" | IDENT (a pivot)
+//!              | "axis" "=" IDENT "->" IDENT | "offset" "=" coord | "lead" "=" coord
+//! ```
+
+use proc_macro2::Span;
+use syn::parse::{Parse, ParseStream};
+use syn::{bracketed, parenthesized, token, Attribute, Ident, LitFloat, LitInt, Result, Token, Visibility};
+
+pub struct Mechanism {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub params: Vec<Param>,
+    pub base: Option<LinkDecl>,
+    pub platform: Option<LinkDecl>,
+    pub links: Vec<LinkDecl>,
+    pub chains: Vec<ChainDecl>,
+}
+
+pub struct Param {
+    pub name: Ident,
+    pub default: Number,
+}
+
+#[derive(Clone)]
+pub struct Number {
+    pub value: f64,
+    pub span: Span,
+}
+
+#[derive(Clone)]
+pub enum Coord {
+    Literal(Number),
+    Param(Ident),
+}
+
+impl Coord {
+    pub fn span(&self) -> Span {
+        match self {
+            Coord::Literal(n) => n.span,
+            Coord::Param(i) => i.span(),
+        }
+    }
+}
+
+pub struct Pivot {
+    pub name: Ident,
+    pub coords: [Coord; 3],
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum LinkRole {
+    Base,
+    Platform,
+    Intermediate,
+}
+
+pub struct LinkDecl {
+    pub role: LinkRole,
+    pub name: Ident,
+    pub pivots: Vec<Pivot>,
+    pub length: Option<Coord>,
+    pub frame: Option<Vec<Ident>>,
+}
+
+pub struct ChainDecl {
+    pub name: Ident,
+    pub items: Vec<ChainItem>,
+}
+
+pub enum ChainItem {
+    Link(Ident),
+    Pair(PairDecl),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum PairKind {
+    R,
+    P,
+    C,
+    H,
+    S,
+    U,
+}
+
+impl PairKind {
+    pub fn letter(self) -> &'static str {
+        match self {
+            PairKind::R => "R",
+            PairKind::P => "P",
+            PairKind::C => "C",
+            PairKind::H => "H",
+            PairKind::S => "S",
+            PairKind::U => "U",
+        }
+    }
+}
+
+pub struct PairDecl {
+    pub kind: PairKind,
+    pub token: Ident,
+    pub active: Option<Ident>,
+    pub variables: Vec<Ident>,
+    pub passive: Option<Ident>,
+    pub pivots: Vec<Ident>,
+    pub axis: Option<(Ident, Ident)>,
+    pub offset: Option<Coord>,
+    pub lead: Option<Coord>,
+}
+
+mod kw {
+    syn::custom_keyword!(params);
+    syn::custom_keyword!(base);
+    syn::custom_keyword!(platform);
+    syn::custom_keyword!(link);
+    syn::custom_keyword!(chain);
+    syn::custom_keyword!(frame);
+    syn::custom_keyword!(length);
+    syn::custom_keyword!(active);
+    syn::custom_keyword!(passive);
+    syn::custom_keyword!(axis);
+    syn::custom_keyword!(offset);
+    syn::custom_keyword!(lead);
+}
+
+impl Parse for Mechanism {
+    fn parse(input: ParseStream) -> Result<Self> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let vis: Visibility = input.parse()?;
+        input.parse::<Token![struct]>()?;
+        let name: Ident = input.parse()?;
+        input.parse::<Token![;]>()?;
+        let mut m = Mechanism {
+            attrs,
+            vis,
+            name,
+            params: Vec::new(),
+            base: None,
+            platform: None,
+            links: Vec::new(),
+            chains: Vec::new(),
+        };
+        while !input.is_empty() {
+            let look = input.lookahead1();
+            if look.peek(kw::params) {
+                input.parse::<kw::params>()?;
+                let body;
+                syn::braced!(body in input);
+                while !body.is_empty() {
+                    let name: Ident = body.parse()?;
+                    body.parse::<Token![=]>()?;
+                    let default = parse_number(&body)?;
+                    m.params.push(Param { name, default });
+                    if !body.is_empty() {
+                        body.parse::<Token![,]>()?;
+                    }
+                }
+            } else if look.peek(kw::base) {
+                let kw: kw::base = input.parse()?;
+                let link = parse_link_body(input, LinkRole::Base, Ident::new("base", kw.span), None)?;
+                if m.base.is_some() {
+                    return Err(syn::Error::new(kw.span, "the `base` link is declared twice"));
+                }
+                m.base = Some(link);
+            } else if look.peek(kw::platform) {
+                let kw: kw::platform = input.parse()?;
+                let mut frame = None;
+                if input.peek(token::Paren) {
+                    let args;
+                    parenthesized!(args in input);
+                    args.parse::<kw::frame>()?;
+                    args.parse::<Token![=]>()?;
+                    let list;
+                    bracketed!(list in args);
+                    let names = list.parse_terminated(Ident::parse, Token![,])?;
+                    frame = Some(names.into_iter().collect());
+                }
+                let link = parse_link_body(
+                    input,
+                    LinkRole::Platform,
+                    Ident::new("platform", kw.span),
+                    frame,
+                )?;
+                if m.platform.is_some() {
+                    return Err(syn::Error::new(kw.span, "the `platform` link is declared twice"));
+                }
+                m.platform = Some(link);
+            } else if look.peek(kw::link) {
+                input.parse::<kw::link>()?;
+                let name: Ident = input.parse()?;
+                m.links.push(parse_link_body(input, LinkRole::Intermediate, name, None)?);
+            } else if look.peek(kw::chain) {
+                input.parse::<kw::chain>()?;
+                let name: Ident = input.parse()?;
+                input.parse::<Token![=]>()?;
+                let mut items = vec![parse_item(input)?];
+                while input.peek(Token![-]) {
+                    input.parse::<Token![-]>()?;
+                    items.push(parse_item(input)?);
+                }
+                input.parse::<Token![;]>()?;
+                m.chains.push(ChainDecl { name, items });
+            } else {
+                return Err(look.error());
+            }
+        }
+        Ok(m)
+    }
+}
+
+fn parse_link_body(
+    input: ParseStream,
+    role: LinkRole,
+    name: Ident,
+    frame: Option<Vec<Ident>>,
+) -> Result<LinkDecl> {
+    let body;
+    syn::braced!(body in input);
+    let mut link = LinkDecl { role, name, pivots: Vec::new(), length: None, frame };
+    while !body.is_empty() {
+        if body.peek(kw::length) && body.peek2(Token![=]) {
+            let kw: kw::length = body.parse()?;
+            body.parse::<Token![=]>()?;
+            if link.length.is_some() {
+                return Err(syn::Error::new(kw.span, "`length` is given twice"));
+            }
+            link.length = Some(parse_coord(&body)?);
+        } else {
+            let name: Ident = body.parse()?;
+            body.parse::<Token![=]>()?;
+            let list;
+            bracketed!(list in body);
+            let c0 = parse_coord(&list)?;
+            list.parse::<Token![,]>()?;
+            let c1 = parse_coord(&list)?;
+            list.parse::<Token![,]>()?;
+            let c2 = parse_coord(&list)?;
+            if list.peek(Token![,]) {
+                list.parse::<Token![,]>()?;
+            }
+            if !list.is_empty() {
+                return Err(list.error("a pivot has exactly three coordinates `[x, y, z]`"));
+            }
+            link.pivots.push(Pivot { name, coords: [c0, c1, c2] });
+        }
+        if !body.is_empty() {
+            body.parse::<Token![,]>()?;
+        }
+    }
+    Ok(link)
+}
+
+fn parse_item(input: ParseStream) -> Result<ChainItem> {
+    let name: Ident = input.parse()?;
+    if !input.peek(token::Paren) {
+        return Ok(ChainItem::Link(name));
+    }
+    let kind = match name.to_string().as_str() {
+        "R" => PairKind::R,
+        "P" => PairKind::P,
+        "C" => PairKind::C,
+        "H" => PairKind::H,
+        "S" => PairKind::S,
+        "U" => PairKind::U,
+        other => {
+            return Err(syn::Error::new(
+                name.span(),
+                format!("unknown lower pair `{other}`: expected one of `R`, `P`, `C`, `H`, `S`, `U`"),
+            ))
+        }
+    };
+    let args;
+    parenthesized!(args in input);
+    let mut pair = PairDecl {
+        kind,
+        token: name,
+        active: None,
+        variables: Vec::new(),
+        passive: None,
+        pivots: Vec::new(),
+        axis: None,
+        offset: None,
+        lead: None,
+    };
+    while !args.is_empty() {
+        if args.peek(kw::active) {
+            let kw: kw::active = args.parse()?;
+            pair.active = Some(Ident::new("active", kw.span));
+            pair.variables.push(args.parse()?);
+            // `C` and `H`-like pairs may carry more than one joint variable: `active theta z`.
+            while args.peek(Ident) && !args.peek2(Token![=]) {
+                pair.variables.push(args.parse()?);
+            }
+        } else if args.peek(kw::passive) {
+            let kw: kw::passive = args.parse()?;
+            pair.passive = Some(Ident::new("passive", kw.span));
+        } else if args.peek(kw::axis) && args.peek2(Token![=]) {
+            args.parse::<kw::axis>()?;
+            args.parse::<Token![=]>()?;
+            let a: Ident = args.parse()?;
+            args.parse::<Token![->]>()?;
+            let b: Ident = args.parse()?;
+            pair.axis = Some((a, b));
+        } else if args.peek(kw::offset) && args.peek2(Token![=]) {
+            args.parse::<kw::offset>()?;
+            args.parse::<Token![=]>()?;
+            pair.offset = Some(parse_coord(&args)?);
+        } else if args.peek(kw::lead) && args.peek2(Token![=]) {
+            args.parse::<kw::lead>()?;
+            args.parse::<Token![=]>()?;
+            pair.lead = Some(parse_coord(&args)?);
+        } else {
+            pair.pivots.push(args.parse()?);
+        }
+        if !args.is_empty() {
+            args.parse::<Token![,]>()?;
+        }
+    }
+    Ok(ChainItem::Pair(pair))
+}
+
+fn parse_coord(input: ParseStream) -> Result<Coord> {
+    if input.peek(Ident) {
+        Ok(Coord::Param(input.parse()?))
+    } else {
+        Ok(Coord::Literal(parse_number(input)?))
+    }
+}
+
+fn parse_number(input: ParseStream) -> Result<Number> {
+    let negative = if input.peek(Token![-]) {
+        input.parse::<Token![-]>()?;
+        true
+    } else {
+        false
+    };
+    let (value, span) = if input.peek(LitFloat) {
+        let lit: LitFloat = input.parse()?;
+        (lit.base10_parse::<f64>()?, lit.span())
+    } else if input.peek(LitInt) {
+        let lit: LitInt = input.parse()?;
+        (lit.base10_parse::<f64>()?, lit.span())
+    } else {
+        return Err(input.error("expected a number or a parameter name"));
+    };
+    if !value.is_finite() {
+        return Err(syn::Error::new(span, "a coordinate must be a finite number"));
+    }
+    Ok(Number { value: if negative { -value } else { value }, span })
+}

@@ -1,0 +1,285 @@
+//! Chains: Table I's pair constraints combined from the base to the platform (Section 2.2),
+//! with the intermediate links' pivots eliminated.
+//!
+//! Combining a chain's pair equations and solving those in one unknown leaves, for every
+//! supported chain, constraints on the platform pivot `G` alone:
+//!
+//! | chain | pivots eliminated | what remains |
+//! |---|---|---|
+//! | `S|U(A) - P(active x) - S|U(G)` | the leg's axis points D, E, F (Eq. 14) | `‖G − A‖² = (x + offset)²` (Eq. 15) |
+//! | `S|U(A) - rod - S|U(G)`, `rod { length = l }` | — | `‖G − A‖² = l²` |
+//! | `R|P|H|C(active …, axis = A -> B) - link - S|U(C) - rod - S|U(G)` | C, explicit in the inputs | `‖G − C(x)‖² = l²` |
+//! | `R(passive, axis = A -> B) - P(active x) - S|U(G)` | the leg's axis point | `e·(G − A) = 0`, `‖G − A‖² = (x + offset)²` |
+//!
+//! For the active pair at the base, C(x) follows Table I: `C − B = R(C0 − B) + x e` with R of
+//! Eq. 2, written `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry.
+
+use crate::ast::{ChainDecl, Coord, LinkRole, Mechanism, PairDecl, PairKind};
+use crate::expr::{self, Expr, Vec3};
+use crate::model::{is_point_joint, normalize, role, Builder, Inverse, Recipe};
+use proc_macro2::Span;
+use syn::Ident;
+
+pub enum Shape<'a> {
+    Leg { anchor: &'a Ident, slider: &'a PairDecl, platform: &'a Ident },
+    Rod { anchor: &'a Ident, rod: &'a Ident, length: &'a Coord, platform: &'a Ident },
+    Driven { driver: &'a PairDecl, link: &'a Ident, tip: &'a Ident, rod: &'a Ident, length: &'a Coord, platform: &'a Ident },
+    Swing { hinge: &'a PairDecl, slider: &'a PairDecl, platform: &'a Ident },
+}
+
+impl Shape<'_> {
+    pub fn platform_pivot(&self) -> &Ident {
+        match self {
+            Shape::Leg { platform, .. }
+            | Shape::Rod { platform, .. }
+            | Shape::Driven { platform, .. }
+            | Shape::Swing { platform, .. } => platform,
+        }
+    }
+}
+
+pub struct ChainModel {
+    pub equations: Vec<Expr>,
+    pub inverse: Inverse,
+}
+
+const SUPPORTED: &str = "supported chains: `base - S(A) - P(active x) - S(G) - platform` (U for S), `base - S(A) - rod - S(G) - platform` with `link rod { length = l }`, `base - R(active q, axis = A -> B) - crank - S(C) - rod - S(G) - platform` (also `P`, `H`, `C` as the driver), `base - R(passive, axis = A -> B) - P(active x) - S(G) - platform`";
+
+fn center<'a>(p: &'a PairDecl, chain: &ChainDecl) -> Result<&'a Ident, (Span, String)> {
+    match p.pivots.as_slice() {
+        [c] => Ok(c),
+        _ => Err((
+            p.token.span(),
+            format!("pair `{}` in chain `{}` names its centre: one pivot, e.g. `{}(G1)`", p.kind.letter(), chain.name, p.kind.letter()),
+        )),
+    }
+}
+
+fn on_link(m: &Mechanism, link: &str, pivot: &Ident) -> bool {
+    m.all_links().any(|l| l.name == link && l.pivots.iter().any(|p| p.name == *pivot))
+}
+
+pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Span, String)> {
+    let n = normalize(m, c);
+    let letters: Vec<&str> = n.pairs.iter().map(|p| p.kind.letter()).collect();
+    let unsupported = || {
+        (c.name.span(), format!("chain `{}` has the unsupported shape `{}`; {SUPPORTED}", c.name, letters.join(" - ")))
+    };
+    let platform_center = |p: &'a PairDecl| -> Result<&'a Ident, (Span, String)> {
+        let g = center(p, c)?;
+        if !on_link(m, "platform", g) {
+            return Err((g.span(), format!("the last pair of chain `{}` must be centred on a `platform` pivot, and `{g}` is not one", c.name)));
+        }
+        Ok(g)
+    };
+    let base_center = |p: &'a PairDecl| -> Result<&'a Ident, (Span, String)> {
+        let a = center(p, c)?;
+        if !on_link(m, "base", a) {
+            return Err((a.span(), format!("the first pair of chain `{}` must be centred on a `base` pivot, and `{a}` is not one", c.name)));
+        }
+        Ok(a)
+    };
+    let pairs = &n.pairs;
+    match pairs.as_slice() {
+        [s1, slider, s2] if is_point_joint(s1) && slider.kind == PairKind::P && is_point_joint(s2) => {
+            if slider.active.is_none() {
+                return Err((slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", c.name)));
+            }
+            single_variable(slider, c)?;
+            Ok(Shape::Leg { anchor: base_center(s1)?, slider, platform: platform_center(s2)? })
+        }
+        [s1, s2] if is_point_joint(s1) && is_point_joint(s2) => {
+            let rod = n.links[1].filter(|l| l.role == LinkRole::Intermediate);
+            match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
+                Some((rod, length)) => Ok(Shape::Rod { anchor: base_center(s1)?, rod: &rod.name, length, platform: platform_center(s2)? }),
+                None => Err((s2.token.span(), format!("the rod between the two point joints of chain `{}` needs a length: `link rod {{ length = ... }}` between them", c.name))),
+            }
+        }
+        [driver, s1, s2]
+            if matches!(driver.kind, PairKind::R | PairKind::P | PairKind::H | PairKind::C)
+                && is_point_joint(s1)
+                && is_point_joint(s2) =>
+        {
+            if driver.active.is_none() {
+                return Err((driver.token.span(), format!("the `{}` pair driving chain `{}` must be active", driver.kind.letter(), c.name)));
+            }
+            let expected = if driver.kind == PairKind::C { 2 } else { 1 };
+            if driver.variables.len() != expected {
+                return Err((driver.token.span(), format!("an active `{}` pair has {expected} joint variable(s), found {}", driver.kind.letter(), driver.variables.len())));
+            }
+            if driver.axis.is_none() {
+                return Err((driver.token.span(), format!("the `{}` pair of chain `{}` needs its axis: `axis = A -> B` on `base`", driver.kind.letter(), c.name)));
+            }
+            if driver.kind == PairKind::H && driver.lead.is_none() {
+                return Err((driver.token.span(), "a helical pair needs its `lead = ...`".to_string()));
+            }
+            let link = match n.links[1] {
+                Some(l) if l.role == LinkRole::Intermediate => l,
+                _ => return Err((driver.token.span(), format!("chain `{}` needs a declared link after its driving pair, holding the centre of the next joint", c.name))),
+            };
+            let tip = center(s1, c)?;
+            if !link.pivots.iter().any(|p| p.name == *tip) {
+                return Err((tip.span(), format!("`{tip}` is not a pivot of link `{}`", link.name)));
+            }
+            let rod = n.links[2].filter(|l| l.role == LinkRole::Intermediate);
+            match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
+                Some((rod, length)) => Ok(Shape::Driven { driver, link: &link.name, tip, rod: &rod.name, length, platform: platform_center(s2)? }),
+                None => Err((s2.token.span(), format!("the rod of chain `{}` needs a length: `link rod {{ length = ... }}` between its two point joints", c.name))),
+            }
+        }
+        [hinge, slider, s] if hinge.kind == PairKind::R && slider.kind == PairKind::P && is_point_joint(s) => {
+            if hinge.active.is_some() || slider.active.is_none() {
+                return Err(unsupported());
+            }
+            if hinge.axis.is_none() {
+                return Err((hinge.token.span(), format!("the `R` pair of chain `{}` needs its axis: `axis = A -> B` on `base`", c.name)));
+            }
+            if role(n.links[0]) != Some(LinkRole::Base) {
+                return Err(unsupported());
+            }
+            single_variable(slider, c)?;
+            Ok(Shape::Swing { hinge, slider, platform: platform_center(s)? })
+        }
+        _ => Err(unsupported()),
+    }
+}
+
+fn single_variable(p: &PairDecl, c: &ChainDecl) -> Result<(), (Span, String)> {
+    if p.variables.len() == 1 {
+        Ok(())
+    } else {
+        Err((p.token.span(), format!("an active `P` pair in chain `{}` has one joint variable", c.name)))
+    }
+}
+
+/// Emits the chain's equations on platform point `p` (of `k` points).
+pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) -> ChainModel {
+    let g: Vec3 = [0, 1, 2].map(|a| Expr::Unknown(a * k + p));
+    let chain = c.name.to_string();
+    match shape {
+        Shape::Leg { anchor, slider, .. } => {
+            let a = b.pivot_constants("base", &anchor.to_string());
+            let input = b.input(&slider.variables[0]);
+            let offset = slider
+                .offset
+                .as_ref()
+                .map(|o| b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}")));
+            let length = match &offset {
+                Some(o) => Expr::add(Expr::Input(input), o.clone()),
+                None => Expr::Input(input),
+            };
+            let eq = Expr::sub(expr::squared_distance(&g, &a), length.square());
+            ChainModel {
+                equations: vec![eq],
+                inverse: Inverse::Distance {
+                    input,
+                    point: p,
+                    anchor: a.each_ref().map(Builder::constant_index),
+                    offset: offset.as_ref().map(Builder::constant_index),
+                },
+            }
+        }
+        Shape::Rod { anchor, rod, length, .. } => {
+            let a = b.pivot_constants("base", &anchor.to_string());
+            let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
+            let eq = Expr::sub(expr::squared_distance(&g, &a), l.square());
+            ChainModel { equations: vec![eq], inverse: Inverse::None { inputs: vec![] } }
+        }
+        Shape::Driven { driver, link, tip, rod, length, .. } => {
+            let (ax_a, ax_b) = driver.axis.as_ref().expect("classified");
+            let a = b.pivot_slots("base", &ax_a.to_string());
+            let bb = b.pivot_slots("base", &ax_b.to_string());
+            let c0 = b.pivot_slots(&link.to_string(), &tip.to_string());
+            let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
+                [0, 1, 2].map(|k3| {
+                    let name = format!("{prefix}{}_{chain}", ["x", "y", "z"][k3]);
+                    b.constant(name, Recipe::Axis { a, b: bb, point: c0, index: index + k3 })
+                })
+            };
+            let e = part(b, 0, "e");
+            let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
+            let inputs: Vec<usize> = driver.variables.iter().map(|v| b.input(v)).collect();
+            let (tip_expr, inverse) = match driver.kind {
+                PairKind::P => {
+                    let c0e = b.pivot_constants(&link.to_string(), &tip.to_string());
+                    let t = expr::vadd(&c0e, &expr::vscale(&Expr::Input(inputs[0]), &e));
+                    let inv = Inverse::PrismaticRod {
+                        input: inputs[0],
+                        point: p,
+                        c0: c0e.each_ref().map(Builder::constant_index),
+                        e: e.each_ref().map(Builder::constant_index),
+                        length: Builder::constant_index(&l),
+                    };
+                    (t, inv)
+                }
+                kind => {
+                    let o = part(b, 3, "o");
+                    let u = part(b, 6, "u");
+                    let w = part(b, 9, "w");
+                    let th = Expr::Input(inputs[0]);
+                    let cos = Expr::Cos(Box::new(th.clone()));
+                    let sin = Expr::Sin(Box::new(th.clone()));
+                    let mut t = expr::vadd(&o, &expr::vadd(&expr::vscale(&cos, &u), &expr::vscale(&sin, &w)));
+                    let inv = match kind {
+                        PairKind::R => Inverse::RevoluteRod {
+                            input: inputs[0],
+                            point: p,
+                            o: o.each_ref().map(Builder::constant_index),
+                            u: u.each_ref().map(Builder::constant_index),
+                            w: w.each_ref().map(Builder::constant_index),
+                            length: Builder::constant_index(&l),
+                        },
+                        _ => Inverse::None { inputs: inputs.clone() },
+                    };
+                    if kind == PairKind::H {
+                        let lead = driver.lead.as_ref().expect("classified");
+                        let lead = b.scalar_constant(&format!("{chain}.lead"), lead, format!("lead_{chain}"));
+                        let rise = Expr::Product(vec![
+                            Expr::Num(1.0 / (2.0 * std::f64::consts::PI)),
+                            lead,
+                            th,
+                        ])
+                        .simplify();
+                        t = expr::vadd(&t, &expr::vscale(&rise, &e));
+                    }
+                    if kind == PairKind::C {
+                        t = expr::vadd(&t, &expr::vscale(&Expr::Input(inputs[1]), &e));
+                    }
+                    (t, inv)
+                }
+            };
+            let eq = Expr::sub(expr::squared_distance(&g, &tip_expr), l.square());
+            ChainModel { equations: vec![eq], inverse }
+        }
+        Shape::Swing { hinge, slider, .. } => {
+            let (ax_a, ax_b) = hinge.axis.as_ref().expect("classified");
+            let a_slots = b.pivot_slots("base", &ax_a.to_string());
+            let b_slots = b.pivot_slots("base", &ax_b.to_string());
+            let a = b.pivot_constants("base", &ax_a.to_string());
+            let e: Vec3 = [0, 1, 2].map(|k3| {
+                let name = format!("e{}_{chain}", ["x", "y", "z"][k3]);
+                b.constant(name, Recipe::Axis { a: a_slots, b: b_slots, point: a_slots, index: k3 })
+            });
+            let input = b.input(&slider.variables[0]);
+            let offset = slider
+                .offset
+                .as_ref()
+                .map(|o| b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}")));
+            let length = match &offset {
+                Some(o) => Expr::add(Expr::Input(input), o.clone()),
+                None => Expr::Input(input),
+            };
+            let plane = expr::dot(&e, &expr::vsub(&g, &a));
+            let dist = Expr::sub(expr::squared_distance(&g, &a), length.square());
+            ChainModel {
+                equations: vec![plane, dist],
+                inverse: Inverse::Distance {
+                    input,
+                    point: p,
+                    anchor: a.each_ref().map(Builder::constant_index),
+                    offset: offset.as_ref().map(Builder::constant_index),
+                },
+            }
+        }
+    }
+}

@@ -1,0 +1,331 @@
+//! Emission: the model as plain, allocation-free, `no_std` Rust implementing
+//! `::linkage::Mechanism`. Only absolute paths are named, so the user's imports never matter.
+
+use crate::ast::Mechanism;
+use crate::expr::{Expr, Var};
+use crate::model::{Inverse, Model, Recipe};
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
+    let name = &mech.name;
+    let vis = &mech.vis;
+    let attrs = &mech.attrs;
+    let n = model.unknowns.len();
+    let m = model.inputs.len();
+    let ng = model.slots.len();
+    let nc = model.constants.len();
+    let jac = model.jacobian();
+    let nnz = jac.len();
+
+    let geometry_names = model.slots.iter().map(|s| s.name.as_str());
+    let defaults = model.slots.iter().map(|s| lit(s.default));
+    let constant_names = model.constants.iter().map(|c| c.name.as_str());
+    let unknown_names = model.unknowns.iter().map(String::as_str);
+    let input_names = model.inputs.iter().map(String::as_str);
+    let equation_text: Vec<String> = model.equations.iter().map(|e| model.render(e)).collect();
+    let jacobian_text: Vec<String> = jac.iter().map(|(_, _, e)| model.render(e)).collect();
+    let pattern = jac.iter().map(|(r, c, _)| quote!((#r, #c)));
+    let listing = listing(model, &equation_text, &jac, &jacobian_text);
+    let point_names = model.points.iter().map(|p| p.name.as_str());
+    let [f0, f1, f2] = model.frame;
+    let recipes = model.constants.iter().enumerate().map(|(i, c)| recipe(i, &c.recipe));
+
+    let residual = model.equations.iter().enumerate().map(|(i, e)| {
+        let e = tokens(e);
+        quote!(f[#i] = #e;)
+    });
+    let jacobian_sparse = jac.iter().enumerate().map(|(k, (_, _, e))| {
+        let e = tokens(e);
+        quote!(values[#k] = #e;)
+    });
+    let jacobian_dense = jac.iter().map(|(r, c, e)| {
+        let e = tokens(e);
+        quote!(b[#r][#c] = #e;)
+    });
+    let input_jacobian = model.equations.iter().enumerate().flat_map(|(r, f)| {
+        (0..m).filter_map(move |j| {
+            let d = f.derivative(Var::Input(j));
+            (!d.is_zero()).then(|| {
+                let d = tokens(&d);
+                quote!(a[#r][#j] = #d;)
+            })
+        })
+    });
+    let point_local = model.points.iter().enumerate().map(|(i, p)| {
+        let [x, y, z] = p.local;
+        quote!(#i => [g[#x], g[#y], g[#z]],)
+    });
+    let inverse = model.inverses.iter().map(|inv| inverse(model, inv));
+    let uses_v = model.equations.iter().any(|e| (0..n).any(|i| e.depends_on(Var::Unknown(i))));
+    let allow = if uses_v { quote!() } else { quote!(#[allow(unused_variables)]) };
+    let priv_ = quote!(::linkage::__private);
+    let new_doc = format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");
+    let _ = format_ident!("unused");
+
+    quote! {
+        #(#attrs)*
+        #[derive(Clone, Debug, PartialEq)]
+        #vis struct #name {
+            geometry: [f64; #ng],
+            constants: [f64; #nc],
+        }
+
+        impl #name {
+            /// Names of the run-time geometry values (`link.pivot.axis`, lengths, parameters).
+            pub const GEOMETRY_NAMES: [&'static str; #ng] = [#(#geometry_names),*];
+            /// The geometry as declared.
+            pub const DEFAULT_GEOMETRY: [f64; #ng] = [#(#defaults),*];
+            /// Names of the constants the equations use, derived from the geometry.
+            pub const CONSTANT_NAMES: [&'static str; #nc] = [#(#constant_names),*];
+            /// The generated system, human-readable: equations, then ∂F/∂v entries.
+            pub const LISTING: &'static str = #listing;
+
+            #[doc = #new_doc]
+            pub fn new() -> Self {
+                match Self::from_geometry(Self::DEFAULT_GEOMETRY) {
+                    Ok(m) => m,
+                    // Unreachable: the macro derived the constants from this geometry at compile time.
+                    Err(_) => Self { geometry: Self::DEFAULT_GEOMETRY, constants: [f64::NAN; #nc] },
+                }
+            }
+
+            /// The mechanism with other dimensions (e.g. from a calibration), in the order of
+            /// [`Self::GEOMETRY_NAMES`]. Derived constants are recomputed.
+            pub fn from_geometry(geometry: [f64; #ng]) -> ::core::result::Result<Self, ::linkage::GeometryError> {
+                let mut k = 0;
+                while k < #ng {
+                    if !geometry[k].is_finite() {
+                        return Err(::linkage::GeometryError::NonFinite { name: Self::GEOMETRY_NAMES[k] });
+                    }
+                    k += 1;
+                }
+                let g = &geometry;
+                let mut c = [0.0f64; #nc];
+                #(#recipes)*
+                Ok(Self { geometry, constants: c })
+            }
+
+            /// The current geometry values.
+            pub fn geometry(&self) -> &[f64; #ng] {
+                &self.geometry
+            }
+
+            /// The derived constants, in the order of [`Self::CONSTANT_NAMES`].
+            pub fn constants(&self) -> &[f64; #nc] {
+                &self.constants
+            }
+
+            /// Changes one geometry value by name; the mechanism is unchanged on error.
+            pub fn set_geometry(&mut self, name: &str, value: f64) -> ::core::result::Result<(), ::linkage::GeometryError> {
+                let mut g = self.geometry;
+                #priv_::set_named(&Self::GEOMETRY_NAMES, &mut g, name, value)?;
+                *self = Self::from_geometry(g)?;
+                Ok(())
+            }
+
+            /// Moves pivot `pivot` of link `link` (its own frame); the mechanism is unchanged on error.
+            pub fn set_pivot(&mut self, link: &str, pivot: &str, p: [f64; 3]) -> ::core::result::Result<(), ::linkage::GeometryError> {
+                let mut g = self.geometry;
+                #priv_::set_pivot(&Self::GEOMETRY_NAMES, &mut g, link, pivot, p)?;
+                *self = Self::from_geometry(g)?;
+                Ok(())
+            }
+        }
+
+        impl ::core::default::Default for #name {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+
+        impl ::linkage::Mechanism<#n, #m> for #name {
+            const NAME: &'static str = stringify!(#name);
+            const UNKNOWNS: [&'static str; #n] = [#(#unknown_names),*];
+            const INPUTS: [&'static str; #m] = [#(#input_names),*];
+            const EQUATIONS: [&'static str; #n] = [#(#equation_text),*];
+            const NNZ: usize = #nnz;
+            const PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
+            const JACOBIAN: &'static [&'static str] = &[#(#jacobian_text),*];
+            const POINTS: &'static [&'static str] = &[#(#point_names),*];
+            const FRAME: [usize; 3] = [#f0, #f1, #f2];
+
+            #[inline]
+            #allow
+            fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
+                let c = &self.constants;
+                #(#residual)*
+            }
+
+            #[inline]
+            #[allow(unused_variables)]
+            fn jacobian(&self, v: &[f64; #n], x: &[f64; #m], values: &mut [f64]) {
+                let c = &self.constants;
+                let values: &mut [f64; #nnz] = match values.get_mut(..#nnz).and_then(|s| s.try_into().ok()) {
+                    Some(s) => s,
+                    None => return,
+                };
+                #(#jacobian_sparse)*
+            }
+
+            #[inline]
+            #[allow(unused_variables)]
+            fn jacobian_dense(&self, v: &[f64; #n], x: &[f64; #m], b: &mut [[f64; #n]; #n]) {
+                let c = &self.constants;
+                *b = [[0.0; #n]; #n];
+                #(#jacobian_dense)*
+            }
+
+            #[inline]
+            #[allow(unused_variables)]
+            fn input_jacobian(&self, v: &[f64; #n], x: &[f64; #m], a: &mut [[f64; #m]; #n]) {
+                let c = &self.constants;
+                *a = [[0.0; #m]; #n];
+                #(#input_jacobian)*
+            }
+
+            fn point_local(&self, p: usize) -> [f64; 3] {
+                let g = &self.geometry;
+                match p {
+                    #(#point_local)*
+                    _ => [f64::NAN; 3],
+                }
+            }
+
+            #[allow(unused_variables, unused_mut)]
+            fn inverse(&self, v: &[f64; #n], reference: &[f64; #m]) -> ::core::result::Result<[f64; #m], ::linkage::InverseError> {
+                let c = &self.constants;
+                let mut out = *reference;
+                #(#inverse)*
+                Ok(out)
+            }
+        }
+    }
+}
+
+fn listing(model: &Model, equations: &[String], jac: &[(usize, usize, Expr)], jtext: &[String]) -> String {
+    let mut s = format!(
+        "{}: {} equations in {} unknowns, {} inputs\nunknowns: {}\ninputs: {}\nconstants: {}\n\n",
+        model.name,
+        model.equations.len(),
+        model.unknowns.len(),
+        model.inputs.len(),
+        model.unknowns.join(" "),
+        model.inputs.join(" "),
+        model.constants.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(" ")
+    );
+    for (i, e) in equations.iter().enumerate() {
+        s += &format!("F{} = {e}\n", i + 1);
+    }
+    s += &format!("\n∂F/∂v: {} nonzeros\n", jac.len());
+    for ((r, c, _), t) in jac.iter().zip(jtext) {
+        s += &format!("J({},{}) = {t}\n", r + 1, c + 1);
+    }
+    s
+}
+
+fn lit(x: f64) -> TokenStream {
+    let l = Literal::f64_suffixed(x.abs());
+    if x.is_sign_negative() {
+        quote!((-#l))
+    } else {
+        quote!(#l)
+    }
+}
+
+pub fn tokens(e: &Expr) -> TokenStream {
+    match e {
+        Expr::Num(n) => lit(*n),
+        Expr::Unknown(i) => quote!(v[#i]),
+        Expr::Input(i) => quote!(x[#i]),
+        Expr::Constant(i) => quote!(c[#i]),
+        Expr::Sum(ts) => {
+            let ts = ts.iter().map(tokens);
+            quote!((#(#ts)+*))
+        }
+        Expr::Product(fs) => {
+            let mut it = fs.iter().map(tokens);
+            let first = it.next().unwrap_or_else(|| quote!(1.0f64));
+            let rest = it.map(|f| quote!(* #f));
+            quote!((#first #(#rest)*))
+        }
+        Expr::Square(e) => {
+            let e = tokens(e);
+            quote!(::linkage::__private::sq(#e))
+        }
+        Expr::Sin(e) => {
+            let e = tokens(e);
+            quote!(::linkage::__private::sin(#e))
+        }
+        Expr::Cos(e) => {
+            let e = tokens(e);
+            quote!(::linkage::__private::cos(#e))
+        }
+    }
+}
+
+fn point3(s: [usize; 3]) -> TokenStream {
+    let [a, b, c] = s;
+    quote!([g[#a], g[#b], g[#c]])
+}
+
+fn consts3(s: [usize; 3]) -> TokenStream {
+    let [a, b, c] = s;
+    quote!([c[#a], c[#b], c[#c]])
+}
+
+fn recipe(i: usize, r: &Recipe) -> TokenStream {
+    let p = quote!(::linkage::__private);
+    match r {
+        Recipe::Slot(s) => quote!(c[#i] = g[#s];),
+        Recipe::Rigid { frame, point, index, coplanar } => {
+            let [f0, f1, f2] = frame.map(point3);
+            let q = point3(*point);
+            quote!(c[#i] = #p::rigid_coefficients([#f0, #f1, #f2], #q, #coplanar)?[#index];)
+        }
+        Recipe::Distance { a, b } => {
+            let (a, b) = (point3(*a), point3(*b));
+            quote!(c[#i] = #p::distance(#a, #b);)
+        }
+        Recipe::Axis { a, b, point, index } => {
+            let (a, b, q) = (point3(*a), point3(*b), point3(*point));
+            quote!(c[#i] = #p::axis_frame(#a, #b, #q)?[#index];)
+        }
+    }
+}
+
+fn inverse(model: &Model, inv: &Inverse) -> TokenStream {
+    let p = quote!(::linkage::__private);
+    let point = |q: usize| {
+        let [x, y, z] = [0, 1, 2].map(|a| model.unknown(q, a));
+        quote!([v[#x], v[#y], v[#z]])
+    };
+    match inv {
+        Inverse::Distance { input, point: q, anchor, offset } => {
+            let g = point(*q);
+            let a = consts3(*anchor);
+            let off = match offset {
+                Some(o) => quote!(c[#o]),
+                None => quote!(0.0),
+            };
+            quote!(out[#input] = #p::distance(#g, #a) - #off;)
+        }
+        Inverse::RevoluteRod { input, point: q, o, u, w, length } => {
+            let g = point(*q);
+            let (o, u, w) = (consts3(*o), consts3(*u), consts3(*w));
+            quote!(out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
+                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
+        }
+        Inverse::PrismaticRod { input, point: q, c0, e, length } => {
+            let g = point(*q);
+            let (c0, e) = (consts3(*c0), consts3(*e));
+            quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input])
+                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
+        }
+        Inverse::None { inputs } if inputs.is_empty() => quote!(),
+        Inverse::None { inputs } => {
+            let first = inputs[0];
+            quote!(return Err(::linkage::InverseError::NoClosedForm { input: #first });)
+        }
+    }
+}

@@ -1,0 +1,434 @@
+//! From a checked declaration to the constraint system F(v, x) = 0 (Section 2 of Gao & Wu).
+//!
+//! Geometry lives in *slots* (pivot coordinates, link lengths, parameters) that can be changed
+//! at run time; equations refer to *constants* derived from the slots (pivot coordinates,
+//! the E_j of Eq. 17–18, axis frames). Unknowns are the base-frame coordinates of the moving
+//! platform's pivots, coordinate-major as in Eq. 19: `[x_P1 … x_Pk, y_P1 … y_Pk, z_P1 … z_Pk]`.
+
+use crate::ast::{ChainDecl, ChainItem, Coord, LinkDecl, LinkRole, Mechanism, PairDecl, PairKind};
+use crate::chain::{self, ChainModel};
+use crate::check::Errors;
+use crate::expr::{Expr, Names, Vec3};
+use crate::rigid;
+use proc_macro2::Span;
+use std::collections::HashMap;
+use syn::Ident;
+
+pub struct Slot {
+    pub name: String,
+    pub default: f64,
+}
+
+/// How a constant is computed from the geometry slots (in the emitted `from_geometry`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Recipe {
+    Slot(usize),
+    /// Coefficient `index` of `point` in the frame: `[a, b, c, d]` with
+    /// `q = a p1 + b p2 + c p3 + d (p2 − p1) × (p3 − p1)` (d = 0 in the coplanar form).
+    Rigid { frame: [[usize; 3]; 3], point: [usize; 3], index: usize, coplanar: bool },
+    Distance { a: [usize; 3], b: [usize; 3] },
+    /// Component `index` of `[e, o, u, w]` for a rotation of `point` about the axis `a → b`:
+    /// e the unit axis, o the foot of `point` on it, u the radial arm, w = e × u.
+    Axis { a: [usize; 3], b: [usize; 3], point: [usize; 3], index: usize },
+}
+
+pub struct Constant {
+    pub name: String,
+    pub recipe: Recipe,
+}
+
+/// How joint inputs are recovered from the unknowns (inverse kinematics, per chain).
+pub enum Inverse {
+    /// `x = ‖P − anchor‖ − offset`
+    Distance { input: usize, point: usize, anchor: [usize; 3], offset: Option<usize> },
+    /// `‖P − (o + u cos θ + w sin θ)‖ = length`, root nearest the reference.
+    RevoluteRod { input: usize, point: usize, o: [usize; 3], u: [usize; 3], w: [usize; 3], length: usize },
+    /// `‖P − (c0 + x e)‖ = length`, root nearest the reference.
+    PrismaticRod { input: usize, point: usize, c0: [usize; 3], e: [usize; 3], length: usize },
+    /// No closed form: the input is left at the reference value and reported as such.
+    None { inputs: Vec<usize> },
+}
+
+pub struct PlatformPoint {
+    pub name: String,
+    pub local: [usize; 3],
+}
+
+pub struct Model {
+    pub name: Ident,
+    pub slots: Vec<Slot>,
+    pub constants: Vec<Constant>,
+    pub unknowns: Vec<String>,
+    pub inputs: Vec<String>,
+    pub equations: Vec<Expr>,
+    pub points: Vec<PlatformPoint>,
+    pub frame: [usize; 3],
+    pub coplanar: bool,
+    pub inverses: Vec<Inverse>,
+}
+
+impl Model {
+    pub fn names(&self) -> (Vec<String>, Vec<String>, Vec<String>) {
+        (
+            self.unknowns.clone(),
+            self.inputs.clone(),
+            self.constants.iter().map(|c| c.name.clone()).collect(),
+        )
+    }
+
+    pub fn render(&self, e: &Expr) -> String {
+        let (u, i, c) = self.names();
+        e.render(&Names { unknowns: &u, inputs: &i, constants: &c })
+    }
+
+    /// Index of coordinate `axis` (0 = x) of platform point `p` in `v`.
+    pub fn unknown(&self, p: usize, axis: usize) -> usize {
+        axis * self.points.len() + p
+    }
+
+    pub fn point_expr(&self, p: usize) -> Vec3 {
+        [0, 1, 2].map(|k| Expr::Unknown(self.unknown(p, k)))
+    }
+
+    /// The sparsity pattern of ∂F/∂v, row-major, and each entry's expression.
+    pub fn jacobian(&self) -> Vec<(usize, usize, Expr)> {
+        let mut out = Vec::new();
+        for (r, f) in self.equations.iter().enumerate() {
+            for c in 0..self.unknowns.len() {
+                let d = f.derivative(crate::expr::Var::Unknown(c));
+                if !d.is_zero() {
+                    out.push((r, c, d));
+                }
+            }
+        }
+        out
+    }
+
+    pub fn default_slots(&self) -> Vec<f64> {
+        self.slots.iter().map(|s| s.default).collect()
+    }
+}
+
+/// Builds the model. Assumes `Mechanism::validate` passed.
+pub fn build(m: &Mechanism) -> syn::Result<Model> {
+    let mut b = Builder::new(m);
+    b.allocate_slots();
+    let platform = m.platform.as_ref().expect("validated");
+    let mut errors = Errors::default();
+
+    // Which platform pivots the chains reach.
+    let mut used: Vec<bool> = vec![false; platform.pivots.len()];
+    let mut shapes = Vec::new();
+    for c in &m.chains {
+        match chain::classify(m, c) {
+            Ok(shape) => {
+                let g = shape.platform_pivot();
+                if let Some(i) = platform.pivots.iter().position(|p| p.name == *g) {
+                    used[i] = true;
+                }
+                shapes.push((c, shape));
+            }
+            Err(e) => errors.push(e.0, e.1),
+        }
+    }
+    let frame_idx = match choose_frame(&b, platform) {
+        Ok(f) => f,
+        Err((span, msg)) => {
+            errors.push(span, msg);
+            errors.finish()?;
+            unreachable!()
+        }
+    };
+    for f in frame_idx {
+        used[f] = true;
+    }
+    errors.finish()?;
+
+    // Platform points, in declaration order.
+    let mut point_of_pivot = HashMap::new();
+    for (i, pivot) in platform.pivots.iter().enumerate() {
+        if used[i] {
+            point_of_pivot.insert(pivot.name.to_string(), b.points.len());
+            b.points.push(PlatformPoint {
+                name: pivot.name.to_string(),
+                local: b.pivot_slots("platform", &pivot.name.to_string()),
+            });
+        }
+    }
+    let k = b.points.len();
+    for axis in ["x", "y", "z"] {
+        for p in &b.points {
+            b.unknowns.push(format!("{axis}_{}", p.name));
+        }
+    }
+    let frame = frame_idx.map(|f| point_of_pivot[&platform.pivots[f].name.to_string()]);
+
+    // Chain equations (Table I pairs, combined base to platform, simplified).
+    for (c, shape) in &shapes {
+        let p = point_of_pivot[&shape.platform_pivot().to_string()];
+        let ChainModel { equations, inverse } = chain::model(&mut b, c, shape, p, k);
+        b.equations.extend(equations);
+        b.inverses.push(inverse);
+    }
+
+    // Rigid-body equations of the platform (Eq. 3 / Eq. 16).
+    let coplanar = match &platform.frame_form() {
+        Some(form) => *form,
+        None => rigid::is_coplanar(&b, frame, k),
+    };
+    rigid::platform_equations(&mut b, frame, k, coplanar);
+
+    let model = Model {
+        name: m.name.clone(),
+        slots: b.slots,
+        constants: b.constants,
+        unknowns: b.unknowns,
+        inputs: b.inputs,
+        equations: b.equations,
+        points: b.points,
+        frame,
+        coplanar,
+        inverses: b.inverses,
+    };
+    check_system(&model, m)?;
+    Ok(model)
+}
+
+fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
+    let (n, e) = (model.unknowns.len(), model.equations.len());
+    if n != e {
+        let inputs = model.inputs.len();
+        let mobility = inputs as i64 + n as i64 - e as i64;
+        return Err(syn::Error::new(
+            m.name.span(),
+            format!(
+                "the chains give {e} equations for {n} unknown platform coordinates: with {inputs} active joint variables the platform keeps {} degrees of freedom; the number of active inputs must equal the mobility ({})",
+                n as i64 - e as i64,
+                mobility
+            ),
+        ));
+    }
+    for (i, f) in model.equations.iter().enumerate() {
+        if f.degree() > 2 {
+            return Err(syn::Error::new(
+                m.name.span(),
+                format!("equation {} is of degree {} in the unknowns; the model must be at most quadratic", i + 1, f.degree()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn choose_frame(b: &Builder, platform: &LinkDecl) -> Result<[usize; 3], (Span, String)> {
+    let pts: Vec<[f64; 3]> = platform.pivots.iter().map(|p| b.default_point(&p.coords)).collect();
+    let area = |i: usize, j: usize, l: usize| rigid::triangle_area(pts[i], pts[j], pts[l]);
+    let scale = pts.iter().flat_map(|p| p.iter()).fold(1e-300f64, |a, x| a.max(x.abs()));
+    let tol = 1e-9 * scale * scale;
+    if let Some(frame) = &platform.frame {
+        let idx: Vec<usize> = frame
+            .iter()
+            .map(|f| platform.pivots.iter().position(|p| p.name == *f).expect("validated"))
+            .collect();
+        if area(idx[0], idx[1], idx[2]) <= tol {
+            return Err((frame[0].span(), format!("the `frame` pivots `{}`, `{}`, `{}` are collinear: the platform needs three non-collinear pivots", frame[0], frame[1], frame[2])));
+        }
+        return Ok([idx[0], idx[1], idx[2]]);
+    }
+    // Largest triangle: the best-conditioned frame.
+    let n = pts.len();
+    let mut best = None;
+    let mut best_area = tol;
+    for i in 0..n {
+        for j in i + 1..n {
+            for l in j + 1..n {
+                let a = area(i, j, l);
+                if a > best_area * (1.0 + 1e-9) {
+                    best_area = a;
+                    best = Some([i, j, l]);
+                }
+            }
+        }
+    }
+    best.ok_or_else(|| {
+        (platform.name.span(), "fewer than three non-collinear pivots on `platform`: the moving platform needs three to be located".to_string())
+    })
+}
+
+impl LinkDecl {
+    fn frame_form(&self) -> Option<bool> {
+        None
+    }
+}
+
+/// Mutable state shared by the modelling phases.
+pub struct Builder<'m> {
+    pub mech: &'m Mechanism,
+    pub slots: Vec<Slot>,
+    slot_of: HashMap<String, usize>,
+    pub constants: Vec<Constant>,
+    pub unknowns: Vec<String>,
+    pub inputs: Vec<String>,
+    pub equations: Vec<Expr>,
+    pub points: Vec<PlatformPoint>,
+    pub inverses: Vec<Inverse>,
+}
+
+impl<'m> Builder<'m> {
+    fn new(mech: &'m Mechanism) -> Self {
+        Builder {
+            mech,
+            slots: Vec::new(),
+            slot_of: HashMap::new(),
+            constants: Vec::new(),
+            unknowns: Vec::new(),
+            inputs: Vec::new(),
+            equations: Vec::new(),
+            points: Vec::new(),
+            inverses: Vec::new(),
+        }
+    }
+
+    fn allocate_slots(&mut self) {
+        let m = self.mech;
+        for p in &m.params {
+            self.new_slot(p.name.to_string(), p.default.value);
+        }
+        for link in m.all_links() {
+            for pivot in &link.pivots {
+                for (k, c) in pivot.coords.iter().enumerate() {
+                    let key = format!("{}.{}.{}", link.name, pivot.name, ["x", "y", "z"][k]);
+                    self.coord_slot(key, c);
+                }
+            }
+            if let Some(c) = &link.length {
+                self.coord_slot(format!("{}.length", link.name), c);
+            }
+        }
+    }
+
+    fn coord_slot(&mut self, key: String, c: &Coord) -> usize {
+        let slot = match c {
+            Coord::Literal(n) => self.new_slot(key.clone(), n.value),
+            Coord::Param(p) => self.slot_of[&p.to_string()],
+        };
+        self.slot_of.insert(key, slot);
+        slot
+    }
+
+    fn new_slot(&mut self, name: String, default: f64) -> usize {
+        self.slots.push(Slot { name: name.clone(), default });
+        self.slot_of.insert(name, self.slots.len() - 1);
+        self.slots.len() - 1
+    }
+
+    pub fn slot(&self, key: &str) -> usize {
+        self.slot_of[key]
+    }
+
+    pub fn pivot_slots(&self, link: &str, pivot: &str) -> [usize; 3] {
+        ["x", "y", "z"].map(|a| self.slot(&format!("{link}.{pivot}.{a}")))
+    }
+
+    pub fn default_point(&self, coords: &[Coord; 3]) -> [f64; 3] {
+        [0, 1, 2].map(|k| match &coords[k] {
+            Coord::Literal(n) => n.value,
+            Coord::Param(p) => self.slots[self.slot_of[&p.to_string()]].default,
+        })
+    }
+
+    pub fn default_slot_point(&self, slots: [usize; 3]) -> [f64; 3] {
+        slots.map(|s| self.slots[s].default)
+    }
+
+    /// A constant with the given recipe, shared if one already exists.
+    pub fn constant(&mut self, name: String, recipe: Recipe) -> Expr {
+        if let Some(i) = self.constants.iter().position(|c| c.recipe == recipe) {
+            return Expr::Constant(i);
+        }
+        self.constants.push(Constant { name, recipe });
+        Expr::Constant(self.constants.len() - 1)
+    }
+
+    pub fn constant_index(e: &Expr) -> usize {
+        match e {
+            Expr::Constant(i) => *i,
+            _ => unreachable!("constants are built as Expr::Constant"),
+        }
+    }
+
+    /// A fixed pivot's coordinates as constants named like the paper (`x_D1`).
+    pub fn pivot_constants(&mut self, link: &str, pivot: &str) -> Vec3 {
+        let slots = self.pivot_slots(link, pivot);
+        [0, 1, 2].map(|k| {
+            let name = if self.mech.params.iter().any(|p| self.slot(&p.name.to_string()) == slots[k]) {
+                self.slots[slots[k]].name.clone()
+            } else {
+                format!("{}_{}", ["x", "y", "z"][k], pivot)
+            };
+            self.constant(name, Recipe::Slot(slots[k]))
+        })
+    }
+
+    /// A length-like slot (link length, offset, lead) as a constant.
+    pub fn scalar_constant(&mut self, key: &str, c: &Coord, fallback_name: String) -> Expr {
+        let slot = match c {
+            Coord::Param(p) => self.slot(&p.to_string()),
+            Coord::Literal(_) => {
+                if let Some(&s) = self.slot_of.get(key) {
+                    s
+                } else {
+                    self.coord_slot(key.to_string(), c)
+                }
+            }
+        };
+        let name = match c {
+            Coord::Param(p) => p.to_string(),
+            Coord::Literal(_) => fallback_name,
+        };
+        self.constant(name, Recipe::Slot(slot))
+    }
+
+    pub fn input(&mut self, name: &Ident) -> usize {
+        self.inputs.push(name.to_string());
+        self.inputs.len() - 1
+    }
+}
+
+/// The items of a chain with anonymous links made explicit: `links.len() == pairs.len() + 1`.
+pub struct Normalized<'a> {
+    pub pairs: Vec<&'a PairDecl>,
+    pub links: Vec<Option<&'a LinkDecl>>,
+}
+
+pub fn normalize<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Normalized<'a> {
+    let mut pairs = Vec::new();
+    let mut links = Vec::new();
+    let mut last_was_link = false;
+    for item in &c.items {
+        match item {
+            ChainItem::Link(l) => {
+                links.push(m.link(l));
+                last_was_link = true;
+            }
+            ChainItem::Pair(p) => {
+                if !last_was_link {
+                    links.push(None);
+                }
+                pairs.push(p);
+                last_was_link = false;
+            }
+        }
+    }
+    if !last_was_link {
+        links.push(None);
+    }
+    Normalized { pairs, links }
+}
+
+pub fn is_point_joint(p: &PairDecl) -> bool {
+    matches!(p.kind, PairKind::S | PairKind::U)
+}
+
+pub fn role(l: Option<&LinkDecl>) -> Option<LinkRole> {
+    l.map(|l| l.role)
+}

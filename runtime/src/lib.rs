@@ -1,0 +1,88 @@
+#![no_std]
+#![forbid(unsafe_code)]
+#![doc = include_str!("../../README.md")]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+// Lets the generated code's `::linkage::` paths resolve inside this crate's own tests.
+extern crate self as linkage;
+
+/// Declares a spatial parallel mechanism and generates its constraint system at compile time.
+///
+/// # Grammar
+///
+/// ```text
+/// mechanism! {
+///     /// docs
+///     pub struct Name;
+///     params { name = 1.5, ... }                        // optional geometry parameters
+///     base { A1 = [x, y, z], ... }                      // base pivots, base frame
+///     platform(frame = [P1, P2, P3]) { P1 = [x, y, z], ... }  // platform pivots, its frame
+///     link crank1 { C1 = [x, y, z] }                    // pivots at the home configuration, base frame
+///     link rod1 { length = 150.0 }                      // a binary link between two point joints
+///     chain leg1 = base - S(A1) - P(active L1) - S(P1) - platform;
+///     chain arm1 = base - R(active q1, axis = A1 -> B1) - crank1 - S(C1) - rod1 - S(P1) - platform;
+///     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(P2) - platform;
+/// }
+/// ```
+///
+/// A coordinate is a number or a name declared in `params`. Pairs: `R`, `P`, `C`, `H` (with
+/// `lead = ...`), `S`, `U`; each `active NAME` (its joint variable) or `passive`; `S` and `U`
+/// name their centre pivot. `frame` chooses the three platform pivots that locate it
+/// (default: the largest triangle); `offset = ...` on a `P` pair adds a constant to the leg
+/// length. The generated type implements [`Mechanism`].
+pub use linkage_macros::mechanism;
+
+mod arc_length;
+mod error;
+pub mod lu;
+mod math;
+mod mechanism;
+mod newton;
+mod newton_homotopy;
+mod pose;
+mod solution;
+mod start;
+mod tracker;
+
+#[doc(hidden)]
+pub mod __private;
+
+pub use arc_length::arc_length;
+pub use error::{GeometryError, InverseError};
+pub use mechanism::Mechanism;
+pub use newton::newton_raphson;
+pub use newton_homotopy::newton_homotopy;
+pub use pose::{pose_from_unknowns, unknowns_from_pose, Pose};
+pub use solution::{Options, Solution, SolveError, Status};
+pub use start::{det_b, Start};
+pub use tracker::{Sample, TrackError, Tracker};
+
+/// The three solvers of Table V.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Pseudo-arc-length homotopy continuation ([`arc_length`]).
+    ArcLength,
+    /// Newton homotopy ([`newton_homotopy`]).
+    NewtonHomotopy,
+    /// Newton–Raphson ([`newton_raphson`]).
+    NewtonRaphson,
+}
+
+impl Method {
+    /// Solves for `target` from `start` with this method.
+    pub fn solve<S: Mechanism<N, M>, const N: usize, const M: usize>(
+        self,
+        sys: &S,
+        start: &Start<N, M>,
+        target: &[f64; M],
+        options: &Options,
+    ) -> Result<Solution<N>, SolveError> {
+        match self {
+            Method::ArcLength => arc_length(sys, start, target, options),
+            Method::NewtonHomotopy => newton_homotopy(sys, start, target, options),
+            Method::NewtonRaphson => newton_raphson(sys, start, target, options),
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! Poses of the moving platform and their relation to the unknowns v.
+
+use crate::math::{asin, atan2, cos, cross3, dot3, norm3, scale3, sin, sub3};
+use crate::Mechanism;
+
+/// A rigid transformation: `p_base = rotation · p_platform + translation`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    pub rotation: [[f64; 3]; 3],
+    pub translation: [f64; 3],
+}
+
+impl Pose {
+    /// `R = Rz(yaw) · Ry(pitch) · Rx(roll)` (the 3–2–1 Euler angles of Appendix B, Eq. A2 as
+    /// corrected in ERRATA.md), radians; `translation` the platform origin in the base frame.
+    pub fn from_euler(yaw: f64, pitch: f64, roll: f64, translation: [f64; 3]) -> Pose {
+        let (cy, sy) = (cos(yaw), sin(yaw));
+        let (cp, sp) = (cos(pitch), sin(pitch));
+        let (cr, sr) = (cos(roll), sin(roll));
+        Pose {
+            rotation: [
+                [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                [-sp, cp * sr, cp * cr],
+            ],
+            translation,
+        }
+    }
+
+    /// `[yaw, pitch, roll]` with pitch in [−π/2, π/2].
+    pub fn euler(&self) -> [f64; 3] {
+        let r = &self.rotation;
+        let pitch = asin((-r[2][0]).clamp(-1.0, 1.0));
+        let roll = atan2(r[2][1], r[2][2]);
+        let yaw = atan2(r[1][0], r[0][0]);
+        [yaw, pitch, roll]
+    }
+
+    /// A platform-frame point in the base frame.
+    pub fn apply(&self, p: [f64; 3]) -> [f64; 3] {
+        let r = &self.rotation;
+        let t = self.translation;
+        [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i])
+    }
+
+    /// `det R`: +1 for a proper rotation, −1 for a mirror image.
+    pub fn handedness(&self) -> f64 {
+        let r = &self.rotation;
+        dot3(r.map(|row| row[0]), cross3(r.map(|row| row[1]), r.map(|row| row[2])))
+    }
+}
+
+/// An orthonormal frame from three non-collinear points: columns e1 along p1→p2, e3 normal.
+fn triad(p: [[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let a = sub3(p[1], p[0]);
+    let na = norm3(a);
+    let n = cross3(a, sub3(p[2], p[0]));
+    let nn = norm3(n);
+    if !(na > 0.0 && nn > 0.0) {
+        return None;
+    }
+    let e1 = scale3(1.0 / na, a);
+    let e3 = scale3(1.0 / nn, n);
+    let e2 = cross3(e3, e1);
+    Some([e1, e2, e3])
+}
+
+fn point<const N: usize>(v: &[f64; N], points: usize, p: usize) -> [f64; 3] {
+    [v[p], v[points + p], v[2 * points + p]]
+}
+
+/// The platform pose that places its frame pivots where `v` has them. `None` if they are
+/// collinear or not finite.
+pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N]) -> Option<Pose> {
+    let k = S::POINTS.len();
+    let f = S::FRAME;
+    let world = triad(f.map(|i| point(v, k, i)))?;
+    let local = triad(f.map(|i| sys.point_local(i)))?;
+    // R = W Lᵀ with W, L holding the triads as columns.
+    let mut r = [[0.0; 3]; 3];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            *x = (0..3).map(|c| world[c][i] * local[c][j]).sum();
+        }
+    }
+    let w0 = point(v, k, f[0]);
+    let l0 = sys.point_local(f[0]);
+    let rl = [0, 1, 2].map(|i| r[i][0] * l0[0] + r[i][1] * l0[1] + r[i][2] * l0[2]);
+    let pose = Pose { rotation: r, translation: sub3(w0, rl) };
+    pose.translation.iter().chain(r.iter().flatten()).all(|x| x.is_finite()).then_some(pose)
+}
+
+/// The unknowns v of the platform at `pose` (Eq. A1).
+pub fn unknowns_from_pose<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, pose: &Pose) -> [f64; N] {
+    let k = S::POINTS.len();
+    let mut v = [0.0; N];
+    for p in 0..k {
+        let q = pose.apply(sys.point_local(p));
+        for (axis, value) in q.iter().enumerate() {
+            if axis * k + p < N {
+                v[axis * k + p] = *value;
+            }
+        }
+    }
+    v
+}

@@ -1,0 +1,135 @@
+//! What every solve returns: the solution, how it ended, and what was met on the way.
+
+use core::fmt;
+
+/// How a solve ended. Only [`Status::Converged`] is a solution on the start's branch as far
+/// as the method can tell; every other variant says why not.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Status {
+    /// Converged to the requested tolerance.
+    Converged,
+    /// The straight joint-space path from the start to the target turns back in λ at this λ:
+    /// it leaves the valid joint space through a fold (a direct singularity). Continuing
+    /// along the curve would lead to another assembly mode.
+    Fold { lambda: f64 },
+    /// The sign of det B differs from the start's: the result lies across a singular
+    /// surface, on another branch.
+    BranchChanged,
+    /// Newton did not converge within the iteration limit.
+    NotConverged { residual_norm: f64 },
+    /// The step size fell below its minimum before reaching λ = 1.
+    StepTooSmall { lambda: f64 },
+    /// B (or the bordered matrix) became singular and the method cannot go on.
+    Singular { lambda: f64 },
+}
+
+impl Status {
+    /// One lowercase word, for CSV and logs.
+    pub fn word(&self) -> &'static str {
+        match self {
+            Status::Converged => "ok",
+            Status::Fold { .. } => "fold",
+            Status::BranchChanged => "branch_changed",
+            Status::NotConverged { .. } => "not_converged",
+            Status::StepTooSmall { .. } => "step_too_small",
+            Status::Singular { .. } => "singular",
+        }
+    }
+}
+
+impl fmt::Display for Status {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Status::Converged => write!(f, "converged"),
+            Status::Fold { lambda } => write!(f, "the joint-space path leaves the valid joint space at λ = {lambda:.4} (fold)"),
+            Status::BranchChanged => write!(f, "the result lies on another branch (det B changed sign)"),
+            Status::NotConverged { residual_norm } => write!(f, "not converged (‖F‖ = {residual_norm:.3e})"),
+            Status::StepTooSmall { lambda } => write!(f, "step size underflow at λ = {lambda:.4}"),
+            Status::Singular { lambda } => write!(f, "singular Jacobian at λ = {lambda:.4}"),
+        }
+    }
+}
+
+/// A solve's result and its account of the path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solution<const N: usize> {
+    /// The pivot coordinates reached (the last accepted point unless converged).
+    pub v: [f64; N],
+    pub status: Status,
+    /// How far along the homotopy the method got (1 when converged).
+    pub lambda: f64,
+    pub steps_accepted: u32,
+    pub steps_rejected: u32,
+    pub newton_iterations: u32,
+    /// ‖B⁻¹F‖ at the result: the next Newton correction, a first-order estimate of the
+    /// distance to the exact solution (the practical form of Eq. 13).
+    pub error_estimate: f64,
+    /// The smallest |det B| / |det B at the start| met at accepted points.
+    pub min_det_ratio: f64,
+}
+
+impl<const N: usize> Solution<N> {
+    /// Whether the solve converged on the start's branch.
+    pub fn is_ok(&self) -> bool {
+        self.status == Status::Converged
+    }
+}
+
+/// Input that cannot be solved at all: nothing was attempted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SolveError {
+    /// A start, target or option value is NaN or infinite.
+    NonFinite,
+    /// Joint input `input` is out of its physical range (e.g. a negative leg length).
+    InvalidInput { input: usize },
+    /// B is singular at the start configuration.
+    SingularStart,
+    /// The start configuration does not satisfy F(v0, x0) = 0.
+    InconsistentStart { residual_norm: f64 },
+}
+
+impl fmt::Display for SolveError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SolveError::NonFinite => write!(f, "non-finite input"),
+            SolveError::InvalidInput { input } => write!(f, "joint input {input} is out of range"),
+            SolveError::SingularStart => write!(f, "the start configuration is singular"),
+            SolveError::InconsistentStart { residual_norm } => {
+                write!(f, "the start configuration does not satisfy the constraints (‖F‖ = {residual_norm:.3e})")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for SolveError {}
+
+/// Solver settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Converged when the Newton correction ‖Δv‖ falls below this (same units as v).
+    pub tolerance: f64,
+    /// Newton iterations allowed for the final correction (and for NR altogether).
+    pub max_iterations: u32,
+    /// Continuation steps allowed (accepted plus rejected).
+    pub max_steps: u32,
+    /// Newton homotopy: the number of uniform λ steps.
+    pub homotopy_steps: u32,
+}
+
+impl Options {
+    /// The paper's settings (Section 5): accuracy 0.0005, at most 150 iterations.
+    pub const PAPER: Options = Options { tolerance: 5e-4, max_iterations: 150, max_steps: 2000, homotopy_steps: 10 };
+    /// Near machine precision for millimetre-sized mechanisms.
+    pub const TIGHT: Options = Options { tolerance: 1e-10, max_iterations: 50, max_steps: 2000, homotopy_steps: 10 };
+
+    pub(crate) fn is_valid(&self) -> bool {
+        self.tolerance.is_finite() && self.tolerance > 0.0 && self.max_iterations > 0 && self.max_steps > 0 && self.homotopy_steps > 0
+    }
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options::TIGHT
+    }
+}
