@@ -1,1 +1,83 @@
-//! Shared helpers for the integration tests.
+//! Shared helpers for the integration tests: a seeded sampler and generic checks that every
+//! generated mechanism must pass.
+
+use linkage::Mechanism;
+
+/// SplitMix64: a seeded, reproducible sampler (tests need repeatability, not quality).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// Checks ∂F/∂v (sparse and dense) and ∂F/∂x against central finite differences at (v, x),
+/// and that the sparsity pattern holds every nonzero. Panics with the offending entry.
+pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) {
+    let mut values = vec![0.0; S::NNZ];
+    sys.jacobian(v, x, &mut values);
+    assert_eq!(S::PATTERN.len(), S::NNZ);
+    let mut sparse = [[0.0; N]; N];
+    for (k, &(r, c)) in S::PATTERN.iter().enumerate() {
+        sparse[r][c] = values[k];
+    }
+    let mut dense = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut dense);
+    let mut a = [[0.0; M]; N];
+    sys.input_jacobian(v, x, &mut a);
+    let mut fp = [0.0; N];
+    let mut fm = [0.0; N];
+    for c in 0..N {
+        let h = 1e-5 * v[c].abs().max(1.0);
+        let (mut vp, mut vm) = (*v, *v);
+        vp[c] += h;
+        vm[c] -= h;
+        sys.residual(&vp, x, &mut fp);
+        sys.residual(&vm, x, &mut fm);
+        for r in 0..N {
+            let fd = (fp[r] - fm[r]) / (2.0 * h);
+            let tol = 1e-6 * (1.0 + fd.abs());
+            assert!((fd - sparse[r][c]).abs() <= tol, "{}: dF{r}/dv{c} = {} (sparse) vs {fd} (finite differences)", S::NAME, sparse[r][c]);
+            assert_eq!(dense[r][c], sparse[r][c], "{}: dense and sparse differ at ({r}, {c})", S::NAME);
+        }
+    }
+    for j in 0..M {
+        let h = 1e-6 * x[j].abs().max(1.0);
+        let (mut xp, mut xm) = (*x, *x);
+        xp[j] += h;
+        xm[j] -= h;
+        sys.residual(v, &xp, &mut fp);
+        sys.residual(v, &xm, &mut fm);
+        for r in 0..N {
+            let fd = (fp[r] - fm[r]) / (2.0 * h);
+            let tol = 1e-5 * (1.0 + fd.abs());
+            assert!((fd - a[r][j]).abs() <= tol, "{}: dF{r}/dx{j} = {} vs {fd} (finite differences)", S::NAME, a[r][j]);
+        }
+    }
+}
+
+/// Largest coordinate difference.
+pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max)
+}
+
+/// ‖F(v, x)‖∞.
+pub fn residual_norm<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) -> f64 {
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    f.iter().fold(0.0, |m, r| m.max(r.abs()))
+}

@@ -196,11 +196,11 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     b.constant(name, Recipe::Axis { a, b: bb, point: c0, index: index + k3 })
                 })
             };
-            let e = part(b, 0, "e");
             let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
             let inputs: Vec<usize> = driver.variables.iter().map(|v| b.input(v)).collect();
             let (tip_expr, inverse) = match driver.kind {
                 PairKind::P => {
+                    let e = part(b, 0, "e");
                     let c0e = b.pivot_constants(&link.to_string(), &tip.to_string());
                     let t = expr::vadd(&c0e, &expr::vscale(&Expr::Input(inputs[0]), &e));
                     let inv = Inverse::PrismaticRod {
@@ -231,6 +231,7 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                         },
                         _ => Inverse::None { inputs: inputs.clone() },
                     };
+                    let e = if matches!(kind, PairKind::H | PairKind::C) { part(b, 0, "e") } else { o.clone() };
                     if kind == PairKind::H {
                         let lead = driver.lead.as_ref().expect("classified");
                         let lead = b.scalar_constant(&format!("{chain}.lead"), lead, format!("lead_{chain}"));
