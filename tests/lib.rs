@@ -81,3 +81,75 @@ pub fn residual_norm<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S
     sys.residual(v, x, &mut f);
     f.iter().fold(0.0, |m, r| m.max(r.abs()))
 }
+
+/// Ground truth for "the start's branch along the straight joint-space segment": natural-
+/// parameter continuation in `steps` tiny steps, with the number of det B sign changes met.
+/// Valid as truth when `flips == 0` and the steps are small against the path's curvature.
+pub fn straight_path_truth<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &linkage::Start<N, M>,
+    target: &[f64; M],
+    steps: usize,
+) -> ([f64; N], usize) {
+    let mut v = start.v;
+    let mut prev = start.det;
+    let mut flips = 0;
+    for k in 1..=steps {
+        let l = k as f64 / steps as f64;
+        let x: [f64; M] = std::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
+        for _ in 0..if k == steps { 30 } else { 5 } {
+            let mut f = [0.0; N];
+            sys.residual(&v, &x, &mut f);
+            let mut b = [[0.0; N]; N];
+            sys.jacobian_dense(&v, &x, &mut b);
+            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else { return (v, flips + 1) };
+            linkage::lu::solve(&b, &piv, &mut f);
+            for i in 0..N {
+                v[i] -= f[i];
+            }
+        }
+        let d = linkage::det_b(sys, &v, &x);
+        if d * prev <= 0.0 {
+            flips += 1;
+        }
+        prev = d;
+    }
+    (v, flips)
+}
+
+/// A Stewart pose reached from home by a straight path in pose space along which det B keeps
+/// the start's sign (checked at `checks` points): the ground truth v and its leg lengths.
+pub struct PoseSample {
+    pub pose: linkage::Pose,
+    pub x: [f64; 6],
+    pub v: [f64; 18],
+}
+
+pub fn stewart_pose_samples(seed: u64, count: usize, rot: f64, trans: f64, checks: usize) -> Vec<PoseSample> {
+    use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
+    let s = Stewart::new();
+    let st = home_start(&s).unwrap();
+    let home = linkage::pose_from_unknowns(&s, &st.v).unwrap();
+    let [hy, hp, hr] = home.euler();
+    let ht = home.translation;
+    let mut rng = Rng::new(seed);
+    let mut out = Vec::new();
+    while out.len() < count {
+        let u: [f64; 6] = std::array::from_fn(|i| if i < 3 { rng.uniform(-rot, rot) } else { rng.uniform(-trans, trans) });
+        let at = |t: f64| {
+            linkage::Pose::from_euler(hy + t * u[0], hp + t * u[1], hr + t * u[2], [ht[0] + t * u[3], ht[1] + t * u[4], ht[2] + t * u[5]])
+        };
+        let valid = (0..=checks).all(|k| {
+            let p = at(k as f64 / checks as f64);
+            legs_for_pose(&s, &p).is_some_and(|(x, v)| {
+                x.iter().all(|l| *l > 20.0) && linkage::det_b(&s, &v, &x) * st.det > 0.0
+            })
+        });
+        if valid {
+            let pose = at(1.0);
+            let (x, v) = legs_for_pose(&s, &pose).unwrap();
+            out.push(PoseSample { pose, x, v });
+        }
+    }
+    out
+}

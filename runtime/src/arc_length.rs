@@ -20,7 +20,7 @@
 use crate::lu::{factor, solve, Bordered, Extended};
 use crate::math::norm;
 use crate::newton::finish;
-use crate::start::{all_finite, correction};
+use crate::start::correction;
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 const MAX_CORRECTOR: usize = 6;
@@ -152,9 +152,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    if !all_finite(target) || !options.is_valid() {
-        return Err(SolveError::NonFinite);
-    }
+    crate::start::check_target(sys, target, options)?;
     let mut dx = [0.0; M];
     for j in 0..M {
         dx[j] = target[j] - start.x[j];

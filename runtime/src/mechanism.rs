@@ -38,6 +38,9 @@ pub trait Mechanism<const N: usize, const M: usize> {
     fn input_jacobian(&self, v: &[f64; N], x: &[f64; M], a: &mut [[f64; M]; N]);
     /// A platform pivot's coordinates in the platform frame; NaN for an index out of range.
     fn point_local(&self, p: usize) -> [f64; 3];
+    /// Checks that joint inputs are physically meaningful (e.g. leg lengths positive);
+    /// `Err(j)` names the first input out of range.
+    fn validate_inputs(&self, x: &[f64; M]) -> Result<(), usize>;
     /// Joint inputs that put the platform pivots at `v` (inverse kinematics); where a chain
     /// has two solutions, the one nearest `reference`.
     fn inverse(&self, v: &[f64; N], reference: &[f64; M]) -> Result<[f64; M], InverseError>;

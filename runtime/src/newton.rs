@@ -27,9 +27,7 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    if !all_finite(x) || !options.is_valid() {
-        return Err(SolveError::NonFinite);
-    }
+    crate::start::check_target(sys, x, options)?;
     let mut v = start.v;
     let mut iterations = 0;
     let status = loop {

@@ -15,9 +15,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    if !all_finite(target) || !options.is_valid() {
-        return Err(SolveError::NonFinite);
-    }
+    crate::start::check_target(sys, target, options)?;
     let mut v = start.v;
     let mut lambda = 0.0;
     let nominal = 1.0 / options.homotopy_steps as f64;
@@ -32,7 +30,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         x
     };
     loop {
-        if accepted + rejected >= options.max_steps || iterations >= options.max_iterations {
+        if accepted + rejected >= options.max_steps {
             let x = at(lambda);
             let status = not_converged(sys, &v, &x);
             return Ok(finish(sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio));
@@ -58,9 +56,6 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
             }
             if norm(&d) <= options.tolerance {
                 converged = true;
-                break;
-            }
-            if iterations >= options.max_iterations {
                 break;
             }
         }

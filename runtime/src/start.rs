@@ -18,6 +18,18 @@ pub(crate) fn all_finite(a: &[f64]) -> bool {
     a.iter().all(|x| x.is_finite())
 }
 
+/// Rejects non-finite or out-of-range targets and invalid options before any work.
+pub(crate) fn check_target<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    x: &[f64; M],
+    options: &crate::Options,
+) -> Result<(), SolveError> {
+    if !all_finite(x) || !options.is_valid() {
+        return Err(SolveError::NonFinite);
+    }
+    sys.validate_inputs(x).map_err(|input| SolveError::InvalidInput { input })
+}
+
 /// A Newton correction `Δ = B⁻¹ F` at `(v, x)`, with det B; `None` if B is singular.
 pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
@@ -50,7 +62,9 @@ impl<const N: usize, const M: usize> Start<N, M> {
         if !all_finite(&v) || !all_finite(&x) {
             return Err(SolveError::NonFinite);
         }
+        sys.validate_inputs(&x).map_err(|input| SolveError::InvalidInput { input })?;
         let scale = norm(&v).max(1.0);
+        let given = v;
         let mut v = v;
         for _ in 0..8 {
             let (d, _) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
@@ -64,8 +78,16 @@ impl<const N: usize, const M: usize> Start<N, M> {
         let mut f = [0.0; N];
         sys.residual(&v, &x, &mut f);
         let (d, det) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
-        if norm(&d) > 1e-6 * scale {
-            return Err(SolveError::InconsistentStart { residual_norm: norm(&f) });
+        // Refinement may polish rounding, not move the start: a large move could land on
+        // another assembly mode.
+        let mut moved = [0.0; N];
+        for i in 0..N {
+            moved[i] = v[i] - given[i];
+        }
+        if norm(&d) > 1e-6 * scale || norm(&moved) > 1e-3 * scale {
+            let mut f0 = [0.0; N];
+            sys.residual(&given, &x, &mut f0);
+            return Err(SolveError::InconsistentStart { residual_norm: norm(&f0) });
         }
         if det == 0.0 || !det.is_finite() {
             return Err(SolveError::SingularStart);

@@ -5,6 +5,7 @@ use crate::arc_length::arc_length;
 use crate::lu::{factor, solve};
 use crate::math::norm;
 use crate::start::{all_finite, correction};
+
 use crate::{Mechanism, Options, SolveError, Start, Status};
 
 /// One tracked sample.
@@ -67,9 +68,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
 
     /// Solves the next sample. On error nothing changes.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
-        if !all_finite(x) {
-            return Err(TrackError::Input(SolveError::NonFinite));
-        }
+        crate::start::check_target(&self.sys, x, &self.options).map_err(TrackError::Input)?;
         let scale = norm(&self.v).max(1.0);
         let tol = self.options.tolerance.min(1e-6 * scale);
         let mut iterations = 0;

@@ -57,6 +57,17 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
         quote!(#i => [g[#x], g[#y], g[#z]],)
     });
     let inverse = model.inverses.iter().map(|inv| inverse(model, inv));
+    // A leg's length (input plus offset) must be positive.
+    let ranges = model.inverses.iter().filter_map(|inv| match inv {
+        Inverse::Distance { input, offset, .. } => {
+            let off = match offset {
+                Some(o) => quote!(c[#o]),
+                None => quote!(0.0),
+            };
+            Some(quote!(if !(x[#input] + #off > 0.0) { return Err(#input); }))
+        }
+        _ => None,
+    });
     let uses_v = model.equations.iter().any(|e| (0..n).any(|i| e.depends_on(Var::Unknown(i))));
     let allow = if uses_v { quote!() } else { quote!(#[allow(unused_variables)]) };
     let priv_ = quote!(::linkage::__private);
@@ -190,6 +201,20 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
                     #(#point_local)*
                     _ => [f64::NAN; 3],
                 }
+            }
+
+            #[allow(unused_variables)]
+            fn validate_inputs(&self, x: &[f64; #m]) -> ::core::result::Result<(), usize> {
+                let c = &self.constants;
+                let mut j = 0;
+                while j < #m {
+                    if !x[j].is_finite() {
+                        return Err(j);
+                    }
+                    j += 1;
+                }
+                #(#ranges)*
+                Ok(())
             }
 
             #[allow(unused_variables, unused_mut)]
