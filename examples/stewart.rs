@@ -1,52 +1,79 @@
-use linkage::{Mechanism, Pose, Method, Options, Status};
-use linkage_examples::stewart::*;
-fn rnd(s: &mut u64) -> f64 { *s ^= *s << 13; *s ^= *s >> 7; *s ^= *s << 17; (*s >> 11) as f64 / (1u64<<53) as f64 }
-fn main() {
-    let s = Stewart::new();
-    let st = home_start(&s).unwrap();
-    let home = linkage::pose_from_unknowns(&s, &st.v).unwrap();
-    let [hy, hp, hr] = home.euler();
-    let ht = home.translation;
-    let mut seed = 12345u64;
-    let mut counts = std::collections::BTreeMap::new();
-    for _ in 0..2000 {
-        let u: Vec<f64> = (0..6).map(|i| if i < 3 { (rnd(&mut seed)*2.0-1.0)*1.2 } else { (rnd(&mut seed)*2.0-1.0)*150.0 }).collect();
-        // nonsingular pose path check
-        let mut ok = true; let mut last = None;
-        for k in 0..=100 {
-            let t = k as f64 / 100.0;
-            let p = Pose::from_euler(hy + t*u[0], hp + t*u[1], hr + t*u[2], [ht[0]+t*u[3], ht[1]+t*u[4], ht[2]+t*u[5]]);
-            let Some((x, v)) = legs_for_pose(&s, &p) else { ok = false; break };
-            let d = linkage::det_b(&s, &v, &x);
-            if d * st.det <= 0.0 || x.iter().any(|l| *l < 50.0) { ok = false; break; }
-            last = Some((x, v, d));
-        }
-        if !ok { continue; }
-        let (x, v, d) = last.unwrap();
-        let near = (d / st.det).abs() < 0.05;
-        for m in [Method::ArcLength, Method::NewtonHomotopy, Method::NewtonRaphson] {
-            let sol = m.solve(&s, &st, &x, &Options::TIGHT).unwrap();
-            let err = sol.v.iter().zip(&v).map(|(a,b)| (a-b).abs()).fold(0.0, f64::max);
-            if m == Method::ArcLength && sol.status == Status::Converged && err > 1e-6 {
-                // fine natural continuation along the straight segment
-                let mut w = st.v; let mut mind = f64::INFINITY; let mut flips = 0; let mut prev = st.det;
-                let n = 20000;
-                for k in 1..=n { let l = k as f64 / n as f64; let xx: [f64;6] = std::array::from_fn(|j| st.x[j] + l*(x[j]-st.x[j]));
-                    for _ in 0..4 { let mut f=[0.0;18]; s.residual(&w,&xx,&mut f); let mut b=[[0.0;18];18]; s.jacobian_dense(&w,&xx,&mut b); let piv = linkage::lu::factor::<18,_>(&mut b).unwrap(); linkage::lu::solve(&b,&piv,&mut f); for i in 0..18 { w[i]-=f[i]; } }
-                    let d = linkage::det_b(&s,&w,&xx); if d*prev <= 0.0 { flips += 1; } prev = d; mind = mind.min((d/st.det).abs()); }
-                let e2 = w.iter().zip(&sol.v).map(|(a,b)| (a-b).abs()).fold(0.0, f64::max);
-                let e3 = w.iter().zip(&v).map(|(a,b)| (a-b).abs()).fold(0.0, f64::max);
-                let mut pmin = f64::INFINITY; let mut pflips = 0;
-                for k in 0..=20000 { let t = k as f64 / 20000.0;
-                    let p = Pose::from_euler(hy + t*u[0], hp + t*u[1], hr + t*u[2], [ht[0]+t*u[3], ht[1]+t*u[4], ht[2]+t*u[5]]);
-                    let (xx, vv) = legs_for_pose(&s, &p).unwrap(); let d = linkage::det_b(&s, &vv, &xx); if d*st.det <= 0.0 { pflips += 1; } pmin = pmin.min((d/st.det).abs()); }
-                println!("pose path: flips {pflips} min ratio {pmin:.2e}");
-                println!("WRONG: err {err:.3} fine-vs-PH {e2:.2e} fine-vs-truth {e3:.3} flips {flips} min det ratio {mind:.2e} PH min {:.2e} acc {} rej {}", sol.min_det_ratio, sol.steps_accepted, sol.steps_rejected);
-            }
-            let key = format!("{m:?} near={near} {} {}", sol.status.word(), if sol.status == Status::Converged { if err < 1e-6 {"right"} else {"WRONG"} } else {""});
-            *counts.entry(key).or_insert(0) += 1;
+//! The paper's case study on the command line: the Stewart platform of Table III.
+//!
+//! ```text
+//! cargo run --release --example stewart -- equations [--json]
+//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] --input legs.csv [--output out.csv]
+//! ```
+
+#[path = "stewart_cli/equations.rs"]
+mod equations;
+#[path = "stewart_cli/solve.rs"]
+mod solve;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "stewart", about = "Forward kinematics of the Stewart platform of Gao & Wu (2015), Table III")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the generated system F(v, x) = 0 (Eq. 19) and its Jacobian (Table A1).
+    Equations {
+        /// One JSON object: unknowns, inputs, equations, jacobian (1-based rows and columns).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Solve forward kinematics for every row of a CSV of leg lengths (columns L1…L6).
+    Solve(SolveArgs),
+}
+
+#[derive(clap::Args)]
+pub struct SolveArgs {
+    /// TOML geometry: `base`, `platform` (6 joint centres each) and `[start]` with `legs` and
+    /// an optional `pose = [yaw, pitch, roll, x, y, z]`. Default: Table III, legs 170 mm.
+    #[arg(long)]
+    geometry: Option<PathBuf>,
+    /// Solver: pseudo-arc-length continuation, Newton homotopy or Newton–Raphson.
+    #[arg(long, value_enum, default_value_t = Method::Ph)]
+    method: Method,
+    /// Solve each row from the previous row's solution instead of from the start.
+    #[arg(long)]
+    track: bool,
+    /// CSV with a header containing L1…L6 (mm); other columns are ignored.
+    #[arg(long)]
+    input: PathBuf,
+    /// Where to write the result CSV (default: standard output).
+    #[arg(long)]
+    output: Option<PathBuf>,
+    /// Convergence tolerance on the Newton correction, mm.
+    #[arg(long, default_value_t = 1e-10)]
+    tolerance: f64,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Method {
+    Ph,
+    Nh,
+    Nr,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Equations { json } => equations::run(json),
+        Command::Solve(args) => solve::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
         }
     }
-    for (k, v) in counts { println!("{k}: {v}"); }
-    let _ = Stewart::NNZ;
 }

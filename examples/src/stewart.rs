@@ -1,37 +1,55 @@
 //! The general 6-6 Stewart platform of Gao & Wu (2015), Table III: six S–P–S legs.
 
-use linkage::{Mechanism, Pose, SolveError, Start};
+use linkage::{newton_raphson, GeometryError, Mechanism, Options, Pose, SolveError, Start, Status};
 
-linkage::mechanism! {
-    /// Gao & Wu's Stewart platform (Table III), in the coplanar form of Eq. 16: its system is
-    /// Eq. 19 (with the distance rows squared, see ERRATA.md).
-    pub struct Stewart;
+/// Declares a Stewart platform type with Table III's geometry and the given rigid-body form.
+macro_rules! stewart {
+    ($(#[$doc:meta])* $name:ident, $form:ident) => {
+        linkage::mechanism! {
+            $(#[$doc])*
+            pub struct $name;
 
-    base {
-        D1 = [200.764, 53.795, 0.0],
-        D2 = [169.706, 0.0, 0.0],
-        D3 = [0.0, 0.0, 0.0],
-        D4 = [-31.058, 53.795, 0.0],
-        D5 = [53.795, 200.764, 0.0],
-        D6 = [115.911, 200.764, 0.0],
-    }
+            base {
+                D1 = [200.764, 53.795, 0.0],
+                D2 = [169.706, 0.0, 0.0],
+                D3 = [0.0, 0.0, 0.0],
+                D4 = [-31.058, 53.795, 0.0],
+                D5 = [53.795, 200.764, 0.0],
+                D6 = [115.911, 200.764, 0.0],
+            }
 
-    platform(frame = [G1, G3, G5]) {
-        G1 = [122.475, 122.475, 0.0],
-        G2 = [51.764, 0.0, 0.0],
-        G3 = [0.0, 0.0, 0.0],
-        G4 = [-70.711, 122.475, 0.0],
-        G5 = [-44.829, 167.303, 0.0],
-        G6 = [96.593, 167.303, 0.0],
-    }
+            platform(frame = [G1, G3, G5], form = $form) {
+                G1 = [122.475, 122.475, 0.0],
+                G2 = [51.764, 0.0, 0.0],
+                G3 = [0.0, 0.0, 0.0],
+                G4 = [-70.711, 122.475, 0.0],
+                G5 = [-44.829, 167.303, 0.0],
+                G6 = [96.593, 167.303, 0.0],
+            }
 
-    chain leg1 = base - S(D1) - P(active L1) - S(G1) - platform;
-    chain leg2 = base - S(D2) - P(active L2) - S(G2) - platform;
-    chain leg3 = base - S(D3) - P(active L3) - S(G3) - platform;
-    chain leg4 = base - S(D4) - P(active L4) - S(G4) - platform;
-    chain leg5 = base - S(D5) - P(active L5) - S(G5) - platform;
-    chain leg6 = base - S(D6) - P(active L6) - S(G6) - platform;
+            chain leg1 = base - S(D1) - P(active L1) - S(G1) - platform;
+            chain leg2 = base - S(D2) - P(active L2) - S(G2) - platform;
+            chain leg3 = base - S(D3) - P(active L3) - S(G3) - platform;
+            chain leg4 = base - S(D4) - P(active L4) - S(G4) - platform;
+            chain leg5 = base - S(D5) - P(active L5) - S(G5) - platform;
+            chain leg6 = base - S(D6) - P(active L6) - S(G6) - platform;
+        }
+    };
 }
+
+stewart!(
+    /// Gao & Wu's Stewart platform (Table III) in the coplanar form of Eq. 16: its system is
+    /// Eq. 19, with the distance rows squared (see ERRATA.md).
+    Stewart,
+    coplanar
+);
+
+stewart!(
+    /// The same platform in the general (mirror-free) rigid-body form, for 6-6 geometries whose
+    /// platform pivots are not coplanar.
+    StewartGeneral,
+    general
+);
 
 /// The paper's initial configuration: all legs 170 mm.
 pub const HOME_LEGS: [f64; 6] = [170.0; 6];
@@ -47,8 +65,156 @@ pub fn home_start(sys: &Stewart) -> Result<Start<18, 6>, SolveError> {
     Start::new(sys, v, HOME_LEGS)
 }
 
-/// Leg lengths for a platform pose (Appendix B, Eqs. A1–A3).
-pub fn legs_for_pose(sys: &Stewart, pose: &Pose) -> Option<([f64; 6], [f64; 18])> {
+/// Leg lengths for a platform pose (Appendix B, Eqs. A1–A3), with the pivots v.
+pub fn legs_for_pose<S: Mechanism<18, 6>>(sys: &S, pose: &Pose) -> Option<([f64; 6], [f64; 18])> {
     let v = linkage::unknowns_from_pose(sys, pose);
     sys.inverse(&v, &HOME_LEGS).ok().map(|x| (x, v))
+}
+
+/// A Stewart platform type whose 6 + 6 joint centres can be set at run time.
+pub trait SixSix: Mechanism<18, 6> + Clone + Sized {
+    fn with_joints(base: &[[f64; 3]; 6], platform: &[[f64; 3]; 6]) -> Result<Self, GeometryError>;
+    /// The base joint centres D1…D6 in the base frame.
+    fn base_joints(&self) -> [[f64; 3]; 6];
+}
+
+macro_rules! six_six {
+    ($name:ident) => {
+        impl SixSix for $name {
+            fn with_joints(base: &[[f64; 3]; 6], platform: &[[f64; 3]; 6]) -> Result<Self, GeometryError> {
+                let mut g = $name::DEFAULT_GEOMETRY;
+                for (k, name) in $name::GEOMETRY_NAMES.iter().enumerate() {
+                    let mut parts = name.split('.');
+                    let (link, pivot, axis) = (parts.next(), parts.next(), parts.next());
+                    let i = pivot.and_then(|p| p[1..].parse::<usize>().ok()).filter(|i| (1..=6).contains(i));
+                    let a = match axis {
+                        Some("x") => 0,
+                        Some("y") => 1,
+                        _ => 2,
+                    };
+                    match (link, i) {
+                        (Some("base"), Some(i)) => g[k] = base[i - 1][a],
+                        (Some("platform"), Some(i)) => g[k] = platform[i - 1][a],
+                        _ => return Err(GeometryError::UnknownName),
+                    }
+                }
+                $name::from_geometry(g)
+            }
+
+            fn base_joints(&self) -> [[f64; 3]; 6] {
+                let mut out = [[0.0; 3]; 6];
+                for (k, name) in $name::GEOMETRY_NAMES.iter().enumerate() {
+                    let mut parts = name.split('.');
+                    if let (Some("base"), Some(pivot), Some(axis)) = (parts.next(), parts.next(), parts.next()) {
+                        if let Some(i) = pivot[1..].parse::<usize>().ok().filter(|i| (1..=6).contains(i)) {
+                            let a = if axis == "x" { 0 } else if axis == "y" { 1 } else { 2 };
+                            out[i - 1][a] = self.geometry()[k];
+                        }
+                    }
+                }
+                out
+            }
+        }
+    };
+}
+
+six_six!(Stewart);
+six_six!(StewartGeneral);
+
+/// Whether the six platform joint centres lie in one plane (relative tolerance 1e-9).
+pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // The best-conditioned triangle defines the plane.
+    let mut best = (0.0, [0.0; 3], 0);
+    for i in 0..6 {
+        for j in i + 1..6 {
+            for k in j + 1..6 {
+                let n = cross(sub(platform[j], platform[i]), sub(platform[k], platform[i]));
+                let a = dot(n, n).sqrt();
+                if a > best.0 {
+                    best = (a, n, i);
+                }
+            }
+        }
+    }
+    let (area, n, i) = best;
+    if area == 0.0 {
+        return false;
+    }
+    let size = platform.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
+    platform.iter().all(|p| (dot(n, sub(*p, platform[i])) / area).abs() <= 1e-9 * size)
+}
+
+/// Why no start configuration could be found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StartError {
+    /// The start legs or pose are invalid.
+    Solve(SolveError),
+    /// No assembly mode with the platform above the base was found for the start legs.
+    NoAssemblyMode,
+    /// The given start pose does not satisfy the start legs.
+    PoseMismatch,
+}
+
+impl std::fmt::Display for StartError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StartError::Solve(e) => write!(f, "{e}"),
+            StartError::NoAssemblyMode => write!(f, "no assembly mode with the platform above the base was found for the start legs"),
+            StartError::PoseMismatch => write!(f, "the start pose does not match the start legs (an error above 1 % of the platform size)"),
+        }
+    }
+}
+
+/// Polishes a guess `v` for legs `x` by Newton's method (no branch guarantee: a guess).
+fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f64; 18]> {
+    let det = linkage::det_b(sys, &v, x);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let guess = Start { v, x: *x, det };
+    let sol = newton_raphson(sys, &guess, x, &Options { max_iterations: 60, ..Options::TIGHT }).ok()?;
+    matches!(sol.status, Status::Converged | Status::BranchChanged).then_some(sol.v)
+}
+
+/// The start configuration for legs `x`: at `pose` if given (it must match the legs), else
+/// the assembly mode with the platform above the base that is least tilted.
+pub fn find_start<S: SixSix>(sys: &S, x: [f64; 6], pose: Option<Pose>) -> Result<Start<18, 6>, StartError> {
+    sys.validate_inputs(&x).map_err(|input| StartError::Solve(SolveError::InvalidInput { input }))?;
+    let scale = (0..6).map(|p| sys.point_local(p)).flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+    if let Some(pose) = pose {
+        let guess = linkage::unknowns_from_pose(sys, &pose);
+        let v = polish(sys, guess, &x).ok_or(StartError::PoseMismatch)?;
+        let moved = v.iter().zip(&guess).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        if moved > 0.01 * scale {
+            return Err(StartError::PoseMismatch);
+        }
+        return Start::new(sys, v, x).map_err(StartError::Solve);
+    }
+    let mean = x.iter().sum::<f64>() / 6.0;
+    let base = sys.base_joints();
+    let base_c = base.iter().fold([0.0; 3], |a, p| [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]);
+    let base_top = base.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p[2]));
+    let mut best: Option<([f64; 18], f64)> = None;
+    for height in [0.3, 0.5, 0.7, 0.85, 1.0, 1.2] {
+        for yaw in [0.0, 0.4, -0.4, 0.8, -0.8, 1.6, -1.6, 3.14] {
+            // Centre the platform over the base centroid.
+            let local_c = (0..6).map(|p| sys.point_local(p)).fold([0.0; 3], |a, p| [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]);
+            let r = Pose::from_euler(yaw, 0.0, 0.0, [0.0; 3]);
+            let rc = r.apply(local_c);
+            let t = [base_c[0] - rc[0], base_c[1] - rc[1], base_c[2] - rc[2] + height * mean];
+            let guess = linkage::unknowns_from_pose(sys, &Pose { translation: t, ..r });
+            let Some(v) = polish(sys, guess, &x) else { continue };
+            let Some(p) = linkage::pose_from_unknowns(sys, &v) else { continue };
+            let up = p.rotation[2][2];
+            let above = (0..6).all(|i| v[12 + i] > base_top);
+            if above && up > 0.0 && (p.handedness() - 1.0).abs() < 1e-6 && best.is_none_or(|(_, u)| up > u + 1e-9) {
+                best = Some((v, up));
+            }
+        }
+    }
+    let (v, _) = best.ok_or(StartError::NoAssemblyMode)?;
+    Start::new(sys, v, x).map_err(StartError::Solve)
 }

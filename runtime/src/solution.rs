@@ -88,6 +88,18 @@ pub enum SolveError {
     InconsistentStart { residual_norm: f64 },
 }
 
+impl SolveError {
+    /// One lowercase word, for CSV and logs.
+    pub fn word(&self) -> &'static str {
+        match self {
+            SolveError::NonFinite => "non_finite",
+            SolveError::InvalidInput { .. } => "invalid_input",
+            SolveError::SingularStart => "singular_start",
+            SolveError::InconsistentStart { .. } => "inconsistent_start",
+        }
+    }
+}
+
 impl fmt::Display for SolveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

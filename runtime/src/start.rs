@@ -48,6 +48,12 @@ pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     Some((f, piv.det))
 }
 
+/// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the
+/// distance to the exact solution (the practical form of Eq. 13). Infinite where B is singular.
+pub fn error_estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) -> f64 {
+    correction(sys, v, x).map_or(f64::INFINITY, |(d, _)| crate::math::norm(&d))
+}
+
 /// det B at `(v, x)`; 0 where B is singular.
 pub fn det_b<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) -> f64 {
     let mut b = [[0.0; N]; N];

@@ -4,7 +4,8 @@
 //! mechanism   := attrs vis "struct" IDENT ";" section*
 //! section     := "params" "{" (IDENT "=" number ","?)* "}"
 //!              | "base" "{" pivot* "}"
-//!              | "platform" ("(" "frame" "=" "[" IDENT "," IDENT "," IDENT "]" ")")? "{" pivot* "}"
+//!              | "platform" ("(" option ("," option)* ")")? "{" pivot* "}"
+//! option      := "frame" "=" "[" IDENT "," IDENT "," IDENT "]" | "form" "=" ("coplanar" | "general")
 //!              | "link" IDENT "{" (pivot | "length" "=" coord ","?)* "}"
 //!              | "chain" IDENT "=" item ("-" item)* ";"
 //! pivot       := IDENT "=" "[" coord "," coord "," coord "]" ","?
@@ -75,6 +76,9 @@ pub struct LinkDecl {
     pub pivots: Vec<Pivot>,
     pub length: Option<Coord>,
     pub frame: Option<Vec<Ident>>,
+    /// `form = coplanar | general`: the rigid-body form of the platform (default: from the
+    /// declared geometry).
+    pub form: Option<Ident>,
 }
 
 pub struct ChainDecl {
@@ -129,6 +133,7 @@ mod kw {
     syn::custom_keyword!(link);
     syn::custom_keyword!(chain);
     syn::custom_keyword!(frame);
+    syn::custom_keyword!(form);
     syn::custom_keyword!(length);
     syn::custom_keyword!(active);
     syn::custom_keyword!(passive);
@@ -179,22 +184,41 @@ impl Parse for Mechanism {
             } else if look.peek(kw::platform) {
                 let kw: kw::platform = input.parse()?;
                 let mut frame = None;
+                let mut form = None;
                 if input.peek(token::Paren) {
                     let args;
                     parenthesized!(args in input);
-                    args.parse::<kw::frame>()?;
-                    args.parse::<Token![=]>()?;
-                    let list;
-                    bracketed!(list in args);
-                    let names = list.parse_terminated(Ident::parse, Token![,])?;
-                    frame = Some(names.into_iter().collect());
+                    while !args.is_empty() {
+                        if args.peek(kw::frame) {
+                            args.parse::<kw::frame>()?;
+                            args.parse::<Token![=]>()?;
+                            let list;
+                            bracketed!(list in args);
+                            let names = list.parse_terminated(Ident::parse, Token![,])?;
+                            frame = Some(names.into_iter().collect());
+                        } else if args.peek(kw::form) {
+                            args.parse::<kw::form>()?;
+                            args.parse::<Token![=]>()?;
+                            let f: Ident = args.parse()?;
+                            if f != "coplanar" && f != "general" {
+                                return Err(syn::Error::new(f.span(), "expected `form = coplanar` or `form = general`"));
+                            }
+                            form = Some(f);
+                        } else {
+                            return Err(args.error("expected `frame = [A, B, C]` or `form = coplanar | general`"));
+                        }
+                        if !args.is_empty() {
+                            args.parse::<Token![,]>()?;
+                        }
+                    }
                 }
-                let link = parse_link_body(
+                let mut link = parse_link_body(
                     input,
                     LinkRole::Platform,
                     Ident::new("platform", kw.span),
                     frame,
                 )?;
+                link.form = form;
                 if m.platform.is_some() {
                     return Err(syn::Error::new(kw.span, "the `platform` link is declared twice"));
                 }
@@ -230,7 +254,7 @@ fn parse_link_body(
 ) -> Result<LinkDecl> {
     let body;
     syn::braced!(body in input);
-    let mut link = LinkDecl { role, name, pivots: Vec::new(), length: None, frame };
+    let mut link = LinkDecl { role, name, pivots: Vec::new(), length: None, frame, form: None };
     while !body.is_empty() {
         if body.peek(kw::length) && body.peek2(Token![=]) {
             let kw: kw::length = body.parse()?;

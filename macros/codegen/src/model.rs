@@ -172,9 +172,16 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     }
 
     // Rigid-body equations of the platform (Eq. 3 / Eq. 16).
-    let coplanar = match &platform.frame_form() {
-        Some(form) => *form,
-        None => rigid::is_coplanar(&b, frame, k),
+    let planar = rigid::is_coplanar(&b, frame, k);
+    let coplanar = match &platform.form {
+        Some(form) if form == "general" => false,
+        Some(form) => {
+            if !planar {
+                return Err(syn::Error::new(form.span(), "`form = coplanar` but the platform pivots are not coplanar at the declared geometry"));
+            }
+            true
+        }
+        None => planar,
     };
     rigid::platform_equations(&mut b, frame, k, coplanar);
 
@@ -252,12 +259,6 @@ fn choose_frame(b: &Builder, platform: &LinkDecl) -> Result<[usize; 3], (Span, S
     best.ok_or_else(|| {
         (platform.name.span(), "fewer than three non-collinear pivots on `platform`: the moving platform needs three to be located".to_string())
     })
-}
-
-impl LinkDecl {
-    fn frame_form(&self) -> Option<bool> {
-        None
-    }
 }
 
 /// Mutable state shared by the modelling phases.

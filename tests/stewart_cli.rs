@@ -1,0 +1,140 @@
+//! The `stewart` command line's pieces: file formats, start configurations, any 6-6 geometry.
+
+use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Status};
+use linkage_examples::cli::{geometry, legs_csv};
+use linkage_examples::stewart::{find_start, home_start, legs_for_pose, platform_is_coplanar, SixSix, StartError, Stewart, StewartGeneral, HOME_LEGS};
+use linkage_tests::{max_diff, Rng};
+
+#[test]
+fn the_default_start_is_the_papers_home() {
+    let s = Stewart::new();
+    let found = find_start(&s, HOME_LEGS, None).unwrap();
+    let home = home_start(&s).unwrap();
+    assert!(max_diff(&found.v, &home.v) < 1e-9);
+}
+
+#[test]
+fn malformed_geometry_files_give_clear_messages() {
+    let ok = "base = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\nplatform = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\n[start]\nlegs = [1,1,1,1,1,1]\n";
+    assert!(geometry::parse(ok).is_ok());
+    let cases = [
+        ("base = [[0,0,0]]\nplatform = []\n[start]\nlegs = []", "`base` needs 6 entries"),
+        (&ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,-1]"), "start leg L6 must be positive"),
+        (&ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,nan]"), "finite"),
+        (&ok.replace("[start]", "[start]\ncolour = 3"), "unknown field"),
+        ("base = ", "parse error at line 1"),
+        (&ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,1]\npose = [0, 0]"), "`start.pose` needs 6 entries"),
+    ];
+    for (text, want) in cases {
+        let err = geometry::parse(text).err().unwrap_or_default();
+        assert!(err.to_lowercase().contains(&want.to_lowercase()), "{text:?}: {err}");
+    }
+}
+
+#[test]
+fn leg_csv_rows_carry_their_own_status() {
+    let dir = std::env::temp_dir().join(format!("linkage-csv-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("legs.csv");
+    std::fs::write(&path, "t,L6,L5,L4,L3,L2,L1\n0,6,5,4,3,2,1\n1,1,2\n2,x,1,1,1,1,1\n3,inf,1,1,1,1,1\n").unwrap();
+    let rows = legs_csv::read(&path).unwrap();
+    assert_eq!(rows[0], Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]), "columns found by name");
+    assert_eq!(rows[1], Err("missing_value"));
+    assert_eq!(rows[2], Err("invalid_number"));
+    assert_eq!(rows[3], Err("non_finite"));
+    std::fs::write(&path, "a,b\n1,2\n").unwrap();
+    assert!(legs_csv::read(&path).unwrap_err().contains("no column `L1`"));
+    assert!(legs_csv::read(&dir.join("missing.csv")).is_err());
+}
+
+/// A random 6-6 geometry around Table III's, optionally lifting pivots off their planes.
+fn random_geometry(rng: &mut Rng, lift_platform: bool, lift_base: bool) -> ([[f64; 3]; 6], [[f64; 3]; 6]) {
+    let s = Stewart::new();
+    let g = s.geometry();
+    let mut base = [[0.0; 3]; 6];
+    let mut platform = [[0.0; 3]; 6];
+    for i in 0..6 {
+        for a in 0..3 {
+            base[i][a] = g[3 * i + a] + if a < 2 { rng.uniform(-10.0, 10.0) } else if lift_base { rng.uniform(-15.0, 15.0) } else { 0.0 };
+            platform[i][a] = g[18 + 3 * i + a] + if a < 2 { rng.uniform(-10.0, 10.0) } else if lift_platform { rng.uniform(-15.0, 15.0) } else { 0.0 };
+        }
+    }
+    (base, platform)
+}
+
+fn fk_matches_ik<S: SixSix>(sys: &S, rng: &mut Rng) -> usize {
+    let start = find_start(sys, HOME_LEGS, None).unwrap();
+    let home = pose_from_unknowns(sys, &start.v).unwrap();
+    assert!((home.handedness() - 1.0).abs() < 1e-9);
+    let mut solved = 0;
+    for _ in 0..20 {
+        let e = home.euler();
+        let pose = Pose::from_euler(
+            e[0] + rng.uniform(-0.15, 0.15),
+            e[1] + rng.uniform(-0.15, 0.15),
+            e[2] + rng.uniform(-0.15, 0.15),
+            std::array::from_fn(|i| home.translation[i] + rng.uniform(-15.0, 15.0)),
+        );
+        let (x, v) = legs_for_pose(sys, &pose).unwrap();
+        let (_, flips) = linkage_tests::straight_path_truth(sys, &start, &x, 500);
+        let sol = arc_length(sys, &start, &x, &Options::TIGHT).unwrap();
+        if flips > 0 {
+            assert!(!sol.is_ok());
+            continue;
+        }
+        assert_eq!(sol.status, Status::Converged);
+        assert!(max_diff(&sol.v, &v) < 1e-6, "{}", max_diff(&sol.v, &v));
+        let p = pose_from_unknowns(sys, &sol.v).unwrap();
+        assert!((p.handedness() - 1.0).abs() < 1e-9, "never mirrored");
+        solved += 1;
+    }
+    solved
+}
+
+#[test]
+fn any_six_six_geometry_solves_coplanar_or_not_and_never_mirrored() {
+    let mut rng = Rng::new(11);
+    let mut solved = 0;
+    for (lift_platform, lift_base) in [(false, false), (false, true), (true, false), (true, true)] {
+        for _ in 0..3 {
+            let (base, platform) = random_geometry(&mut rng, lift_platform, lift_base);
+            assert_eq!(platform_is_coplanar(&platform), !lift_platform);
+            solved += if lift_platform {
+                assert!(Stewart::with_joints(&base, &platform).is_err(), "the coplanar form refuses");
+                fk_matches_ik(&StewartGeneral::with_joints(&base, &platform).unwrap(), &mut rng)
+            } else {
+                fk_matches_ik(&Stewart::with_joints(&base, &platform).unwrap(), &mut rng)
+            };
+        }
+    }
+    assert!(solved > 200, "{solved}");
+}
+
+#[test]
+fn the_general_form_has_no_mirror_image_roots() {
+    // A non-coplanar platform: its mirror image satisfies every distance but not Eq. 3's cross
+    // product term.
+    let mut rng = Rng::new(12);
+    let (base, platform) = random_geometry(&mut rng, true, false);
+    let sys = StewartGeneral::with_joints(&base, &platform).unwrap();
+    let start = find_start(&sys, HOME_LEGS, None).unwrap();
+    let mut mirrored = start.v;
+    for z in &mut mirrored[12..18] {
+        *z = -*z;
+    }
+    let mut f = [0.0; 18];
+    sys.residual(&mirrored, &start.x, &mut f);
+    assert!(f[6..15].iter().any(|r| r.abs() > 1e-3), "a mirrored platform must violate the rigid-body rows");
+    // ... whereas the distances alone are preserved.
+    assert!(f[15..].iter().all(|r| r.abs() < 1e-6));
+}
+
+#[test]
+fn a_start_pose_that_does_not_fit_the_legs_is_refused() {
+    let s = Stewart::new();
+    let wrong = Pose::from_euler(0.3, 0.0, 0.0, [0.0, 0.0, 100.0]);
+    assert_eq!(find_start(&s, HOME_LEGS, Some(wrong)).err(), Some(StartError::PoseMismatch));
+    let right = Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 159.011]);
+    assert!(find_start(&s, HOME_LEGS, Some(right)).is_ok());
+    assert!(matches!(find_start(&s, [-1.0; 6], None), Err(StartError::Solve(_))));
+}
