@@ -19,7 +19,11 @@ fn main() {
     match arc_length(&hexapod, &start, &target, &Options::TIGHT) {
         Ok(sol) => {
             let pose = pose_from_unknowns(&hexapod, &sol.v);
-            println!("legs {target:.4?} -> {} ({:?})", sol.status, pose.map(|p| (p.euler(), p.translation)));
+            println!(
+                "legs {target:.4?} -> {} ({:?})",
+                sol.status,
+                pose.map(|p| (p.euler(), p.translation))
+            );
         }
         Err(e) => eprintln!("error: {e}"),
     }

@@ -2,7 +2,7 @@
 //!
 //! `cargo run --release --example rss_hexapod`
 
-use linkage::{arc_length, pose_from_unknowns, Mechanism, Options};
+use linkage::{arc_length, pose_from_unknowns, Options};
 use linkage_examples::rss_hexapod::{home_start, RssHexapod};
 
 fn main() {
@@ -19,7 +19,11 @@ fn main() {
     match arc_length(&hexapod, &start, &target, &Options::TIGHT) {
         Ok(sol) => {
             let pose = pose_from_unknowns(&hexapod, &sol.v);
-            println!("cranks {target:.4?} -> {} ({:?})", sol.status, pose.map(|p| (p.euler(), p.translation)));
+            println!(
+                "cranks {target:.4?} -> {} ({:?})",
+                sol.status,
+                pose.map(|p| (p.euler(), p.translation))
+            );
         }
         Err(e) => eprintln!("error: {e}"),
     }

@@ -15,7 +15,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "stewart", about = "Forward kinematics of the Stewart platform of Gao & Wu (2015), Table III")]
+#[command(
+    name = "stewart",
+    about = "Forward kinematics of the Stewart platform of Gao & Wu (2015), Table III"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

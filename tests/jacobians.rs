@@ -8,11 +8,20 @@ fn perturbed<const K: usize>(rng: &mut Rng, a: &[f64; K], by: f64) -> [f64; K] {
     std::array::from_fn(|i| a[i] + rng.uniform(-by, by))
 }
 
-fn check_around<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M], dx: f64) {
+fn check_around<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    dx: f64,
+) {
     let mut rng = Rng::new(42);
     check_jacobians(sys, v, x);
     for _ in 0..20 {
-        check_jacobians(sys, &perturbed(&mut rng, v, 30.0), &perturbed(&mut rng, x, dx));
+        check_jacobians(
+            sys,
+            &perturbed(&mut rng, v, 30.0),
+            &perturbed(&mut rng, x, dx),
+        );
     }
 }
 

@@ -27,7 +27,11 @@ impl Rng {
 
 /// Checks ∂F/∂v (sparse and dense) and ∂F/∂x against central finite differences at (v, x),
 /// and that the sparsity pattern holds every nonzero. Panics with the offending entry.
-pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) {
+pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) {
     let mut values = vec![0.0; S::NNZ];
     sys.jacobian(v, x, &mut values);
     assert_eq!(S::PATTERN.len(), S::NNZ);
@@ -51,8 +55,18 @@ pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: 
         for r in 0..N {
             let fd = (fp[r] - fm[r]) / (2.0 * h);
             let tol = 1e-6 * (1.0 + fd.abs());
-            assert!((fd - sparse[r][c]).abs() <= tol, "{}: dF{r}/dv{c} = {} (sparse) vs {fd} (finite differences)", S::NAME, sparse[r][c]);
-            assert_eq!(dense[r][c], sparse[r][c], "{}: dense and sparse differ at ({r}, {c})", S::NAME);
+            assert!(
+                (fd - sparse[r][c]).abs() <= tol,
+                "{}: dF{r}/dv{c} = {} (sparse) vs {fd} (finite differences)",
+                S::NAME,
+                sparse[r][c]
+            );
+            assert_eq!(
+                dense[r][c],
+                sparse[r][c],
+                "{}: dense and sparse differ at ({r}, {c})",
+                S::NAME
+            );
         }
     }
     for j in 0..M {
@@ -65,18 +79,30 @@ pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: 
         for r in 0..N {
             let fd = (fp[r] - fm[r]) / (2.0 * h);
             let tol = 1e-5 * (1.0 + fd.abs());
-            assert!((fd - a[r][j]).abs() <= tol, "{}: dF{r}/dx{j} = {} vs {fd} (finite differences)", S::NAME, a[r][j]);
+            assert!(
+                (fd - a[r][j]).abs() <= tol,
+                "{}: dF{r}/dx{j} = {} vs {fd} (finite differences)",
+                S::NAME,
+                a[r][j]
+            );
         }
     }
 }
 
 /// Largest coordinate difference.
 pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (p - q).abs())
+        .fold(0.0, f64::max)
 }
 
 /// ‖F(v, x)‖∞.
-pub fn residual_norm<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) -> f64 {
+pub fn residual_norm<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> f64 {
     let mut f = [0.0; N];
     sys.residual(v, x, &mut f);
     f.iter().fold(0.0, |m, r| m.max(r.abs()))
@@ -102,7 +128,9 @@ pub fn straight_path_truth<S: Mechanism<N, M>, const N: usize, const M: usize>(
             sys.residual(&v, &x, &mut f);
             let mut b = [[0.0; N]; N];
             sys.jacobian_dense(&v, &x, &mut b);
-            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else { return (v, flips + 1) };
+            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else {
+                return (v, flips + 1);
+            };
             linkage::lu::solve(&b, &piv, &mut f);
             for i in 0..N {
                 v[i] -= f[i];
@@ -125,7 +153,13 @@ pub struct PoseSample {
     pub v: [f64; 18],
 }
 
-pub fn stewart_pose_samples(seed: u64, count: usize, rot: f64, trans: f64, checks: usize) -> Vec<PoseSample> {
+pub fn stewart_pose_samples(
+    seed: u64,
+    count: usize,
+    rot: f64,
+    trans: f64,
+    checks: usize,
+) -> Vec<PoseSample> {
     use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
     let s = Stewart::new();
     let st = home_start(&s).unwrap();
@@ -135,9 +169,20 @@ pub fn stewart_pose_samples(seed: u64, count: usize, rot: f64, trans: f64, check
     let mut rng = Rng::new(seed);
     let mut out = Vec::new();
     while out.len() < count {
-        let u: [f64; 6] = std::array::from_fn(|i| if i < 3 { rng.uniform(-rot, rot) } else { rng.uniform(-trans, trans) });
+        let u: [f64; 6] = std::array::from_fn(|i| {
+            if i < 3 {
+                rng.uniform(-rot, rot)
+            } else {
+                rng.uniform(-trans, trans)
+            }
+        });
         let at = |t: f64| {
-            linkage::Pose::from_euler(hy + t * u[0], hp + t * u[1], hr + t * u[2], [ht[0] + t * u[3], ht[1] + t * u[4], ht[2] + t * u[5]])
+            linkage::Pose::from_euler(
+                hy + t * u[0],
+                hp + t * u[1],
+                hr + t * u[2],
+                [ht[0] + t * u[3], ht[1] + t * u[4], ht[2] + t * u[5]],
+            )
         };
         let valid = (0..=checks).all(|k| {
             let p = at(k as f64 / checks as f64);

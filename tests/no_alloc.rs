@@ -31,12 +31,20 @@ static GLOBAL: Counting = Counting;
 fn solves_and_tracking_do_not_allocate() {
     let s = Stewart::new();
     let start = home_start(&s).unwrap();
-    let targets = [[190.0, 200.0, 190.0, 180.0, 190.0, 210.0], [170.0, 170.0, 170.0, 170.0, 170.0, 600.0], [f64::NAN; 6]];
+    let targets = [
+        [190.0, 200.0, 190.0, 180.0, 190.0, 210.0],
+        [170.0, 170.0, 170.0, 170.0, 170.0, 600.0],
+        [f64::NAN; 6],
+    ];
     let mut tracker = Tracker::new(s.clone(), start, Options::TIGHT);
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut checksum = 0.0;
     for x in &targets {
-        for r in [arc_length(&s, &start, x, &Options::TIGHT), newton_homotopy(&s, &start, x, &Options::PAPER), newton_raphson(&s, &start, x, &Options::TIGHT)] {
+        for r in [
+            arc_length(&s, &start, x, &Options::TIGHT),
+            newton_homotopy(&s, &start, x, &Options::PAPER),
+            newton_raphson(&s, &start, x, &Options::TIGHT),
+        ] {
             if let Ok(sol) = r {
                 checksum += sol.v[0];
             }

@@ -1,6 +1,9 @@
 //! The three solvers against ground truth: FK against IK, branch fidelity, folds, bad input.
 
-use linkage::{arc_length, newton_homotopy, newton_raphson, pose_from_unknowns, Mechanism, Options, SolveError, Start, Status};
+use linkage::{
+    arc_length, newton_homotopy, newton_raphson, pose_from_unknowns, Mechanism, Options,
+    SolveError, Start, Status,
+};
 use linkage_examples::{rps, rss_hexapod, stewart};
 use linkage_tests::{max_diff, residual_norm, stewart_pose_samples, straight_path_truth, Rng};
 
@@ -12,7 +15,12 @@ fn stewart_home_matches_the_errata_check_value() {
     let e = pose.euler();
     assert!(e.iter().all(|a| a.abs() < 1e-5), "{e:?}");
     let t = pose.translation;
-    assert!((t[0] - 58.971).abs() < 2e-3 && (t[1] + 11.739).abs() < 2e-3 && (t[2] - 159.011).abs() < 2e-3, "{t:?}");
+    assert!(
+        (t[0] - 58.971).abs() < 2e-3
+            && (t[1] + 11.739).abs() < 2e-3
+            && (t[2] - 159.011).abs() < 2e-3,
+        "{t:?}"
+    );
 }
 
 #[test]
@@ -21,16 +29,32 @@ fn stewart_fk_equals_ik_on_random_poses_for_every_method() {
     let st = stewart::home_start(&s).unwrap();
     for sample in stewart_pose_samples(1, 100, 0.3, 40.0, 200) {
         for (name, sol) in [
-            ("PH", arc_length(&s, &st, &sample.x, &Options::TIGHT).unwrap()),
-            ("NH", newton_homotopy(&s, &st, &sample.x, &Options::TIGHT).unwrap()),
-            ("NR", newton_raphson(&s, &st, &sample.x, &Options::TIGHT).unwrap()),
+            (
+                "PH",
+                arc_length(&s, &st, &sample.x, &Options::TIGHT).unwrap(),
+            ),
+            (
+                "NH",
+                newton_homotopy(&s, &st, &sample.x, &Options::TIGHT).unwrap(),
+            ),
+            (
+                "NR",
+                newton_raphson(&s, &st, &sample.x, &Options::TIGHT).unwrap(),
+            ),
         ] {
             assert_eq!(sol.status, Status::Converged, "{name}");
-            assert!(max_diff(&sol.v, &sample.v) < 1e-7, "{name}: {}", max_diff(&sol.v, &sample.v));
+            assert!(
+                max_diff(&sol.v, &sample.v) < 1e-7,
+                "{name}: {}",
+                max_diff(&sol.v, &sample.v)
+            );
             let pose = pose_from_unknowns(&s, &sol.v).unwrap();
             assert!(max_diff(&pose.euler(), &sample.pose.euler()) < 1e-9);
             assert!(max_diff(&pose.translation, &sample.pose.translation) < 1e-7);
-            assert!((pose.handedness() - 1.0).abs() < 1e-12, "never a mirror image");
+            assert!(
+                (pose.handedness() - 1.0).abs() < 1e-12,
+                "never a mirror image"
+            );
             assert!(sol.error_estimate < 1e-9, "{name}: {}", sol.error_estimate);
             let back = s.inverse(&sol.v, &st.x).unwrap();
             assert!(max_diff(&back, &sample.x) < 1e-8);
@@ -54,12 +78,22 @@ fn arc_length_never_crosses_a_singularity_labelled_ok() {
         match sol.status {
             Status::Converged => {
                 ok += 1;
-                assert_eq!(flips, 0, "ok although the straight path crosses a singularity");
-                assert!(max_diff(&sol.v, &truth) < 1e-6, "ok but off the straight path's branch by {}", max_diff(&sol.v, &truth));
+                assert_eq!(
+                    flips, 0,
+                    "ok although the straight path crosses a singularity"
+                );
+                assert!(
+                    max_diff(&sol.v, &truth) < 1e-6,
+                    "ok but off the straight path's branch by {}",
+                    max_diff(&sol.v, &truth)
+                );
             }
             Status::Fold { lambda } => {
                 folds += 1;
-                assert!(flips > 0, "a fold at λ = {lambda} that fine continuation does not see");
+                assert!(
+                    flips > 0,
+                    "a fold at λ = {lambda} that fine continuation does not see"
+                );
                 assert!(lambda > 0.0 && lambda < 1.0);
             }
             other => assert!(!sol.is_ok(), "{other:?}"),
@@ -95,7 +129,9 @@ fn rss_hexapod_fk_equals_ik_on_random_poses() {
         let t: [f64; 3] = std::array::from_fn(|i| home.translation[i] + rng.uniform(-12.0, 12.0));
         let pose = linkage::Pose::from_euler(e[0], e[1], e[2], t);
         let v = linkage::unknowns_from_pose(&h, &pose);
-        let Ok(x) = h.inverse(&v, &st.x) else { continue };
+        let Ok(x) = h.inverse(&v, &st.x) else {
+            continue;
+        };
         assert!(residual_norm(&h, &v, &x) < 1e-8);
         let sol = arc_length(&h, &st, &x, &Options::TIGHT).unwrap();
         let (truth, flips) = straight_path_truth(&h, &st, &x, 2000);
@@ -144,22 +180,47 @@ fn bad_input_gives_typed_errors() {
     nan[2] = f64::NAN;
     let mut negative = [170.0; 6];
     negative[4] = -3.0;
-    for solve in [arc_length::<stewart::Stewart, 18, 6>, newton_homotopy, newton_raphson] {
-        assert_eq!(solve(&s, &st, &nan, &Options::TIGHT), Err(SolveError::NonFinite));
-        assert_eq!(solve(&s, &st, &[f64::INFINITY; 6], &Options::TIGHT), Err(SolveError::NonFinite));
-        assert_eq!(solve(&s, &st, &negative, &Options::TIGHT), Err(SolveError::InvalidInput { input: 4 }));
-        let bad = Options { tolerance: f64::NAN, ..Options::TIGHT };
-        assert_eq!(solve(&s, &st, &[170.0; 6], &bad), Err(SolveError::NonFinite));
+    for solve in [
+        arc_length::<stewart::Stewart, 18, 6>,
+        newton_homotopy,
+        newton_raphson,
+    ] {
+        assert_eq!(
+            solve(&s, &st, &nan, &Options::TIGHT),
+            Err(SolveError::NonFinite)
+        );
+        assert_eq!(
+            solve(&s, &st, &[f64::INFINITY; 6], &Options::TIGHT),
+            Err(SolveError::NonFinite)
+        );
+        assert_eq!(
+            solve(&s, &st, &negative, &Options::TIGHT),
+            Err(SolveError::InvalidInput { input: 4 })
+        );
+        let bad = Options {
+            tolerance: f64::NAN,
+            ..Options::TIGHT
+        };
+        assert_eq!(
+            solve(&s, &st, &[170.0; 6], &bad),
+            Err(SolveError::NonFinite)
+        );
     }
     // A start that is not a solution, and a singular one (platform in the base plane).
     let mut off = st.v;
     off[0] += 30.0;
-    assert!(matches!(Start::new(&s, off, st.x), Err(SolveError::InconsistentStart { .. })));
+    assert!(matches!(
+        Start::new(&s, off, st.x),
+        Err(SolveError::InconsistentStart { .. })
+    ));
     let flat = linkage::Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 0.0]);
     let v = linkage::unknowns_from_pose(&s, &flat);
     let x = s.inverse(&v, &st.x).unwrap();
     assert_eq!(Start::new(&s, v, x), Err(SolveError::SingularStart));
-    assert_eq!(Start::new(&s, [f64::NAN; 18], st.x), Err(SolveError::NonFinite));
+    assert_eq!(
+        Start::new(&s, [f64::NAN; 18], st.x),
+        Err(SolveError::NonFinite)
+    );
 }
 
 #[test]
@@ -171,5 +232,11 @@ fn unreachable_legs_end_in_a_typed_outcome() {
     let sol = arc_length(&s, &st, &x, &Options::TIGHT).unwrap();
     assert!(!sol.is_ok(), "{:?}", sol.status);
     assert!(sol.lambda < 1.0);
-    assert!(residual_norm(&s, &sol.v, &std::array::from_fn(|j| st.x[j] + sol.lambda * (x[j] - st.x[j]))) < 1e-3);
+    assert!(
+        residual_norm(
+            &s,
+            &sol.v,
+            &std::array::from_fn(|j| st.x[j] + sol.lambda * (x[j] - st.x[j]))
+        ) < 1e-3
+    );
 }

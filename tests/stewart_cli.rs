@@ -2,7 +2,10 @@
 
 use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Status};
 use linkage_examples::cli::{geometry, legs_csv};
-use linkage_examples::stewart::{find_start, home_start, legs_for_pose, platform_is_coplanar, SixSix, StartError, Stewart, StewartGeneral, HOME_LEGS};
+use linkage_examples::stewart::{
+    find_start, home_start, legs_for_pose, platform_is_coplanar, SixSix, StartError, Stewart,
+    StewartGeneral, HOME_LEGS,
+};
 use linkage_tests::{max_diff, Rng};
 
 #[test]
@@ -18,16 +21,37 @@ fn malformed_geometry_files_give_clear_messages() {
     let ok = "base = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\nplatform = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\n[start]\nlegs = [1,1,1,1,1,1]\n";
     assert!(geometry::parse(ok).is_ok());
     let cases = [
-        ("base = [[0,0,0]]\nplatform = []\n[start]\nlegs = []", "`base` needs 6 entries"),
-        (&ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,-1]"), "start leg L6 must be positive"),
-        (&ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,nan]"), "finite"),
-        (&ok.replace("[start]", "[start]\ncolour = 3"), "unknown field"),
+        (
+            "base = [[0,0,0]]\nplatform = []\n[start]\nlegs = []",
+            "`base` needs 6 entries",
+        ),
+        (
+            &ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,-1]"),
+            "start leg L6 must be positive",
+        ),
+        (
+            &ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,nan]"),
+            "finite",
+        ),
+        (
+            &ok.replace("[start]", "[start]\ncolour = 3"),
+            "unknown field",
+        ),
         ("base = ", "parse error at line 1"),
-        (&ok.replace("legs = [1,1,1,1,1,1]", "legs = [1,1,1,1,1,1]\npose = [0, 0]"), "`start.pose` needs 6 entries"),
+        (
+            &ok.replace(
+                "legs = [1,1,1,1,1,1]",
+                "legs = [1,1,1,1,1,1]\npose = [0, 0]",
+            ),
+            "`start.pose` needs 6 entries",
+        ),
     ];
     for (text, want) in cases {
         let err = geometry::parse(text).err().unwrap_or_default();
-        assert!(err.to_lowercase().contains(&want.to_lowercase()), "{text:?}: {err}");
+        assert!(
+            err.to_lowercase().contains(&want.to_lowercase()),
+            "{text:?}: {err}"
+        );
     }
 }
 
@@ -36,27 +60,55 @@ fn leg_csv_rows_carry_their_own_status() {
     let dir = std::env::temp_dir().join(format!("linkage-csv-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("legs.csv");
-    std::fs::write(&path, "t,L6,L5,L4,L3,L2,L1\n0,6,5,4,3,2,1\n1,1,2\n2,x,1,1,1,1,1\n3,inf,1,1,1,1,1\n").unwrap();
+    std::fs::write(
+        &path,
+        "t,L6,L5,L4,L3,L2,L1\n0,6,5,4,3,2,1\n1,1,2\n2,x,1,1,1,1,1\n3,inf,1,1,1,1,1\n",
+    )
+    .unwrap();
     let rows = legs_csv::read(&path).unwrap();
-    assert_eq!(rows[0], Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]), "columns found by name");
+    assert_eq!(
+        rows[0],
+        Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+        "columns found by name"
+    );
     assert_eq!(rows[1], Err("missing_value"));
     assert_eq!(rows[2], Err("invalid_number"));
     assert_eq!(rows[3], Err("non_finite"));
     std::fs::write(&path, "a,b\n1,2\n").unwrap();
-    assert!(legs_csv::read(&path).unwrap_err().contains("no column `L1`"));
+    assert!(legs_csv::read(&path)
+        .unwrap_err()
+        .contains("no column `L1`"));
     assert!(legs_csv::read(&dir.join("missing.csv")).is_err());
 }
 
 /// A random 6-6 geometry around Table III's, optionally lifting pivots off their planes.
-fn random_geometry(rng: &mut Rng, lift_platform: bool, lift_base: bool) -> ([[f64; 3]; 6], [[f64; 3]; 6]) {
+fn random_geometry(
+    rng: &mut Rng,
+    lift_platform: bool,
+    lift_base: bool,
+) -> ([[f64; 3]; 6], [[f64; 3]; 6]) {
     let s = Stewart::new();
     let g = s.geometry();
     let mut base = [[0.0; 3]; 6];
     let mut platform = [[0.0; 3]; 6];
     for i in 0..6 {
         for a in 0..3 {
-            base[i][a] = g[3 * i + a] + if a < 2 { rng.uniform(-10.0, 10.0) } else if lift_base { rng.uniform(-15.0, 15.0) } else { 0.0 };
-            platform[i][a] = g[18 + 3 * i + a] + if a < 2 { rng.uniform(-10.0, 10.0) } else if lift_platform { rng.uniform(-15.0, 15.0) } else { 0.0 };
+            base[i][a] = g[3 * i + a]
+                + if a < 2 {
+                    rng.uniform(-10.0, 10.0)
+                } else if lift_base {
+                    rng.uniform(-15.0, 15.0)
+                } else {
+                    0.0
+                };
+            platform[i][a] = g[18 + 3 * i + a]
+                + if a < 2 {
+                    rng.uniform(-10.0, 10.0)
+                } else if lift_platform {
+                    rng.uniform(-15.0, 15.0)
+                } else {
+                    0.0
+                };
         }
     }
     (base, platform)
@@ -100,8 +152,14 @@ fn any_six_six_geometry_solves_coplanar_or_not_and_never_mirrored() {
             let (base, platform) = random_geometry(&mut rng, lift_platform, lift_base);
             assert_eq!(platform_is_coplanar(&platform), !lift_platform);
             solved += if lift_platform {
-                assert!(Stewart::with_joints(&base, &platform).is_err(), "the coplanar form refuses");
-                fk_matches_ik(&StewartGeneral::with_joints(&base, &platform).unwrap(), &mut rng)
+                assert!(
+                    Stewart::with_joints(&base, &platform).is_err(),
+                    "the coplanar form refuses"
+                );
+                fk_matches_ik(
+                    &StewartGeneral::with_joints(&base, &platform).unwrap(),
+                    &mut rng,
+                )
             } else {
                 fk_matches_ik(&Stewart::with_joints(&base, &platform).unwrap(), &mut rng)
             };
@@ -124,7 +182,10 @@ fn the_general_form_has_no_mirror_image_roots() {
     }
     let mut f = [0.0; 18];
     sys.residual(&mirrored, &start.x, &mut f);
-    assert!(f[6..15].iter().any(|r| r.abs() > 1e-3), "a mirrored platform must violate the rigid-body rows");
+    assert!(
+        f[6..15].iter().any(|r| r.abs() > 1e-3),
+        "a mirrored platform must violate the rigid-body rows"
+    );
     // ... whereas the distances alone are preserved.
     assert!(f[15..].iter().all(|r| r.abs() < 1e-6));
 }
@@ -133,8 +194,14 @@ fn the_general_form_has_no_mirror_image_roots() {
 fn a_start_pose_that_does_not_fit_the_legs_is_refused() {
     let s = Stewart::new();
     let wrong = Pose::from_euler(0.3, 0.0, 0.0, [0.0, 0.0, 100.0]);
-    assert_eq!(find_start(&s, HOME_LEGS, Some(wrong)).err(), Some(StartError::PoseMismatch));
+    assert_eq!(
+        find_start(&s, HOME_LEGS, Some(wrong)).err(),
+        Some(StartError::PoseMismatch)
+    );
     let right = Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 159.011]);
     assert!(find_start(&s, HOME_LEGS, Some(right)).is_ok());
-    assert!(matches!(find_start(&s, [-1.0; 6], None), Err(StartError::Solve(_))));
+    assert!(matches!(
+        find_start(&s, [-1.0; 6], None),
+        Err(StartError::Solve(_))
+    ));
 }

@@ -11,7 +11,11 @@ fn trajectory(t: f64) -> Pose {
         0.15 * (w * t).sin(),
         0.1 * (2.0 * w * t).sin(),
         -0.08 * (w * t).sin(),
-        [58.971 + 15.0 * (w * t).sin(), -11.739 + 10.0 * (1.0 - (w * t).cos()), 159.011 + 20.0 * (w * t).sin()],
+        [
+            58.971 + 15.0 * (w * t).sin(),
+            -11.739 + 10.0 * (1.0 - (w * t).cos()),
+            159.011 + 20.0 * (w * t).sin(),
+        ],
     )
 }
 
@@ -27,7 +31,11 @@ fn tracker_follows_a_1khz_trajectory_on_the_branch() {
         let sample = tracker.update(&x).unwrap();
         worst = worst.max(max_diff(&sample.v, &truth));
         assert!(sample.proximity > 0.0 && sample.proximity.is_finite());
-        assert!(sample.newton_iterations <= 3, "{}", sample.newton_iterations);
+        assert!(
+            sample.newton_iterations <= 3,
+            "{}",
+            sample.newton_iterations
+        );
         fallbacks += sample.fell_back as u32;
     }
     assert!(worst < 1e-7, "{worst}");

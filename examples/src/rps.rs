@@ -34,6 +34,8 @@ pub fn home_pose() -> Pose {
 /// The home configuration (legs ≈ 158.1 mm).
 pub fn home_start(sys: &Rps3) -> Result<Start<9, 3>, SolveError> {
     let v = linkage::unknowns_from_pose(sys, &home_pose());
-    let x = sys.inverse(&v, &[0.0; 3]).map_err(|_| SolveError::NonFinite)?;
+    let x = sys
+        .inverse(&v, &[0.0; 3])
+        .map_err(|_| SolveError::NonFinite)?;
     Start::new(sys, v, x)
 }

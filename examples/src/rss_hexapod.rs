@@ -57,6 +57,8 @@ pub fn home_pose() -> Pose {
 /// The home configuration, crank angles from inverse kinematics (near zero).
 pub fn home_start(sys: &RssHexapod) -> Result<Start<18, 6>, SolveError> {
     let v = linkage::unknowns_from_pose(sys, &home_pose());
-    let x = sys.inverse(&v, &[0.0; 6]).map_err(|_| SolveError::NonFinite)?;
+    let x = sys
+        .inverse(&v, &[0.0; 6])
+        .map_err(|_| SolveError::NonFinite)?;
     Start::new(sys, v, x)
 }

@@ -81,12 +81,17 @@ pub trait SixSix: Mechanism<18, 6> + Clone + Sized {
 macro_rules! six_six {
     ($name:ident) => {
         impl SixSix for $name {
-            fn with_joints(base: &[[f64; 3]; 6], platform: &[[f64; 3]; 6]) -> Result<Self, GeometryError> {
+            fn with_joints(
+                base: &[[f64; 3]; 6],
+                platform: &[[f64; 3]; 6],
+            ) -> Result<Self, GeometryError> {
                 let mut g = $name::DEFAULT_GEOMETRY;
                 for (k, name) in $name::GEOMETRY_NAMES.iter().enumerate() {
                     let mut parts = name.split('.');
                     let (link, pivot, axis) = (parts.next(), parts.next(), parts.next());
-                    let i = pivot.and_then(|p| p[1..].parse::<usize>().ok()).filter(|i| (1..=6).contains(i));
+                    let i = pivot
+                        .and_then(|p| p[1..].parse::<usize>().ok())
+                        .filter(|i| (1..=6).contains(i));
                     let a = match axis {
                         Some("x") => 0,
                         Some("y") => 1,
@@ -105,9 +110,21 @@ macro_rules! six_six {
                 let mut out = [[0.0; 3]; 6];
                 for (k, name) in $name::GEOMETRY_NAMES.iter().enumerate() {
                     let mut parts = name.split('.');
-                    if let (Some("base"), Some(pivot), Some(axis)) = (parts.next(), parts.next(), parts.next()) {
-                        if let Some(i) = pivot[1..].parse::<usize>().ok().filter(|i| (1..=6).contains(i)) {
-                            let a = if axis == "x" { 0 } else if axis == "y" { 1 } else { 2 };
+                    if let (Some("base"), Some(pivot), Some(axis)) =
+                        (parts.next(), parts.next(), parts.next())
+                    {
+                        if let Some(i) = pivot[1..]
+                            .parse::<usize>()
+                            .ok()
+                            .filter(|i| (1..=6).contains(i))
+                        {
+                            let a = if axis == "x" {
+                                0
+                            } else if axis == "y" {
+                                1
+                            } else {
+                                2
+                            };
                             out[i - 1][a] = self.geometry()[k];
                         }
                     }
@@ -124,7 +141,13 @@ six_six!(StewartGeneral);
 /// Whether the six platform joint centres lie in one plane (relative tolerance 1e-9).
 pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let cross = |a: [f64; 3], b: [f64; 3]| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     // The best-conditioned triangle defines the plane.
     let mut best = (0.0, [0.0; 3], 0);
@@ -143,8 +166,13 @@ pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
     if area == 0.0 {
         return false;
     }
-    let size = platform.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
-    platform.iter().all(|p| (dot(n, sub(*p, platform[i])) / area).abs() <= 1e-9 * size)
+    let size = platform
+        .iter()
+        .flatten()
+        .fold(1.0f64, |m, x| m.max(x.abs()));
+    platform
+        .iter()
+        .all(|p| (dot(n, sub(*p, platform[i])) / area).abs() <= 1e-9 * size)
 }
 
 /// Why no start configuration could be found.
@@ -175,19 +203,39 @@ fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f
         return None;
     }
     let guess = Start { v, x: *x, det };
-    let sol = newton_raphson(sys, &guess, x, &Options { max_iterations: 60, ..Options::TIGHT }).ok()?;
+    let sol = newton_raphson(
+        sys,
+        &guess,
+        x,
+        &Options {
+            max_iterations: 60,
+            ..Options::TIGHT
+        },
+    )
+    .ok()?;
     matches!(sol.status, Status::Converged | Status::BranchChanged).then_some(sol.v)
 }
 
 /// The start configuration for legs `x`: at `pose` if given (it must match the legs), else
 /// the assembly mode with the platform above the base that is least tilted.
-pub fn find_start<S: SixSix>(sys: &S, x: [f64; 6], pose: Option<Pose>) -> Result<Start<18, 6>, StartError> {
-    sys.validate_inputs(&x).map_err(|input| StartError::Solve(SolveError::InvalidInput { input }))?;
-    let scale = (0..6).map(|p| sys.point_local(p)).flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+pub fn find_start<S: SixSix>(
+    sys: &S,
+    x: [f64; 6],
+    pose: Option<Pose>,
+) -> Result<Start<18, 6>, StartError> {
+    sys.validate_inputs(&x)
+        .map_err(|input| StartError::Solve(SolveError::InvalidInput { input }))?;
+    let scale = (0..6)
+        .flat_map(|p| sys.point_local(p))
+        .fold(1.0f64, |m, c| m.max(c.abs()));
     if let Some(pose) = pose {
         let guess = linkage::unknowns_from_pose(sys, &pose);
         let v = polish(sys, guess, &x).ok_or(StartError::PoseMismatch)?;
-        let moved = v.iter().zip(&guess).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let moved = v
+            .iter()
+            .zip(&guess)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
         if moved > 0.01 * scale {
             return Err(StartError::PoseMismatch);
         }
@@ -195,22 +243,44 @@ pub fn find_start<S: SixSix>(sys: &S, x: [f64; 6], pose: Option<Pose>) -> Result
     }
     let mean = x.iter().sum::<f64>() / 6.0;
     let base = sys.base_joints();
-    let base_c = base.iter().fold([0.0; 3], |a, p| [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]);
+    let base_c = base.iter().fold([0.0; 3], |a, p| {
+        [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]
+    });
     let base_top = base.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p[2]));
     let mut best: Option<([f64; 18], f64)> = None;
     for height in [0.3, 0.5, 0.7, 0.85, 1.0, 1.2] {
-        for yaw in [0.0, 0.4, -0.4, 0.8, -0.8, 1.6, -1.6, 3.14] {
+        for yaw in [0.0, 0.4, -0.4, 0.8, -0.8, 1.6, -1.6, std::f64::consts::PI] {
             // Centre the platform over the base centroid.
-            let local_c = (0..6).map(|p| sys.point_local(p)).fold([0.0; 3], |a, p| [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]);
+            let local_c = (0..6).map(|p| sys.point_local(p)).fold([0.0; 3], |a, p| {
+                [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]
+            });
             let r = Pose::from_euler(yaw, 0.0, 0.0, [0.0; 3]);
             let rc = r.apply(local_c);
-            let t = [base_c[0] - rc[0], base_c[1] - rc[1], base_c[2] - rc[2] + height * mean];
-            let guess = linkage::unknowns_from_pose(sys, &Pose { translation: t, ..r });
-            let Some(v) = polish(sys, guess, &x) else { continue };
-            let Some(p) = linkage::pose_from_unknowns(sys, &v) else { continue };
+            let t = [
+                base_c[0] - rc[0],
+                base_c[1] - rc[1],
+                base_c[2] - rc[2] + height * mean,
+            ];
+            let guess = linkage::unknowns_from_pose(
+                sys,
+                &Pose {
+                    translation: t,
+                    ..r
+                },
+            );
+            let Some(v) = polish(sys, guess, &x) else {
+                continue;
+            };
+            let Some(p) = linkage::pose_from_unknowns(sys, &v) else {
+                continue;
+            };
             let up = p.rotation[2][2];
             let above = (0..6).all(|i| v[12 + i] > base_top);
-            if above && up > 0.0 && (p.handedness() - 1.0).abs() < 1e-6 && best.is_none_or(|(_, u)| up > u + 1e-9) {
+            if above
+                && up > 0.0
+                && (p.handedness() - 1.0).abs() < 1e-6
+                && best.is_none_or(|(_, u)| up > u + 1e-9)
+            {
                 best = Some((v, up));
             }
         }

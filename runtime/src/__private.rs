@@ -60,7 +60,9 @@ pub fn axis_frame(a: [f64; 3], b: [f64; 3], q: [f64; 3]) -> Result<[f64; 12], Ge
     let o = [a[0] + t * e[0], a[1] + t * e[1], a[2] + t * e[2]];
     let u = sub3(q, o);
     let w = cross3(e, u);
-    Ok([e[0], e[1], e[2], o[0], o[1], o[2], u[0], u[1], u[2], w[0], w[1], w[2]])
+    Ok([
+        e[0], e[1], e[2], o[0], o[1], o[2], u[0], u[1], u[2], w[0], w[1], w[2],
+    ])
 }
 
 /// The angle θ nearest `reference` with `‖g − (o + u cos θ + w sin θ)‖ = length`.
@@ -92,7 +94,11 @@ pub fn revolute_rod_inverse(
         reference + d
     };
     let (t1, t2) = (near(phi + delta), near(phi - delta));
-    Some(if (t1 - reference).abs() <= (t2 - reference).abs() { t1 } else { t2 })
+    Some(if (t1 - reference).abs() <= (t2 - reference).abs() {
+        t1
+    } else {
+        t2
+    })
 }
 
 /// The slide s nearest `reference` with `‖g − (c0 + s e)‖ = length`.
@@ -110,11 +116,23 @@ pub fn prismatic_rod_inverse(
         return None;
     }
     let (s1, s2) = (t + sqrt(disc), t - sqrt(disc));
-    Some(if (s1 - reference).abs() <= (s2 - reference).abs() { s1 } else { s2 })
+    Some(if (s1 - reference).abs() <= (s2 - reference).abs() {
+        s1
+    } else {
+        s2
+    })
 }
 
-pub fn set_named(names: &[&str], g: &mut [f64], name: &str, value: f64) -> Result<(), GeometryError> {
-    let i = names.iter().position(|n| *n == name).ok_or(GeometryError::UnknownName)?;
+pub fn set_named(
+    names: &[&str],
+    g: &mut [f64],
+    name: &str,
+    value: f64,
+) -> Result<(), GeometryError> {
+    let i = names
+        .iter()
+        .position(|n| *n == name)
+        .ok_or(GeometryError::UnknownName)?;
     g[i] = value;
     Ok(())
 }
@@ -156,9 +174,15 @@ mod tests {
             let rebuilt = a * frame[0][k] + b * frame[1][k] + c * frame[2][k] + d * n[k];
             assert!((rebuilt - q[k]).abs() < 1e-12);
         }
-        assert_eq!(rigid_coefficients(frame, q, true), Err(GeometryError::NotCoplanar));
+        assert_eq!(
+            rigid_coefficients(frame, q, true),
+            Err(GeometryError::NotCoplanar)
+        );
         let line = [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
-        assert_eq!(rigid_coefficients(line, q, false), Err(GeometryError::CollinearFrame));
+        assert_eq!(
+            rigid_coefficients(line, q, false),
+            Err(GeometryError::CollinearFrame)
+        );
     }
 
     #[test]
@@ -166,7 +190,11 @@ mod tests {
         let f = axis_frame([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [30.0, 0.0, 5.0]).unwrap();
         let (o, u, w) = ([f[3], f[4], f[5]], [f[6], f[7], f[8]], [f[9], f[10], f[11]]);
         let th = 0.3;
-        let tip = [o[0] + u[0] * cos(th) + w[0] * sin(th), o[1] + u[1] * cos(th) + w[1] * sin(th), o[2] + u[2] * cos(th) + w[2] * sin(th)];
+        let tip = [
+            o[0] + u[0] * cos(th) + w[0] * sin(th),
+            o[1] + u[1] * cos(th) + w[1] * sin(th),
+            o[2] + u[2] * cos(th) + w[2] * sin(th),
+        ];
         let g = [tip[0] + 10.0, tip[1] + 40.0, tip[2] + 80.0];
         let l = distance(g, tip);
         let back = revolute_rod_inverse(g, o, u, w, l, 0.25).unwrap();

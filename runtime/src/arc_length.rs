@@ -62,7 +62,12 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         let x = self.x(p.mu);
         let mut f = [0.0; N];
         self.sys.residual(&p.v, &x, &mut f);
-        let mut m = Bordered { block: [[0.0; N]; N], column: [0.0; N], row: row.v, corner: row.mu };
+        let mut m = Bordered {
+            block: [[0.0; N]; N],
+            column: [0.0; N],
+            row: row.v,
+            corner: row.mu,
+        };
         self.sys.jacobian_dense(&p.v, &x, &mut m.block);
         let mut a = [[0.0; M]; N];
         self.sys.input_jacobian(&p.v, &x, &mut a);
@@ -82,7 +87,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         let mut b = m.block;
         let det = factor::<N, _>(&mut b).map_or(0.0, |piv| piv.det);
         let piv = factor::<N, _>(&mut m)?;
-        let mut z = Extended { head: [0.0; N], tail: 1.0 };
+        let mut z = Extended {
+            head: [0.0; N],
+            tail: 1.0,
+        };
         solve(&m, &piv, &mut z);
         let nrm = z.norm();
         if !(nrm > 0.0) || !nrm.is_finite() {
@@ -91,11 +99,23 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         for zi in &mut z.head {
             *zi /= nrm;
         }
-        Some((Tangent { v: z.head, mu: z.tail / nrm }, det))
+        Some((
+            Tangent {
+                v: z.head,
+                mu: z.tail / nrm,
+            },
+            det,
+        ))
     }
 
     /// Newton on `[H; t·(y − y_pred)] = 0` (or on H at fixed μ), with the contraction test.
-    fn correct(&self, pred: &Point<N>, t: &Tangent<N>, fixed_mu: bool, first_max: f64) -> Result<(Point<N>, u32), u32> {
+    fn correct(
+        &self,
+        pred: &Point<N>,
+        t: &Tangent<N>,
+        fixed_mu: bool,
+        first_max: f64,
+    ) -> Result<(Point<N>, u32), u32> {
         let mut p = *pred;
         let mut prev = f64::INFINITY;
         for k in 0..MAX_CORRECTOR {
@@ -159,14 +179,48 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     let length = norm(&dx);
     if length == 0.0 {
-        return Ok(finish(sys, start, start.v, target, Status::Converged, 1.0, 0, 0, 0, 1.0));
+        return Ok(finish(
+            sys,
+            start,
+            start.v,
+            target,
+            Status::Converged,
+            1.0,
+            0,
+            0,
+            0,
+            1.0,
+        ));
     }
     let scale = norm(&start.v).max(length).max(1.0);
-    let path = Path { sys, start, dx, length, tol: 1e-9 * scale };
-    let mut p = Point { v: start.v, mu: 0.0 };
-    let e_mu = Tangent { v: [0.0; N], mu: 1.0 };
+    let path = Path {
+        sys,
+        start,
+        dx,
+        length,
+        tol: 1e-9 * scale,
+    };
+    let mut p = Point {
+        v: start.v,
+        mu: 0.0,
+    };
+    let e_mu = Tangent {
+        v: [0.0; N],
+        mu: 1.0,
+    };
     let Some((mut t, _)) = path.tangent(&p, &e_mu) else {
-        return Ok(finish(sys, start, p.v, &start.x, Status::Singular { lambda: 0.0 }, 0.0, 0, 0, 0, 1.0));
+        return Ok(finish(
+            sys,
+            start,
+            p.v,
+            &start.x,
+            Status::Singular { lambda: 0.0 },
+            0.0,
+            0,
+            0,
+            0,
+            1.0,
+        ));
     };
     let mut det_prev = start.det;
     let (h_max, h_min) = (length / 2.0, 1e-10 * length);
@@ -175,13 +229,31 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut min_ratio = 1.0f64;
     let stop = |p: &Point<N>, status, acc, rej, it, ratio| {
         let x = path.x(p.mu);
-        Ok(finish(sys, start, p.v, &x, status, p.mu / length, acc, rej, it, ratio))
+        Ok(finish(
+            sys,
+            start,
+            p.v,
+            &x,
+            status,
+            p.mu / length,
+            acc,
+            rej,
+            it,
+            ratio,
+        ))
     };
     while accepted + rejected < options.max_steps {
-        let to_end = if t.mu > 0.0 { (length - p.mu) / t.mu } else { f64::INFINITY };
+        let to_end = if t.mu > 0.0 {
+            (length - p.mu) / t.mu
+        } else {
+            f64::INFINITY
+        };
         let end = to_end <= h;
         let step = if end { to_end } else { h };
-        let mut pred = Point { v: p.v, mu: if end { length } else { p.mu + step * t.mu } };
+        let mut pred = Point {
+            v: p.v,
+            mu: if end { length } else { p.mu + step * t.mu },
+        };
         for i in 0..N {
             pred.v[i] += step * t.v[i];
         }
@@ -189,14 +261,33 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             Ok((q, its)) => {
                 iterations += its;
                 let Some((t1, det1)) = path.tangent(&q, &t) else {
-                    return stop(&p, Status::Singular { lambda: p.mu / length }, accepted, rejected, iterations, min_ratio);
+                    return stop(
+                        &p,
+                        Status::Singular {
+                            lambda: p.mu / length,
+                        },
+                        accepted,
+                        rejected,
+                        iterations,
+                        min_ratio,
+                    );
                 };
-                let turn: f64 = t.v.iter().zip(&t1.v).map(|(a, b)| a * b).sum::<f64>() + t.mu * t1.mu;
+                let turn: f64 =
+                    t.v.iter().zip(&t1.v).map(|(a, b)| a * b).sum::<f64>() + t.mu * t1.mu;
                 if det1 * det_prev <= 0.0 {
                     // det B changed sign between p and q: the curve passes a fold (λ turns
                     // back) or a singular point. Either way the branch ends here.
-                    let status = Status::Fold { lambda: p.mu.max(q.mu) / length };
-                    return stop(&p, status, accepted, rejected, iterations, min_ratio.min(0.0));
+                    let status = Status::Fold {
+                        lambda: p.mu.max(q.mu) / length,
+                    };
+                    return stop(
+                        &p,
+                        status,
+                        accepted,
+                        rejected,
+                        iterations,
+                        min_ratio.min(0.0),
+                    );
                 }
                 if turn < MIN_TANGENT_COS && !end {
                     rejected += 1;
@@ -208,9 +299,18 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     det_prev = det1;
                     min_ratio = min_ratio.min((det1 / start.det).abs());
                     if end {
-                        return Ok(polish(sys, start, p.v, target, options, accepted, rejected, iterations, min_ratio));
+                        return Ok(polish(
+                            sys, start, p.v, target, options, accepted, rejected, iterations,
+                            min_ratio,
+                        ));
                     }
-                    h = if its <= 2 { (2.0 * step).min(h_max) } else if its >= 4 { 0.5 * step } else { step };
+                    h = if its <= 2 {
+                        (2.0 * step).min(h_max)
+                    } else if its >= 4 {
+                        0.5 * step
+                    } else {
+                        step
+                    };
                 }
             }
             Err(its) => {
@@ -220,10 +320,21 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             }
         }
         if h < h_min {
-            return stop(&p, Status::StepTooSmall { lambda: p.mu / length }, accepted, rejected, iterations, min_ratio);
+            return stop(
+                &p,
+                Status::StepTooSmall {
+                    lambda: p.mu / length,
+                },
+                accepted,
+                rejected,
+                iterations,
+                min_ratio,
+            );
         }
     }
-    let status = Status::StepTooSmall { lambda: p.mu / length };
+    let status = Status::StepTooSmall {
+        lambda: p.mu / length,
+    };
     stop(&p, status, accepted, rejected, iterations, min_ratio)
 }
 
@@ -255,5 +366,7 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
             break;
         }
     }
-    finish(sys, start, v, x, status, 1.0, accepted, rejected, iterations, min_ratio)
+    finish(
+        sys, start, v, x, status, 1.0, accepted, rejected, iterations, min_ratio,
+    )
 }

@@ -47,8 +47,12 @@ pub enum InverseError {
 impl fmt::Display for InverseError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            InverseError::Unreachable { input } => write!(f, "joint input {input} cannot reach that pose"),
-            InverseError::NoClosedForm { input } => write!(f, "joint input {input} has no closed-form inverse"),
+            InverseError::Unreachable { input } => {
+                write!(f, "joint input {input} cannot reach that pose")
+            }
+            InverseError::NoClosedForm { input } => {
+                write!(f, "joint input {input} has no closed-form inverse")
+            }
             InverseError::NonFinite => write!(f, "non-finite pose"),
         }
     }

@@ -73,7 +73,11 @@ pub struct Pivots<const N: usize> {
 pub fn factor<const N: usize, A: Square>(a: &mut A) -> Option<Pivots<N>> {
     let n = a.dim();
     debug_assert!(n <= N + 1);
-    let mut piv = Pivots { swaps: [0; N], det: 1.0, pivot_ratio: 0.0 };
+    let mut piv = Pivots {
+        swaps: [0; N],
+        det: 1.0,
+        pivot_ratio: 0.0,
+    };
     let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
         let mut p = k;
@@ -220,10 +224,18 @@ mod tests {
     #[test]
     fn bordered_matrix_is_solved_even_when_the_block_is_singular() {
         // B singular (fold), bordered system regular.
-        let m = Bordered { block: [[1.0, 1.0], [1.0, 1.0]], column: [1.0, 0.0], row: [1.0, -1.0], corner: 0.0 };
+        let m = Bordered {
+            block: [[1.0, 1.0], [1.0, 1.0]],
+            column: [1.0, 0.0],
+            row: [1.0, -1.0],
+            corner: 0.0,
+        };
         let mut f = m;
         let piv: Pivots<2> = factor(&mut f).unwrap();
-        let mut y = Extended { head: [1.0, 2.0], tail: 3.0 };
+        let mut y = Extended {
+            head: [1.0, 2.0],
+            tail: 3.0,
+        };
         solve(&f, &piv, &mut y);
         for i in 0..3 {
             let r: f64 = (0..3).map(|j| m.get(i, j) * y.at(j)).sum();

@@ -9,17 +9,30 @@ use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 /// Solves F(v, x) = 0 by Newton's method from `start.v`.
 ///
 /// ```
-/// # use linkage::{Mechanism, Options, Start, newton_raphson};
+/// use linkage::{newton_raphson, Mechanism, Options, Pose, Start, Status};
+///
 /// linkage::mechanism! {
-///     /// A point on three legs (a tripod): three S–P–S chains.
-///     pub struct Tripod;
-///     base { A = [0.0, 0.0, 0.0], B = [100.0, 0.0, 0.0], C = [0.0, 100.0, 0.0] }
-///     platform(frame = [P, Q, R]) { P = [0.0, 0.0, 0.0], Q = [1.0, 0.0, 0.0], R = [0.0, 1.0, 0.0] }
-///     chain a = base - S(A) - P(active la) - S(P) - platform;
-///     chain b = base - S(B) - P(active lb) - S(Q) - platform;
-///     chain c = base - S(C) - P(active lc) - S(R) - platform;
+///     /// A 3-RPS: three hinged legs of variable length carry a triangular platform.
+///     pub struct Rps;
+///     base {
+///         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+///         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+///         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+///     }
+///     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+///     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+///     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+///     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
 /// }
-/// # let _ = Tripod::new();
+///
+/// let rps = Rps::new();
+/// // Start: platform level, 150 mm up; its leg lengths from inverse kinematics.
+/// let v0 = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+/// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+/// let start = Start::new(&rps, v0, x0).unwrap();
+/// let sol = newton_raphson(&rps, &start, &[160.0, 155.0, 158.0], &Options::TIGHT).unwrap();
+/// assert_eq!(sol.status, Status::Converged);
+/// assert!((rps.inverse(&sol.v, &x0).unwrap()[1] - 155.0).abs() < 1e-9);
 /// ```
 pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
@@ -43,7 +56,9 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         if !all_finite(&v) {
             v = start.v;
-            break Status::NotConverged { residual_norm: f64::INFINITY };
+            break Status::NotConverged {
+                residual_norm: f64::INFINITY,
+            };
         }
         if norm(&d) <= options.tolerance {
             break Status::Converged;
@@ -59,7 +74,9 @@ pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Status {
     let mut f = [0.0; N];
     sys.residual(v, x, &mut f);
-    Status::NotConverged { residual_norm: norm(&f) }
+    Status::NotConverged {
+        residual_norm: norm(&f),
+    }
 }
 
 /// Fills in the error estimate and checks the branch by the sign of det B.

@@ -33,7 +33,9 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if accepted + rejected >= options.max_steps {
             let x = at(lambda);
             let status = not_converged(sys, &v, &x);
-            return Ok(finish(sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio));
+            return Ok(finish(
+                sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio,
+            ));
         }
         let next = (lambda + step).min(1.0);
         let x = at(next);
@@ -65,16 +67,33 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
             lambda = next;
             min_ratio = min_ratio.min((det / start.det).abs());
             if lambda >= 1.0 {
-                return Ok(finish(sys, start, v, &x, Status::Converged, 1.0, accepted, rejected, iterations, min_ratio));
+                return Ok(finish(
+                    sys,
+                    start,
+                    v,
+                    &x,
+                    Status::Converged,
+                    1.0,
+                    accepted,
+                    rejected,
+                    iterations,
+                    min_ratio,
+                ));
             }
             step = (step * 2.0).min(nominal);
         } else {
             rejected += 1;
             step *= 0.5;
             if step < 1e-6 {
-                let status = if singular { Status::Singular { lambda } } else { Status::StepTooSmall { lambda } };
+                let status = if singular {
+                    Status::Singular { lambda }
+                } else {
+                    Status::StepTooSmall { lambda }
+                };
                 let x = at(lambda);
-                return Ok(finish(sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio));
+                return Ok(finish(
+                    sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio,
+                ));
             }
         }
     }

@@ -46,7 +46,10 @@ impl Pose {
     /// `det R`: +1 for a proper rotation, −1 for a mirror image.
     pub fn handedness(&self) -> f64 {
         let r = &self.rotation;
-        dot3(r.map(|row| row[0]), cross3(r.map(|row| row[1]), r.map(|row| row[2])))
+        dot3(
+            r.map(|row| row[0]),
+            cross3(r.map(|row| row[1]), r.map(|row| row[2])),
+        )
     }
 }
 
@@ -71,7 +74,10 @@ fn point<const N: usize>(v: &[f64; N], points: usize, p: usize) -> [f64; 3] {
 
 /// The platform pose that places its frame pivots where `v` has them. `None` if they are
 /// collinear or not finite.
-pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N]) -> Option<Pose> {
+pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+) -> Option<Pose> {
     let k = S::POINTS.len();
     let f = S::FRAME;
     let world = triad(f.map(|i| point(v, k, i)))?;
@@ -86,12 +92,22 @@ pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(sy
     let w0 = point(v, k, f[0]);
     let l0 = sys.point_local(f[0]);
     let rl = [0, 1, 2].map(|i| r[i][0] * l0[0] + r[i][1] * l0[1] + r[i][2] * l0[2]);
-    let pose = Pose { rotation: r, translation: sub3(w0, rl) };
-    pose.translation.iter().chain(r.iter().flatten()).all(|x| x.is_finite()).then_some(pose)
+    let pose = Pose {
+        rotation: r,
+        translation: sub3(w0, rl),
+    };
+    pose.translation
+        .iter()
+        .chain(r.iter().flatten())
+        .all(|x| x.is_finite())
+        .then_some(pose)
 }
 
 /// The unknowns v of the platform at `pose` (Eq. A1).
-pub fn unknowns_from_pose<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, pose: &Pose) -> [f64; N] {
+pub fn unknowns_from_pose<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    pose: &Pose,
+) -> [f64; N] {
     let k = S::POINTS.len();
     let mut v = [0.0; N];
     for p in 0..k {

@@ -41,9 +41,16 @@ impl fmt::Display for Status {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Status::Converged => write!(f, "converged"),
-            Status::Fold { lambda } => write!(f, "the joint-space path leaves the valid joint space at λ = {lambda:.4} (fold)"),
-            Status::BranchChanged => write!(f, "the result lies on another branch (det B changed sign)"),
-            Status::NotConverged { residual_norm } => write!(f, "not converged (‖F‖ = {residual_norm:.3e})"),
+            Status::Fold { lambda } => write!(
+                f,
+                "the joint-space path leaves the valid joint space at λ = {lambda:.4} (fold)"
+            ),
+            Status::BranchChanged => {
+                write!(f, "the result lies on another branch (det B changed sign)")
+            }
+            Status::NotConverged { residual_norm } => {
+                write!(f, "not converged (‖F‖ = {residual_norm:.3e})")
+            }
             Status::StepTooSmall { lambda } => write!(f, "step size underflow at λ = {lambda:.4}"),
             Status::Singular { lambda } => write!(f, "singular Jacobian at λ = {lambda:.4}"),
         }
@@ -131,12 +138,26 @@ pub struct Options {
 
 impl Options {
     /// The paper's settings (Section 5): accuracy 0.0005, at most 150 iterations.
-    pub const PAPER: Options = Options { tolerance: 5e-4, max_iterations: 150, max_steps: 2000, homotopy_steps: 10 };
+    pub const PAPER: Options = Options {
+        tolerance: 5e-4,
+        max_iterations: 150,
+        max_steps: 2000,
+        homotopy_steps: 10,
+    };
     /// Near machine precision for millimetre-sized mechanisms.
-    pub const TIGHT: Options = Options { tolerance: 1e-10, max_iterations: 50, max_steps: 2000, homotopy_steps: 10 };
+    pub const TIGHT: Options = Options {
+        tolerance: 1e-10,
+        max_iterations: 50,
+        max_steps: 2000,
+        homotopy_steps: 10,
+    };
 
     pub(crate) fn is_valid(&self) -> bool {
-        self.tolerance.is_finite() && self.tolerance > 0.0 && self.max_iterations > 0 && self.max_steps > 0 && self.homotopy_steps > 0
+        self.tolerance.is_finite()
+            && self.tolerance > 0.0
+            && self.max_iterations > 0
+            && self.max_steps > 0
+            && self.homotopy_steps > 0
     }
 }
 

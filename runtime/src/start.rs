@@ -27,7 +27,8 @@ pub(crate) fn check_target<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !all_finite(x) || !options.is_valid() {
         return Err(SolveError::NonFinite);
     }
-    sys.validate_inputs(x).map_err(|input| SolveError::InvalidInput { input })
+    sys.validate_inputs(x)
+        .map_err(|input| SolveError::InvalidInput { input })
 }
 
 /// A Newton correction `Δ = B⁻¹ F` at `(v, x)`, with det B; `None` if B is singular.
@@ -50,12 +51,20 @@ pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
 
 /// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the
 /// distance to the exact solution (the practical form of Eq. 13). Infinite where B is singular.
-pub fn error_estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) -> f64 {
+pub fn error_estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> f64 {
     correction(sys, v, x).map_or(f64::INFINITY, |(d, _)| crate::math::norm(&d))
 }
 
 /// det B at `(v, x)`; 0 where B is singular.
-pub fn det_b<S: Mechanism<N, M>, const N: usize, const M: usize>(sys: &S, v: &[f64; N], x: &[f64; M]) -> f64 {
+pub fn det_b<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> f64 {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     factor::<N, _>(&mut b).map_or(0.0, |p| p.det)
@@ -68,7 +77,8 @@ impl<const N: usize, const M: usize> Start<N, M> {
         if !all_finite(&v) || !all_finite(&x) {
             return Err(SolveError::NonFinite);
         }
-        sys.validate_inputs(&x).map_err(|input| SolveError::InvalidInput { input })?;
+        sys.validate_inputs(&x)
+            .map_err(|input| SolveError::InvalidInput { input })?;
         let scale = norm(&v).max(1.0);
         let given = v;
         let mut v = v;
@@ -93,7 +103,9 @@ impl<const N: usize, const M: usize> Start<N, M> {
         if norm(&d) > 1e-6 * scale || norm(&moved) > 1e-3 * scale {
             let mut f0 = [0.0; N];
             sys.residual(&given, &x, &mut f0);
-            return Err(SolveError::InconsistentStart { residual_norm: norm(&f0) });
+            return Err(SolveError::InconsistentStart {
+                residual_norm: norm(&f0),
+            });
         }
         if det == 0.0 || !det.is_finite() {
             return Err(SolveError::SingularStart);

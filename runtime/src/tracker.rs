@@ -54,7 +54,13 @@ pub struct Tracker<S, const N: usize, const M: usize> {
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     pub fn new(sys: S, start: Start<N, M>, options: Options) -> Self {
-        Tracker { v: start.v, x: start.x, sys, start, options }
+        Tracker {
+            v: start.v,
+            x: start.x,
+            sys,
+            start,
+            options,
+        }
     }
 
     /// The last accepted pivot coordinates and joint inputs.
@@ -78,7 +84,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             }
         }
         // Fallback: continuation from the last sample, whose branch is the start's.
-        let here = Start { v: self.v, x: self.x, det: self.start.det };
+        let here = Start {
+            v: self.v,
+            x: self.x,
+            det: self.start.det,
+        };
         let sol = arc_length(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
@@ -123,13 +133,24 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         None
     }
 
-    fn accept(&mut self, v: [f64; N], x: &[f64; M], newton_iterations: u32, fell_back: bool) -> Option<Sample<N>> {
+    fn accept(
+        &mut self,
+        v: [f64; N],
+        x: &[f64; M],
+        newton_iterations: u32,
+        fell_back: bool,
+    ) -> Option<Sample<N>> {
         let det = crate::start::det_b(&self.sys, &v, x);
         if det * self.start.det <= 0.0 || !all_finite(&v) {
             return None;
         }
         self.v = v;
         self.x = *x;
-        Some(Sample { v, proximity: (det / self.start.det).abs(), newton_iterations, fell_back })
+        Some(Sample {
+            v,
+            proximity: (det / self.start.det).abs(),
+            newton_iterations,
+            fell_back,
+        })
     }
 }

@@ -27,11 +27,13 @@ pub struct Geometry {
 }
 
 fn six<T: Copy>(v: &[T], what: &str) -> Result<[T; 6], String> {
-    v.try_into().map_err(|_| format!("`{what}` needs 6 entries, found {}", v.len()))
+    v.try_into()
+        .map_err(|_| format!("`{what}` needs 6 entries, found {}", v.len()))
 }
 
 pub fn load(path: &Path) -> Result<Geometry, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     parse(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
@@ -41,9 +43,20 @@ pub fn parse(text: &str) -> Result<Geometry, String> {
         base: six(&f.base, "base")?,
         platform: six(&f.platform, "platform")?,
         legs: six(&f.start.legs, "start.legs")?,
-        pose: f.start.pose.as_deref().map(|p| six(p, "start.pose")).transpose()?,
+        pose: f
+            .start
+            .pose
+            .as_deref()
+            .map(|p| six(p, "start.pose"))
+            .transpose()?,
     };
-    let values = g.base.iter().flatten().chain(g.platform.iter().flatten()).chain(&g.legs).chain(g.pose.iter().flatten());
+    let values = g
+        .base
+        .iter()
+        .flatten()
+        .chain(g.platform.iter().flatten())
+        .chain(&g.legs)
+        .chain(g.pose.iter().flatten());
     if values.into_iter().any(|x| !x.is_finite()) {
         return Err("every geometry value must be a finite number".into());
     }

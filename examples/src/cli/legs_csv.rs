@@ -11,14 +11,19 @@ pub fn read(path: &std::path::Path) -> Result<Vec<Row>, String> {
         .flexible(true)
         .from_path(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let headers = reader.headers().map_err(|e| format!("{}: {e}", path.display()))?.clone();
+    let headers = reader
+        .headers()
+        .map_err(|e| format!("{}: {e}", path.display()))?
+        .clone();
     let mut columns = [0usize; 6];
     for (i, c) in columns.iter_mut().enumerate() {
         let name = format!("L{}", i + 1);
-        *c = headers
-            .iter()
-            .position(|h| h == name)
-            .ok_or_else(|| format!("{}: the header has no column `{name}` (it needs L1…L6)", path.display()))?;
+        *c = headers.iter().position(|h| h == name).ok_or_else(|| {
+            format!(
+                "{}: the header has no column `{name}` (it needs L1…L6)",
+                path.display()
+            )
+        })?;
     }
     let mut rows = Vec::new();
     for record in reader.records() {
@@ -46,7 +51,9 @@ fn parse_row(r: &csv::StringRecord, columns: &[usize; 6]) -> Row {
 /// The output header: row, status, the pose (Appendix B), v in the paper's order, and the
 /// solve's account.
 pub fn header() -> Vec<String> {
-    let mut h: Vec<String> = ["row", "status", "yaw", "pitch", "roll", "x", "y", "z"].map(String::from).to_vec();
+    let mut h: Vec<String> = ["row", "status", "yaw", "pitch", "roll", "x", "y", "z"]
+        .map(String::from)
+        .to_vec();
     h.extend((1..=18).map(|i| format!("v{i}")));
     h.push("error_estimate".into());
     h.push("steps".into());
@@ -60,7 +67,10 @@ pub struct Output {
 impl Output {
     pub fn new(path: Option<&std::path::Path>) -> Result<Self, String> {
         let sink: Box<dyn Write> = match path {
-            Some(p) => Box::new(std::fs::File::create(p).map_err(|e| format!("cannot write {}: {e}", p.display()))?),
+            Some(p) => Box::new(
+                std::fs::File::create(p)
+                    .map_err(|e| format!("cannot write {}: {e}", p.display()))?,
+            ),
             None => Box::new(std::io::stdout()),
         };
         let mut writer = csv::Writer::from_writer(sink);
@@ -69,7 +79,14 @@ impl Output {
     }
 
     /// A row; `solution` is `None` when there is no pose to report.
-    pub fn row(&mut self, row: usize, status: &str, solution: Option<(&[f64; 6], &[f64; 18])>, error: Option<f64>, steps: Option<u32>) -> Result<(), String> {
+    pub fn row(
+        &mut self,
+        row: usize,
+        status: &str,
+        solution: Option<(&[f64; 6], &[f64; 18])>,
+        error: Option<f64>,
+        steps: Option<u32>,
+    ) -> Result<(), String> {
         let mut rec = vec![row.to_string(), status.to_string()];
         match solution {
             Some((pose, v)) => {

@@ -19,7 +19,9 @@
 
 use proc_macro2::Span;
 use syn::parse::{Parse, ParseStream};
-use syn::{bracketed, parenthesized, token, Attribute, Ident, LitFloat, LitInt, Result, Token, Visibility};
+use syn::{
+    bracketed, parenthesized, token, Attribute, Ident, LitFloat, LitInt, Result, Token, Visibility,
+};
 
 pub struct Mechanism {
     pub attrs: Vec<Attribute>,
@@ -176,9 +178,13 @@ impl Parse for Mechanism {
                 }
             } else if look.peek(kw::base) {
                 let kw: kw::base = input.parse()?;
-                let link = parse_link_body(input, LinkRole::Base, Ident::new("base", kw.span), None)?;
+                let link =
+                    parse_link_body(input, LinkRole::Base, Ident::new("base", kw.span), None)?;
                 if m.base.is_some() {
-                    return Err(syn::Error::new(kw.span, "the `base` link is declared twice"));
+                    return Err(syn::Error::new(
+                        kw.span,
+                        "the `base` link is declared twice",
+                    ));
                 }
                 m.base = Some(link);
             } else if look.peek(kw::platform) {
@@ -201,11 +207,16 @@ impl Parse for Mechanism {
                             args.parse::<Token![=]>()?;
                             let f: Ident = args.parse()?;
                             if f != "coplanar" && f != "general" {
-                                return Err(syn::Error::new(f.span(), "expected `form = coplanar` or `form = general`"));
+                                return Err(syn::Error::new(
+                                    f.span(),
+                                    "expected `form = coplanar` or `form = general`",
+                                ));
                             }
                             form = Some(f);
                         } else {
-                            return Err(args.error("expected `frame = [A, B, C]` or `form = coplanar | general`"));
+                            return Err(args.error(
+                                "expected `frame = [A, B, C]` or `form = coplanar | general`",
+                            ));
                         }
                         if !args.is_empty() {
                             args.parse::<Token![,]>()?;
@@ -220,13 +231,17 @@ impl Parse for Mechanism {
                 )?;
                 link.form = form;
                 if m.platform.is_some() {
-                    return Err(syn::Error::new(kw.span, "the `platform` link is declared twice"));
+                    return Err(syn::Error::new(
+                        kw.span,
+                        "the `platform` link is declared twice",
+                    ));
                 }
                 m.platform = Some(link);
             } else if look.peek(kw::link) {
                 input.parse::<kw::link>()?;
                 let name: Ident = input.parse()?;
-                m.links.push(parse_link_body(input, LinkRole::Intermediate, name, None)?);
+                m.links
+                    .push(parse_link_body(input, LinkRole::Intermediate, name, None)?);
             } else if look.peek(kw::chain) {
                 input.parse::<kw::chain>()?;
                 let name: Ident = input.parse()?;
@@ -254,7 +269,14 @@ fn parse_link_body(
 ) -> Result<LinkDecl> {
     let body;
     syn::braced!(body in input);
-    let mut link = LinkDecl { role, name, pivots: Vec::new(), length: None, frame, form: None };
+    let mut link = LinkDecl {
+        role,
+        name,
+        pivots: Vec::new(),
+        length: None,
+        frame,
+        form: None,
+    };
     while !body.is_empty() {
         if body.peek(kw::length) && body.peek2(Token![=]) {
             let kw: kw::length = body.parse()?;
@@ -279,7 +301,10 @@ fn parse_link_body(
             if !list.is_empty() {
                 return Err(list.error("a pivot has exactly three coordinates `[x, y, z]`"));
             }
-            link.pivots.push(Pivot { name, coords: [c0, c1, c2] });
+            link.pivots.push(Pivot {
+                name,
+                coords: [c0, c1, c2],
+            });
         }
         if !body.is_empty() {
             body.parse::<Token![,]>()?;
@@ -303,7 +328,9 @@ fn parse_item(input: ParseStream) -> Result<ChainItem> {
         other => {
             return Err(syn::Error::new(
                 name.span(),
-                format!("unknown lower pair `{other}`: expected one of `R`, `P`, `C`, `H`, `S`, `U`"),
+                format!(
+                    "unknown lower pair `{other}`: expected one of `R`, `P`, `C`, `H`, `S`, `U`"
+                ),
             ))
         }
     };
@@ -382,7 +409,13 @@ fn parse_number(input: ParseStream) -> Result<Number> {
         return Err(input.error("expected a number or a parameter name"));
     };
     if !value.is_finite() {
-        return Err(syn::Error::new(span, "a coordinate must be a finite number"));
+        return Err(syn::Error::new(
+            span,
+            "a coordinate must be a finite number",
+        ));
     }
-    Ok(Number { value: if negative { -value } else { value }, span })
+    Ok(Number {
+        value: if negative { -value } else { value },
+        span,
+    })
 }

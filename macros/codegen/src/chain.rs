@@ -21,10 +21,30 @@ use proc_macro2::Span;
 use syn::Ident;
 
 pub enum Shape<'a> {
-    Leg { anchor: &'a Ident, slider: &'a PairDecl, platform: &'a Ident },
-    Rod { anchor: &'a Ident, rod: &'a Ident, length: &'a Coord, platform: &'a Ident },
-    Driven { driver: &'a PairDecl, link: &'a Ident, tip: &'a Ident, rod: &'a Ident, length: &'a Coord, platform: &'a Ident },
-    Swing { hinge: &'a PairDecl, slider: &'a PairDecl, platform: &'a Ident },
+    Leg {
+        anchor: &'a Ident,
+        slider: &'a PairDecl,
+        platform: &'a Ident,
+    },
+    Rod {
+        anchor: &'a Ident,
+        rod: &'a Ident,
+        length: &'a Coord,
+        platform: &'a Ident,
+    },
+    Driven {
+        driver: &'a PairDecl,
+        link: &'a Ident,
+        tip: &'a Ident,
+        rod: &'a Ident,
+        length: &'a Coord,
+        platform: &'a Ident,
+    },
+    Swing {
+        hinge: &'a PairDecl,
+        slider: &'a PairDecl,
+        platform: &'a Ident,
+    },
 }
 
 impl Shape<'_> {
@@ -50,20 +70,33 @@ fn center<'a>(p: &'a PairDecl, chain: &ChainDecl) -> Result<&'a Ident, (Span, St
         [c] => Ok(c),
         _ => Err((
             p.token.span(),
-            format!("pair `{}` in chain `{}` names its centre: one pivot, e.g. `{}(G1)`", p.kind.letter(), chain.name, p.kind.letter()),
+            format!(
+                "pair `{}` in chain `{}` names its centre: one pivot, e.g. `{}(G1)`",
+                p.kind.letter(),
+                chain.name,
+                p.kind.letter()
+            ),
         )),
     }
 }
 
 fn on_link(m: &Mechanism, link: &str, pivot: &Ident) -> bool {
-    m.all_links().any(|l| l.name == link && l.pivots.iter().any(|p| p.name == *pivot))
+    m.all_links()
+        .any(|l| l.name == link && l.pivots.iter().any(|p| p.name == *pivot))
 }
 
 pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Span, String)> {
     let n = normalize(m, c);
     let letters: Vec<&str> = n.pairs.iter().map(|p| p.kind.letter()).collect();
     let unsupported = || {
-        (c.name.span(), format!("chain `{}` has the unsupported shape `{}`; {SUPPORTED}", c.name, letters.join(" - ")))
+        (
+            c.name.span(),
+            format!(
+                "chain `{}` has the unsupported shape `{}`; {SUPPORTED}",
+                c.name,
+                letters.join(" - ")
+            ),
+        )
     };
     let platform_center = |p: &'a PairDecl| -> Result<&'a Ident, (Span, String)> {
         let g = center(p, c)?;
@@ -81,12 +114,18 @@ pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Sp
     };
     let pairs = &n.pairs;
     match pairs.as_slice() {
-        [s1, slider, s2] if is_point_joint(s1) && slider.kind == PairKind::P && is_point_joint(s2) => {
+        [s1, slider, s2]
+            if is_point_joint(s1) && slider.kind == PairKind::P && is_point_joint(s2) =>
+        {
             if slider.active.is_none() {
                 return Err((slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", c.name)));
             }
             single_variable(slider, c)?;
-            Ok(Shape::Leg { anchor: base_center(s1)?, slider, platform: platform_center(s2)? })
+            Ok(Shape::Leg {
+                anchor: base_center(s1)?,
+                slider,
+                platform: platform_center(s2)?,
+            })
         }
         [s1, s2] if is_point_joint(s1) && is_point_joint(s2) => {
             let rod = n.links[1].filter(|l| l.role == LinkRole::Intermediate);
@@ -96,22 +135,48 @@ pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Sp
             }
         }
         [driver, s1, s2]
-            if matches!(driver.kind, PairKind::R | PairKind::P | PairKind::H | PairKind::C)
-                && is_point_joint(s1)
+            if matches!(
+                driver.kind,
+                PairKind::R | PairKind::P | PairKind::H | PairKind::C
+            ) && is_point_joint(s1)
                 && is_point_joint(s2) =>
         {
             if driver.active.is_none() {
-                return Err((driver.token.span(), format!("the `{}` pair driving chain `{}` must be active", driver.kind.letter(), c.name)));
+                return Err((
+                    driver.token.span(),
+                    format!(
+                        "the `{}` pair driving chain `{}` must be active",
+                        driver.kind.letter(),
+                        c.name
+                    ),
+                ));
             }
             let expected = if driver.kind == PairKind::C { 2 } else { 1 };
             if driver.variables.len() != expected {
-                return Err((driver.token.span(), format!("an active `{}` pair has {expected} joint variable(s), found {}", driver.kind.letter(), driver.variables.len())));
+                return Err((
+                    driver.token.span(),
+                    format!(
+                        "an active `{}` pair has {expected} joint variable(s), found {}",
+                        driver.kind.letter(),
+                        driver.variables.len()
+                    ),
+                ));
             }
             if driver.axis.is_none() {
-                return Err((driver.token.span(), format!("the `{}` pair of chain `{}` needs its axis: `axis = A -> B` on `base`", driver.kind.letter(), c.name)));
+                return Err((
+                    driver.token.span(),
+                    format!(
+                        "the `{}` pair of chain `{}` needs its axis: `axis = A -> B` on `base`",
+                        driver.kind.letter(),
+                        c.name
+                    ),
+                ));
             }
             if driver.kind == PairKind::H && driver.lead.is_none() {
-                return Err((driver.token.span(), "a helical pair needs its `lead = ...`".to_string()));
+                return Err((
+                    driver.token.span(),
+                    "a helical pair needs its `lead = ...`".to_string(),
+                ));
             }
             let link = match n.links[1] {
                 Some(l) if l.role == LinkRole::Intermediate => l,
@@ -119,7 +184,10 @@ pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Sp
             };
             let tip = center(s1, c)?;
             if !link.pivots.iter().any(|p| p.name == *tip) {
-                return Err((tip.span(), format!("`{tip}` is not a pivot of link `{}`", link.name)));
+                return Err((
+                    tip.span(),
+                    format!("`{tip}` is not a pivot of link `{}`", link.name),
+                ));
             }
             let rod = n.links[2].filter(|l| l.role == LinkRole::Intermediate);
             match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
@@ -127,18 +195,30 @@ pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Sp
                 None => Err((s2.token.span(), format!("the rod of chain `{}` needs a length: `link rod {{ length = ... }}` between its two point joints", c.name))),
             }
         }
-        [hinge, slider, s] if hinge.kind == PairKind::R && slider.kind == PairKind::P && is_point_joint(s) => {
+        [hinge, slider, s]
+            if hinge.kind == PairKind::R && slider.kind == PairKind::P && is_point_joint(s) =>
+        {
             if hinge.active.is_some() || slider.active.is_none() {
                 return Err(unsupported());
             }
             if hinge.axis.is_none() {
-                return Err((hinge.token.span(), format!("the `R` pair of chain `{}` needs its axis: `axis = A -> B` on `base`", c.name)));
+                return Err((
+                    hinge.token.span(),
+                    format!(
+                        "the `R` pair of chain `{}` needs its axis: `axis = A -> B` on `base`",
+                        c.name
+                    ),
+                ));
             }
             if role(n.links[0]) != Some(LinkRole::Base) {
                 return Err(unsupported());
             }
             single_variable(slider, c)?;
-            Ok(Shape::Swing { hinge, slider, platform: platform_center(s)? })
+            Ok(Shape::Swing {
+                hinge,
+                slider,
+                platform: platform_center(s)?,
+            })
         }
         _ => Err(unsupported()),
     }
@@ -148,7 +228,13 @@ fn single_variable(p: &PairDecl, c: &ChainDecl) -> Result<(), (Span, String)> {
     if p.variables.len() == 1 {
         Ok(())
     } else {
-        Err((p.token.span(), format!("an active `P` pair in chain `{}` has one joint variable", c.name)))
+        Err((
+            p.token.span(),
+            format!(
+                "an active `P` pair in chain `{}` has one joint variable",
+                c.name
+            ),
+        ))
     }
 }
 
@@ -160,15 +246,14 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
         Shape::Leg { anchor, slider, .. } => {
             let a = b.pivot_constants("base", &anchor.to_string());
             let input = b.input(&slider.variables[0]);
-            let offset = slider
-                .offset
-                .as_ref()
-                .map(|o| b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}")));
+            let offset = slider.offset.as_ref().map(|o| {
+                b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}"))
+            });
             let length = match &offset {
-                Some(o) => Expr::add(Expr::Input(input), o.clone()),
+                Some(o) => Expr::plus(Expr::Input(input), o.clone()),
                 None => Expr::Input(input),
             };
-            let eq = Expr::sub(expr::squared_distance(&g, &a), length.square());
+            let eq = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
                 equations: vec![eq],
                 inverse: Inverse::Distance {
@@ -179,13 +264,28 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                 },
             }
         }
-        Shape::Rod { anchor, rod, length, .. } => {
+        Shape::Rod {
+            anchor,
+            rod,
+            length,
+            ..
+        } => {
             let a = b.pivot_constants("base", &anchor.to_string());
             let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
-            let eq = Expr::sub(expr::squared_distance(&g, &a), l.square());
-            ChainModel { equations: vec![eq], inverse: Inverse::None { inputs: vec![] } }
+            let eq = Expr::minus(expr::squared_distance(&g, &a), l.square());
+            ChainModel {
+                equations: vec![eq],
+                inverse: Inverse::None { inputs: vec![] },
+            }
         }
-        Shape::Driven { driver, link, tip, rod, length, .. } => {
+        Shape::Driven {
+            driver,
+            link,
+            tip,
+            rod,
+            length,
+            ..
+        } => {
             let (ax_a, ax_b) = driver.axis.as_ref().expect("classified");
             let a = b.pivot_slots("base", &ax_a.to_string());
             let bb = b.pivot_slots("base", &ax_b.to_string());
@@ -193,7 +293,15 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
             let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
                 [0, 1, 2].map(|k3| {
                     let name = format!("{prefix}{}_{chain}", ["x", "y", "z"][k3]);
-                    b.constant(name, Recipe::Axis { a, b: bb, point: c0, index: index + k3 })
+                    b.constant(
+                        name,
+                        Recipe::Axis {
+                            a,
+                            b: bb,
+                            point: c0,
+                            index: index + k3,
+                        },
+                    )
                 })
             };
             let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
@@ -219,7 +327,10 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     let th = Expr::Input(inputs[0]);
                     let cos = Expr::Cos(Box::new(th.clone()));
                     let sin = Expr::Sin(Box::new(th.clone()));
-                    let mut t = expr::vadd(&o, &expr::vadd(&expr::vscale(&cos, &u), &expr::vscale(&sin, &w)));
+                    let mut t = expr::vadd(
+                        &o,
+                        &expr::vadd(&expr::vscale(&cos, &u), &expr::vscale(&sin, &w)),
+                    );
                     let inv = match kind {
                         PairKind::R => Inverse::RevoluteRod {
                             input: inputs[0],
@@ -229,12 +340,22 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                             w: w.each_ref().map(Builder::constant_index),
                             length: Builder::constant_index(&l),
                         },
-                        _ => Inverse::None { inputs: inputs.clone() },
+                        _ => Inverse::None {
+                            inputs: inputs.clone(),
+                        },
                     };
-                    let e = if matches!(kind, PairKind::H | PairKind::C) { part(b, 0, "e") } else { o.clone() };
+                    let e = if matches!(kind, PairKind::H | PairKind::C) {
+                        part(b, 0, "e")
+                    } else {
+                        o.clone()
+                    };
                     if kind == PairKind::H {
                         let lead = driver.lead.as_ref().expect("classified");
-                        let lead = b.scalar_constant(&format!("{chain}.lead"), lead, format!("lead_{chain}"));
+                        let lead = b.scalar_constant(
+                            &format!("{chain}.lead"),
+                            lead,
+                            format!("lead_{chain}"),
+                        );
                         let rise = Expr::Product(vec![
                             Expr::Num(1.0 / (2.0 * std::f64::consts::PI)),
                             lead,
@@ -249,8 +370,11 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     (t, inv)
                 }
             };
-            let eq = Expr::sub(expr::squared_distance(&g, &tip_expr), l.square());
-            ChainModel { equations: vec![eq], inverse }
+            let eq = Expr::minus(expr::squared_distance(&g, &tip_expr), l.square());
+            ChainModel {
+                equations: vec![eq],
+                inverse,
+            }
         }
         Shape::Swing { hinge, slider, .. } => {
             let (ax_a, ax_b) = hinge.axis.as_ref().expect("classified");
@@ -259,19 +383,26 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
             let a = b.pivot_constants("base", &ax_a.to_string());
             let e: Vec3 = [0, 1, 2].map(|k3| {
                 let name = format!("e{}_{chain}", ["x", "y", "z"][k3]);
-                b.constant(name, Recipe::Axis { a: a_slots, b: b_slots, point: a_slots, index: k3 })
+                b.constant(
+                    name,
+                    Recipe::Axis {
+                        a: a_slots,
+                        b: b_slots,
+                        point: a_slots,
+                        index: k3,
+                    },
+                )
             });
             let input = b.input(&slider.variables[0]);
-            let offset = slider
-                .offset
-                .as_ref()
-                .map(|o| b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}")));
+            let offset = slider.offset.as_ref().map(|o| {
+                b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}"))
+            });
             let length = match &offset {
-                Some(o) => Expr::add(Expr::Input(input), o.clone()),
+                Some(o) => Expr::plus(Expr::Input(input), o.clone()),
                 None => Expr::Input(input),
             };
             let plane = expr::dot(&e, &expr::vsub(&g, &a));
-            let dist = Expr::sub(expr::squared_distance(&g, &a), length.square());
+            let dist = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
                 equations: vec![plane, dist],
                 inverse: Inverse::Distance {

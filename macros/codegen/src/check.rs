@@ -27,7 +27,10 @@ impl Errors {
 
 impl Mechanism {
     pub fn all_links(&self) -> impl Iterator<Item = &LinkDecl> {
-        self.base.iter().chain(self.platform.iter()).chain(self.links.iter())
+        self.base
+            .iter()
+            .chain(self.platform.iter())
+            .chain(self.links.iter())
     }
 
     pub fn link(&self, name: &Ident) -> Option<&LinkDecl> {
@@ -45,7 +48,11 @@ impl Mechanism {
         if self.chains.is_empty() {
             errors.push(self.name.span(), "mechanism has no `chain`: declare at least one `chain NAME = base - ... - platform;`");
         }
-        unique(self.params.iter().map(|p| &p.name), "parameter", &mut errors);
+        unique(
+            self.params.iter().map(|p| &p.name),
+            "parameter",
+            &mut errors,
+        );
         unique(self.all_links().map(|l| &l.name), "link", &mut errors);
         unique(self.chains.iter().map(|c| &c.name), "chain", &mut errors);
         let variables = self.chains.iter().flat_map(|c| {
@@ -57,7 +64,11 @@ impl Mechanism {
         unique(variables.flatten(), "joint variable", &mut errors);
 
         for link in self.all_links() {
-            unique(link.pivots.iter().map(|p| &p.name), &format!("pivot on link `{}`", link.name), &mut errors);
+            unique(
+                link.pivots.iter().map(|p| &p.name),
+                &format!("pivot on link `{}`", link.name),
+                &mut errors,
+            );
             for pivot in &link.pivots {
                 for c in &pivot.coords {
                     self.check_coord(c, &mut errors);
@@ -68,11 +79,17 @@ impl Mechanism {
             }
             if let Some(frame) = &link.frame {
                 if frame.len() != 3 {
-                    errors.push(link.name.span(), format!("`frame` names three pivots, found {}", frame.len()));
+                    errors.push(
+                        link.name.span(),
+                        format!("`frame` names three pivots, found {}", frame.len()),
+                    );
                 }
                 for f in frame {
                     if !link.pivots.iter().any(|p| p.name == *f) {
-                        errors.push(f.span(), format!("`frame` names unknown pivot `{f}` of link `{}`", link.name));
+                        errors.push(
+                            f.span(),
+                            format!("`frame` names unknown pivot `{f}` of link `{}`", link.name),
+                        );
                     }
                 }
             }
@@ -86,7 +103,10 @@ impl Mechanism {
     fn check_coord(&self, c: &Coord, errors: &mut Errors) {
         if let Coord::Param(p) = c {
             if !self.params.iter().any(|q| q.name == *p) {
-                errors.push(p.span(), format!("unknown parameter `{p}`: declare it in `params {{ {p} = ... }}`"));
+                errors.push(
+                    p.span(),
+                    format!("unknown parameter `{p}`: declare it in `params {{ {p} = ... }}`"),
+                );
             }
         }
     }
@@ -95,8 +115,14 @@ impl Mechanism {
         let items = &chain.items;
         match items.first() {
             Some(ChainItem::Link(l)) if l == "base" => {}
-            Some(ChainItem::Link(l)) => errors.push(l.span(), format!("chain `{}` must start at `base`, not `{l}`", chain.name)),
-            _ => errors.push(chain.name.span(), format!("chain `{}` must start at `base`", chain.name)),
+            Some(ChainItem::Link(l)) => errors.push(
+                l.span(),
+                format!("chain `{}` must start at `base`, not `{l}`", chain.name),
+            ),
+            _ => errors.push(
+                chain.name.span(),
+                format!("chain `{}` must start at `base`", chain.name),
+            ),
         }
         match items.last() {
             Some(ChainItem::Link(l)) if l == "platform" => {}
@@ -107,13 +133,19 @@ impl Mechanism {
             match item {
                 ChainItem::Link(l) => {
                     if self.link(l).is_none() {
-                        errors.push(l.span(), format!("unknown link `{l}` in chain `{}`", chain.name));
+                        errors.push(
+                            l.span(),
+                            format!("unknown link `{l}` in chain `{}`", chain.name),
+                        );
                     }
                     if let Some(ChainItem::Link(next)) = items.get(k + 1) {
                         if next == l {
                             errors.push(next.span(), format!("a pair between link `{l}` and itself: put a pair between the two links"));
                         } else {
-                            errors.push(next.span(), format!("links `{l}` and `{next}` are joined without a pair"));
+                            errors.push(
+                                next.span(),
+                                format!("links `{l}` and `{next}` are joined without a pair"),
+                            );
                         }
                     }
                 }
@@ -122,7 +154,10 @@ impl Mechanism {
                     let after = neighbour(items, k, true);
                     if let (Some(a), Some(b)) = (&before, &after) {
                         if a == b {
-                            errors.push(p.token.span(), format!("pair `{}` joins link `{a}` to itself", p.kind.letter()));
+                            errors.push(
+                                p.token.span(),
+                                format!("pair `{}` joins link `{a}` to itself", p.kind.letter()),
+                            );
                         }
                     }
                     self.check_pair(chain, p, before, after, errors);
@@ -149,9 +184,16 @@ impl Mechanism {
             ),
             _ => {}
         }
-        let adjacent: Vec<&LinkDecl> = [before, after].into_iter().flatten().filter_map(|l| self.link(l)).collect();
+        let adjacent: Vec<&LinkDecl> = [before, after]
+            .into_iter()
+            .flatten()
+            .filter_map(|l| self.link(l))
+            .collect();
         for pivot in &p.pivots {
-            if !adjacent.iter().any(|l| l.pivots.iter().any(|q| q.name == *pivot)) {
+            if !adjacent
+                .iter()
+                .any(|l| l.pivots.iter().any(|q| q.name == *pivot))
+            {
                 let names: Vec<String> = adjacent.iter().map(|l| format!("`{}`", l.name)).collect();
                 errors.push(pivot.span(), format!("pair `{letter}` in chain `{}` references unknown pivot `{pivot}`: it is on neither of the links it joins ({})", chain.name, names.join(", ")));
             }
@@ -164,12 +206,20 @@ impl Mechanism {
                 }
             }
             if a == b {
-                errors.push(b.span(), format!("the axis of pair `{letter}` is given by coincident points `{a}` and `{b}`"));
+                errors.push(
+                    b.span(),
+                    format!(
+                        "the axis of pair `{letter}` is given by coincident points `{a}` and `{b}`"
+                    ),
+                );
             }
         }
         if let Some(lead) = &p.lead {
             if p.kind != crate::ast::PairKind::H {
-                errors.push(lead.span(), format!("`lead` belongs to a helical pair `H`, not `{letter}`"));
+                errors.push(
+                    lead.span(),
+                    format!("`lead` belongs to a helical pair `H`, not `{letter}`"),
+                );
             }
             self.check_coord(lead, errors);
         }
@@ -180,7 +230,11 @@ impl Mechanism {
 }
 
 fn neighbour(items: &[ChainItem], k: usize, forward: bool) -> Option<&Ident> {
-    let idx = if forward { k.checked_add(1)? } else { k.checked_sub(1)? };
+    let idx = if forward {
+        k.checked_add(1)?
+    } else {
+        k.checked_sub(1)?
+    };
     match items.get(idx)? {
         ChainItem::Link(l) => Some(l),
         ChainItem::Pair(_) => None,

@@ -29,7 +29,11 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
     let listing = listing(model, &equation_text, &jac, &jacobian_text);
     let point_names = model.points.iter().map(|p| p.name.as_str());
     let [f0, f1, f2] = model.frame;
-    let recipes = model.constants.iter().enumerate().map(|(i, c)| recipe(i, &c.recipe));
+    let recipes = model
+        .constants
+        .iter()
+        .enumerate()
+        .map(|(i, c)| recipe(i, &c.recipe));
 
     let residual = model.equations.iter().enumerate().map(|(i, e)| {
         let e = tokens(e);
@@ -68,10 +72,18 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
         }
         _ => None,
     });
-    let uses_v = model.equations.iter().any(|e| (0..n).any(|i| e.depends_on(Var::Unknown(i))));
-    let allow = if uses_v { quote!() } else { quote!(#[allow(unused_variables)]) };
+    let uses_v = model
+        .equations
+        .iter()
+        .any(|e| (0..n).any(|i| e.depends_on(Var::Unknown(i))));
+    let allow = if uses_v {
+        quote!()
+    } else {
+        quote!(#[allow(unused_variables)])
+    };
     let priv_ = quote!(::linkage::__private);
-    let new_doc = format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");
+    let new_doc =
+        format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");
     let _ = format_ident!("unused");
 
     quote! {
@@ -228,8 +240,14 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
     }
 }
 
-fn listing(model: &Model, equations: &[String], jac: &[(usize, usize, Expr)], jtext: &[String]) -> String {
-    let mut s = format!(
+fn listing(
+    model: &Model,
+    equations: &[String],
+    jac: &[(usize, usize, Expr)],
+    jtext: &[String],
+) -> String {
+    let mut s =
+        format!(
         "{}: {} equations in {} unknowns, {} inputs\nunknowns: {}\ninputs: {}\nconstants: {}\n\n",
         model.name,
         model.equations.len(),
@@ -265,10 +283,26 @@ pub fn tokens(e: &Expr) -> TokenStream {
         Expr::Input(i) => quote!(x[#i]),
         Expr::Constant(i) => quote!(c[#i]),
         Expr::Sum(ts) => {
-            let ts = ts.iter().map(tokens);
-            quote!((#(#ts)+*))
+            // Negative terms become subtractions: `a - b` rather than `a + (-1.0 * b)`.
+            let mut out = TokenStream::new();
+            for (k, t) in ts.iter().enumerate() {
+                let (negative, magnitude) = split_sign(t);
+                let m = tokens(&magnitude);
+                out.extend(match (k, negative) {
+                    (0, false) => quote!(#m),
+                    (0, true) => quote!(-#m),
+                    (_, false) => quote!(+ #m),
+                    (_, true) => quote!(- #m),
+                });
+            }
+            quote!((#out))
         }
         Expr::Product(fs) => {
+            let (negative, magnitude) = split_sign(e);
+            if negative {
+                let m = tokens(&magnitude);
+                return quote!((-#m));
+            }
             let mut it = fs.iter().map(tokens);
             let first = it.next().unwrap_or_else(|| quote!(1.0f64));
             let rest = it.map(|f| quote!(* #f));
@@ -289,6 +323,22 @@ pub fn tokens(e: &Expr) -> TokenStream {
     }
 }
 
+/// `(true, -e)` for a term with a negative numeric factor, else `(false, e)`.
+fn split_sign(e: &Expr) -> (bool, Expr) {
+    match e {
+        Expr::Num(n) if *n < 0.0 => (true, Expr::Num(-n)),
+        Expr::Product(fs) => match fs.first() {
+            Some(Expr::Num(n)) if *n < 0.0 => {
+                let mut rest = fs.clone();
+                rest[0] = Expr::Num(-n);
+                (true, Expr::Product(rest).simplify())
+            }
+            _ => (false, e.clone()),
+        },
+        _ => (false, e.clone()),
+    }
+}
+
 fn point3(s: [usize; 3]) -> TokenStream {
     let [a, b, c] = s;
     quote!([g[#a], g[#b], g[#c]])
@@ -303,7 +353,12 @@ fn recipe(i: usize, r: &Recipe) -> TokenStream {
     let p = quote!(::linkage::__private);
     match r {
         Recipe::Slot(s) => quote!(c[#i] = g[#s];),
-        Recipe::Rigid { frame, point, index, coplanar } => {
+        Recipe::Rigid {
+            frame,
+            point,
+            index,
+            coplanar,
+        } => {
             let [f0, f1, f2] = frame.map(point3);
             let q = point3(*point);
             quote!(c[#i] = #p::rigid_coefficients([#f0, #f1, #f2], #q, #coplanar)?[#index];)
@@ -326,7 +381,12 @@ fn inverse(model: &Model, inv: &Inverse) -> TokenStream {
         quote!([v[#x], v[#y], v[#z]])
     };
     match inv {
-        Inverse::Distance { input, point: q, anchor, offset } => {
+        Inverse::Distance {
+            input,
+            point: q,
+            anchor,
+            offset,
+        } => {
             let g = point(*q);
             let a = consts3(*anchor);
             let off = match offset {
@@ -335,13 +395,26 @@ fn inverse(model: &Model, inv: &Inverse) -> TokenStream {
             };
             quote!(out[#input] = #p::distance(#g, #a) - #off;)
         }
-        Inverse::RevoluteRod { input, point: q, o, u, w, length } => {
+        Inverse::RevoluteRod {
+            input,
+            point: q,
+            o,
+            u,
+            w,
+            length,
+        } => {
             let g = point(*q);
             let (o, u, w) = (consts3(*o), consts3(*u), consts3(*w));
             quote!(out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
                 .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
         }
-        Inverse::PrismaticRod { input, point: q, c0, e, length } => {
+        Inverse::PrismaticRod {
+            input,
+            point: q,
+            c0,
+            e,
+            length,
+        } => {
             let g = point(*q);
             let (c0, e) = (consts3(*c0), consts3(*e));
             quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input])

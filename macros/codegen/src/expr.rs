@@ -40,19 +40,19 @@ impl Expr {
         Expr::Num(0.0)
     }
 
-    pub fn sub(a: Expr, b: Expr) -> Expr {
-        Expr::Sum(vec![a, b.neg()]).simplify()
+    pub fn minus(a: Expr, b: Expr) -> Expr {
+        Expr::Sum(vec![a, b.negated()]).simplify()
     }
 
-    pub fn add(a: Expr, b: Expr) -> Expr {
+    pub fn plus(a: Expr, b: Expr) -> Expr {
         Expr::Sum(vec![a, b]).simplify()
     }
 
-    pub fn mul(a: Expr, b: Expr) -> Expr {
+    pub fn times(a: Expr, b: Expr) -> Expr {
         Expr::Product(vec![a, b]).simplify()
     }
 
-    pub fn neg(self) -> Expr {
+    pub fn negated(self) -> Expr {
         Expr::Product(vec![Expr::Num(-1.0), self]).simplify()
     }
 
@@ -112,11 +112,15 @@ impl Expr {
                     })
                     .collect(),
             ),
-            Expr::Square(e) => Expr::Product(vec![Expr::Num(2.0), (**e).clone(), e.derivative(var)]),
-            Expr::Sin(e) => Expr::Product(vec![Expr::Cos(e.clone()), e.derivative(var)]),
-            Expr::Cos(e) => {
-                Expr::Product(vec![Expr::Num(-1.0), Expr::Sin(e.clone()), e.derivative(var)])
+            Expr::Square(e) => {
+                Expr::Product(vec![Expr::Num(2.0), (**e).clone(), e.derivative(var)])
             }
+            Expr::Sin(e) => Expr::Product(vec![Expr::Cos(e.clone()), e.derivative(var)]),
+            Expr::Cos(e) => Expr::Product(vec![
+                Expr::Num(-1.0),
+                Expr::Sin(e.clone()),
+                e.derivative(var),
+            ]),
         };
         d.simplify()
     }
@@ -313,7 +317,7 @@ fn simplify_product(fs: Vec<Expr>) -> Expr {
     if number < 0.0 && out.len() == 1 {
         if let Expr::Sum(terms) = &out[0] {
             if terms.len() == 2 {
-                let flipped: Vec<Expr> = terms.iter().map(|t| t.clone().neg()).collect();
+                let flipped: Vec<Expr> = terms.iter().map(|t| t.clone().negated()).collect();
                 let (c0, _) = flipped[0].split_coefficient();
                 if c0 > 0.0 {
                     out[0] = Expr::Sum(flipped);
@@ -355,34 +359,43 @@ fn fmt_num(n: f64) -> String {
 pub type Vec3 = [Expr; 3];
 
 pub fn vsub(a: &Vec3, b: &Vec3) -> Vec3 {
-    [0, 1, 2].map(|k| Expr::sub(a[k].clone(), b[k].clone()))
+    [0, 1, 2].map(|k| Expr::minus(a[k].clone(), b[k].clone()))
 }
 
 pub fn vadd(a: &Vec3, b: &Vec3) -> Vec3 {
-    [0, 1, 2].map(|k| Expr::add(a[k].clone(), b[k].clone()))
+    [0, 1, 2].map(|k| Expr::plus(a[k].clone(), b[k].clone()))
 }
 
 pub fn vscale(s: &Expr, a: &Vec3) -> Vec3 {
-    [0, 1, 2].map(|k| Expr::mul(s.clone(), a[k].clone()))
+    [0, 1, 2].map(|k| Expr::times(s.clone(), a[k].clone()))
 }
 
 pub fn dot(a: &Vec3, b: &Vec3) -> Expr {
-    Expr::Sum((0..3).map(|k| Expr::mul(a[k].clone(), b[k].clone())).collect()).simplify()
+    Expr::Sum(
+        (0..3)
+            .map(|k| Expr::times(a[k].clone(), b[k].clone()))
+            .collect(),
+    )
+    .simplify()
 }
 
 pub fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
     [(1, 2), (2, 0), (0, 1)].map(|(i, j)| {
-        Expr::sub(
-            Expr::mul(a[i].clone(), b[j].clone()),
-            Expr::mul(a[j].clone(), b[i].clone()),
+        Expr::minus(
+            Expr::times(a[i].clone(), b[j].clone()),
+            Expr::times(a[j].clone(), b[i].clone()),
         )
     })
 }
 
 /// `‖a − b‖²` written as a sum of squares, the form of Eq. 15 and Eq. 19.
 pub fn squared_distance(a: &Vec3, b: &Vec3) -> Expr {
-    Expr::Sum((0..3).map(|k| Expr::sub(a[k].clone(), b[k].clone()).square()).collect())
-        .simplify()
+    Expr::Sum(
+        (0..3)
+            .map(|k| Expr::minus(a[k].clone(), b[k].clone()).square())
+            .collect(),
+    )
+    .simplify()
 }
 
 #[cfg(test)]
@@ -400,8 +413,12 @@ mod tests {
     #[test]
     fn derivative_of_a_square_reads_like_table_a1() {
         let (u, i, c) = names();
-        let names = Names { unknowns: &u, inputs: &i, constants: &c };
-        let e = Expr::sub(Expr::Unknown(0), Expr::Unknown(1)).square();
+        let names = Names {
+            unknowns: &u,
+            inputs: &i,
+            constants: &c,
+        };
+        let e = Expr::minus(Expr::Unknown(0), Expr::Unknown(1)).square();
         assert_eq!(e.render(&names), "(a - b)^2");
         assert_eq!(e.derivative(Var::Unknown(0)).render(&names), "2*(a - b)");
         assert_eq!(e.derivative(Var::Unknown(1)).render(&names), "2*(b - a)");
@@ -435,13 +452,13 @@ mod tests {
     impl Expr {
         #[allow(non_snake_case)]
         fn Sub2() -> Expr {
-            Expr::sub(Expr::Unknown(1), Expr::Input(0)).square()
+            Expr::minus(Expr::Unknown(1), Expr::Input(0)).square()
         }
     }
 
     #[test]
     fn degree_counts_unknowns_only() {
-        let e = Expr::mul(Expr::Input(0), Expr::Unknown(0).square());
+        let e = Expr::times(Expr::Input(0), Expr::Unknown(0).square());
         assert_eq!(e.degree(), 2);
         assert_eq!(Expr::Cos(Box::new(Expr::Input(0))).degree(), 0);
     }

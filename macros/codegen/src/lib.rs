@@ -17,10 +17,34 @@ use proc_macro2::TokenStream;
 
 /// Expands a `mechanism! { ... }` body. Errors become `compile_error!` at the offending tokens.
 pub fn expand(input: TokenStream) -> TokenStream {
+    let name = fallback_name(&input);
     match try_expand(input) {
         Ok(tokens) => tokens,
-        Err(e) => e.to_compile_error(),
+        Err(e) => {
+            // A stub type keeps the user's other uses of the name from adding errors of their own.
+            let errors = e.to_compile_error();
+            match name {
+                Some(name) => quote::quote!(#errors #[allow(dead_code)] struct #name;),
+                None => errors,
+            }
+        }
     }
+}
+
+/// The declared type's name, if the header parses: `attrs vis struct NAME ;`.
+fn fallback_name(input: &TokenStream) -> Option<syn::Ident> {
+    let mut tokens = input.clone().into_iter().peekable();
+    while let Some(t) = tokens.next() {
+        if let proc_macro2::TokenTree::Ident(i) = &t {
+            if i == "struct" {
+                return match tokens.next() {
+                    Some(proc_macro2::TokenTree::Ident(name)) => Some(name),
+                    _ => None,
+                };
+            }
+        }
+    }
+    None
 }
 
 fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {

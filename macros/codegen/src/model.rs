@@ -25,11 +25,24 @@ pub enum Recipe {
     Slot(usize),
     /// Coefficient `index` of `point` in the frame: `[a, b, c, d]` with
     /// `q = a p1 + b p2 + c p3 + d (p2 − p1) × (p3 − p1)` (d = 0 in the coplanar form).
-    Rigid { frame: [[usize; 3]; 3], point: [usize; 3], index: usize, coplanar: bool },
-    Distance { a: [usize; 3], b: [usize; 3] },
+    Rigid {
+        frame: [[usize; 3]; 3],
+        point: [usize; 3],
+        index: usize,
+        coplanar: bool,
+    },
+    Distance {
+        a: [usize; 3],
+        b: [usize; 3],
+    },
     /// Component `index` of `[e, o, u, w]` for a rotation of `point` about the axis `a → b`:
     /// e the unit axis, o the foot of `point` on it, u the radial arm, w = e × u.
-    Axis { a: [usize; 3], b: [usize; 3], point: [usize; 3], index: usize },
+    Axis {
+        a: [usize; 3],
+        b: [usize; 3],
+        point: [usize; 3],
+        index: usize,
+    },
 }
 
 pub struct Constant {
@@ -40,11 +53,29 @@ pub struct Constant {
 /// How joint inputs are recovered from the unknowns (inverse kinematics, per chain).
 pub enum Inverse {
     /// `x = ‖P − anchor‖ − offset`
-    Distance { input: usize, point: usize, anchor: [usize; 3], offset: Option<usize> },
+    Distance {
+        input: usize,
+        point: usize,
+        anchor: [usize; 3],
+        offset: Option<usize>,
+    },
     /// `‖P − (o + u cos θ + w sin θ)‖ = length`, root nearest the reference.
-    RevoluteRod { input: usize, point: usize, o: [usize; 3], u: [usize; 3], w: [usize; 3], length: usize },
+    RevoluteRod {
+        input: usize,
+        point: usize,
+        o: [usize; 3],
+        u: [usize; 3],
+        w: [usize; 3],
+        length: usize,
+    },
     /// `‖P − (c0 + x e)‖ = length`, root nearest the reference.
-    PrismaticRod { input: usize, point: usize, c0: [usize; 3], e: [usize; 3], length: usize },
+    PrismaticRod {
+        input: usize,
+        point: usize,
+        c0: [usize; 3],
+        e: [usize; 3],
+        length: usize,
+    },
     /// No closed form: the input is left at the reference value and reported as such.
     None { inputs: Vec<usize> },
 }
@@ -78,7 +109,11 @@ impl Model {
 
     pub fn render(&self, e: &Expr) -> String {
         let (u, i, c) = self.names();
-        e.render(&Names { unknowns: &u, inputs: &i, constants: &c })
+        e.render(&Names {
+            unknowns: &u,
+            inputs: &i,
+            constants: &c,
+        })
     }
 
     /// Index of coordinate `axis` (0 = x) of platform point `p` in `v`.
@@ -204,16 +239,16 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
 fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
     let (n, e) = (model.unknowns.len(), model.equations.len());
     if n != e {
-        let inputs = model.inputs.len();
-        let mobility = inputs as i64 + n as i64 - e as i64;
-        return Err(syn::Error::new(
-            m.name.span(),
-            format!(
-                "the chains give {e} equations for {n} unknown platform coordinates: with {inputs} active joint variables the platform keeps {} degrees of freedom; the number of active inputs must equal the mobility ({})",
-                n as i64 - e as i64,
-                mobility
-            ),
-        ));
+        let inputs = model.inputs.len() as i64;
+        // Mobility by counting (Grübler–Kutzbach on the reduced system): each unknown platform
+        // coordinate is a freedom, each equation removes one, each active input is fixed.
+        let mobility = n as i64 - e as i64 + inputs;
+        let msg = if n > e {
+            format!("the chains give {e} equations for {n} unknown platform coordinates: the mechanism has mobility {mobility} but only {inputs} active joint variables; every degree of freedom needs an active pair (or another chain)")
+        } else {
+            format!("the chains give {e} equations for {n} unknown platform coordinates: the mechanism is overconstrained (mobility {mobility} with {inputs} active joint variables); make a pair passive or remove a chain")
+        };
+        return Err(syn::Error::new(m.name.span(), msg));
     }
     for (i, f) in model.equations.iter().enumerate() {
         if f.degree() > 2 {
@@ -227,14 +262,27 @@ fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
 }
 
 fn choose_frame(b: &Builder, platform: &LinkDecl) -> Result<[usize; 3], (Span, String)> {
-    let pts: Vec<[f64; 3]> = platform.pivots.iter().map(|p| b.default_point(&p.coords)).collect();
+    let pts: Vec<[f64; 3]> = platform
+        .pivots
+        .iter()
+        .map(|p| b.default_point(&p.coords))
+        .collect();
     let area = |i: usize, j: usize, l: usize| rigid::triangle_area(pts[i], pts[j], pts[l]);
-    let scale = pts.iter().flat_map(|p| p.iter()).fold(1e-300f64, |a, x| a.max(x.abs()));
+    let scale = pts
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(1e-300f64, |a, x| a.max(x.abs()));
     let tol = 1e-9 * scale * scale;
     if let Some(frame) = &platform.frame {
         let idx: Vec<usize> = frame
             .iter()
-            .map(|f| platform.pivots.iter().position(|p| p.name == *f).expect("validated"))
+            .map(|f| {
+                platform
+                    .pivots
+                    .iter()
+                    .position(|p| p.name == *f)
+                    .expect("validated")
+            })
             .collect();
         if area(idx[0], idx[1], idx[2]) <= tol {
             return Err((frame[0].span(), format!("the `frame` pivots `{}`, `{}`, `{}` are collinear: the platform needs three non-collinear pivots", frame[0], frame[1], frame[2])));
@@ -317,7 +365,10 @@ impl<'m> Builder<'m> {
     }
 
     fn new_slot(&mut self, name: String, default: f64) -> usize {
-        self.slots.push(Slot { name: name.clone(), default });
+        self.slots.push(Slot {
+            name: name.clone(),
+            default,
+        });
         self.slot_of.insert(name, self.slots.len() - 1);
         self.slots.len() - 1
     }
@@ -361,7 +412,12 @@ impl<'m> Builder<'m> {
     pub fn pivot_constants(&mut self, link: &str, pivot: &str) -> Vec3 {
         let slots = self.pivot_slots(link, pivot);
         [0, 1, 2].map(|k| {
-            let name = if self.mech.params.iter().any(|p| self.slot(&p.name.to_string()) == slots[k]) {
+            let name = if self
+                .mech
+                .params
+                .iter()
+                .any(|p| self.slot(&p.name.to_string()) == slots[k])
+            {
                 self.slots[slots[k]].name.clone()
             } else {
                 format!("{}_{}", ["x", "y", "z"][k], pivot)

@@ -28,7 +28,9 @@ pub fn is_coplanar(b: &Builder, frame: [usize; 3], k: usize) -> bool {
 pub fn platform_equations(b: &mut Builder, frame: [usize; 3], k: usize, coplanar: bool) {
     let local = |b: &Builder, i: usize| b.points[i].local;
     let frame_slots = [local(b, frame[0]), local(b, frame[1]), local(b, frame[2])];
-    let pts: Vec<Vec3> = (0..k).map(|i| [0, 1, 2].map(|a| Expr::Unknown(a * k + i))).collect();
+    let pts: Vec<Vec3> = (0..k)
+        .map(|i| [0, 1, 2].map(|a| Expr::Unknown(a * k + i)))
+        .collect();
     let cross = expr::cross(
         &expr::vsub(&pts[frame[1]], &pts[frame[0]]),
         &expr::vsub(&pts[frame[2]], &pts[frame[0]]),
@@ -39,24 +41,42 @@ pub fn platform_equations(b: &mut Builder, frame: [usize; 3], k: usize, coplanar
             .map(|index| {
                 let name = format!("E{next}");
                 next += 1;
-                b.constant(name, Recipe::Rigid { frame: frame_slots, point: local(b, q), index, coplanar })
+                b.constant(
+                    name,
+                    Recipe::Rigid {
+                        frame: frame_slots,
+                        point: local(b, q),
+                        index,
+                        coplanar,
+                    },
+                )
             })
             .collect();
         for axis in 0..3 {
-            let mut terms: Vec<Expr> =
-                (0..3).map(|j| Expr::mul(coefficients[j].clone(), pts[frame[j]][axis].clone())).collect();
+            let mut terms: Vec<Expr> = (0..3)
+                .map(|j| Expr::times(coefficients[j].clone(), pts[frame[j]][axis].clone()))
+                .collect();
             if !coplanar {
-                terms.push(Expr::mul(coefficients[3].clone(), cross[axis].clone()));
+                terms.push(Expr::times(coefficients[3].clone(), cross[axis].clone()));
             }
-            terms.push(pts[q][axis].clone().neg());
+            terms.push(pts[q][axis].clone().negated());
             b.equations.push(Expr::Sum(terms).simplify());
         }
     }
     for (i, j) in [(0, 1), (1, 2), (2, 0)] {
         let name = format!("E{next}");
         next += 1;
-        let d = b.constant(name, Recipe::Distance { a: frame_slots[i], b: frame_slots[j] });
-        let eq = Expr::sub(expr::squared_distance(&pts[frame[i]], &pts[frame[j]]), d.square());
+        let d = b.constant(
+            name,
+            Recipe::Distance {
+                a: frame_slots[i],
+                b: frame_slots[j],
+            },
+        );
+        let eq = Expr::minus(
+            expr::squared_distance(&pts[frame[i]], &pts[frame[j]]),
+            d.square(),
+        );
         b.equations.push(eq);
     }
 }
