@@ -2,7 +2,7 @@
 //!
 //! `cargo run --release --example rps`
 
-use linkage::{arc_length, pose_from_unknowns, Mechanism, Options};
+use linkage::{arc_length, pose_from_unknowns, Options};
 use linkage_examples::rps::{home_start, Rps3};
 
 fn main() {
