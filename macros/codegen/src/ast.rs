@@ -289,22 +289,19 @@ fn parse_link_body(
             let name: Ident = body.parse()?;
             body.parse::<Token![=]>()?;
             let list;
-            bracketed!(list in body);
-            let c0 = parse_coord(&list)?;
-            list.parse::<Token![,]>()?;
-            let c1 = parse_coord(&list)?;
-            list.parse::<Token![,]>()?;
-            let c2 = parse_coord(&list)?;
-            if list.peek(Token![,]) {
-                list.parse::<Token![,]>()?;
-            }
-            if !list.is_empty() {
-                return Err(list.error("a pivot has exactly three coordinates `[x, y, z]`"));
-            }
-            link.pivots.push(Pivot {
-                name,
-                coords: [c0, c1, c2],
-            });
+            let bracket = bracketed!(list in body);
+            let coords: Vec<Coord> = list
+                .parse_terminated(parse_coord, Token![,])?
+                .into_iter()
+                .collect();
+            let count = coords.len();
+            let coords: [Coord; 3] = coords.try_into().map_err(|_| {
+                syn::Error::new(
+                    bracket.span.join(),
+                    format!("pivot `{name}` has {count} coordinates; a pivot has exactly three, `[x, y, z]`"),
+                )
+            })?;
+            link.pivots.push(Pivot { name, coords });
         }
         if !body.is_empty() {
             body.parse::<Token![,]>()?;
@@ -359,6 +356,10 @@ fn parse_item(input: ParseStream) -> Result<ChainItem> {
         } else if args.peek(kw::passive) {
             let kw: kw::passive = args.parse()?;
             pair.passive = Some(Ident::new("passive", kw.span));
+            // `passive q1` is a mistake the checker explains; keep the name for that.
+            if args.peek(Ident) && !args.peek2(Token![=]) {
+                pair.pivots.push(args.parse()?);
+            }
         } else if args.peek(kw::axis) && args.peek2(Token![=]) {
             args.parse::<kw::axis>()?;
             args.parse::<Token![=]>()?;

@@ -85,7 +85,49 @@ fn on_link(m: &Mechanism, link: &str, pivot: &Ident) -> bool {
         .any(|l| l.name == link && l.pivots.iter().any(|p| p.name == *pivot))
 }
 
+/// The axis `A -> B` of a pair must not be given by points that coincide at the declared geometry.
+fn check_axis(m: &Mechanism, p: &PairDecl) -> Result<(), (Span, String)> {
+    let Some((a, b)) = &p.axis else { return Ok(()) };
+    let base = m.base.as_ref().expect("validated");
+    let point = |n: &Ident| {
+        base.pivots
+            .iter()
+            .find(|q| q.name == *n)
+            .map(|q| q.coords.clone())
+    };
+    let value = |c: &Coord| match c {
+        Coord::Literal(n) => Some(n.value),
+        Coord::Param(name) => m
+            .params
+            .iter()
+            .find(|q| q.name == *name)
+            .map(|q| q.default.value),
+    };
+    if let (Some(pa), Some(pb)) = (point(a), point(b)) {
+        let d: Option<Vec<f64>> = (0..3)
+            .map(|k| Some(value(&pa[k])? - value(&pb[k])?))
+            .collect();
+        let scale = (0..3)
+            .filter_map(|k| value(&pa[k]))
+            .fold(1.0f64, |s, x| s.max(x.abs()));
+        if d.is_some_and(|d| d.iter().map(|x| x * x).sum::<f64>().sqrt() <= 1e-9 * scale) {
+            return Err((
+                b.span(),
+                format!(
+                    "the axis of pair `{}` is given by coincident points `{a}` and `{b}`",
+                    p.kind.letter()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Span, String)> {
+    let n0 = normalize(m, c);
+    for p in &n0.pairs {
+        check_axis(m, p)?;
+    }
     let n = normalize(m, c);
     let letters: Vec<&str> = n.pairs.iter().map(|p| p.kind.letter()).collect();
     let unsupported = || {

@@ -64,11 +64,7 @@ impl Mechanism {
         unique(variables.flatten(), "joint variable", &mut errors);
 
         for link in self.all_links() {
-            unique(
-                link.pivots.iter().map(|p| &p.name),
-                &format!("pivot on link `{}`", link.name),
-                &mut errors,
-            );
+            unique(link.pivots.iter().map(|p| &p.name), "pivot", &mut errors);
             for pivot in &link.pivots {
                 for c in &pivot.coords {
                     self.check_coord(c, &mut errors);
@@ -97,6 +93,22 @@ impl Mechanism {
         for chain in &self.chains {
             self.check_chain(chain, &mut errors);
         }
+        for link in &self.links {
+            let used = self.chains.iter().any(|c| {
+                c.items
+                    .iter()
+                    .any(|i| matches!(i, ChainItem::Link(l) if *l == link.name))
+            });
+            if !used {
+                errors.push(
+                    link.name.span(),
+                    format!(
+                        "link `{}` is not connected to the base: no chain passes through it",
+                        link.name
+                    ),
+                );
+            }
+        }
         errors.finish()
     }
 
@@ -115,6 +127,7 @@ impl Mechanism {
         let items = &chain.items;
         match items.first() {
             Some(ChainItem::Link(l)) if l == "base" => {}
+            Some(ChainItem::Link(l)) if self.link(l).is_none() => {}
             Some(ChainItem::Link(l)) => errors.push(
                 l.span(),
                 format!("chain `{}` must start at `base`, not `{l}`", chain.name),
@@ -126,13 +139,16 @@ impl Mechanism {
         }
         match items.last() {
             Some(ChainItem::Link(l)) if l == "platform" => {}
+            Some(ChainItem::Link(l)) if self.link(l).is_none() => {}
             Some(ChainItem::Link(l)) => errors.push(l.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, not `{l}`", chain.name)),
             _ => errors.push(chain.name.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`", chain.name)),
         }
         for (k, item) in items.iter().enumerate() {
             match item {
                 ChainItem::Link(l) => {
-                    if self.link(l).is_none() {
+                    let missing_role = (l == "platform" && self.platform.is_none())
+                        || (l == "base" && self.base.is_none());
+                    if self.link(l).is_none() && !missing_role {
                         errors.push(
                             l.span(),
                             format!("unknown link `{l}` in chain `{}`", chain.name),
@@ -150,6 +166,8 @@ impl Mechanism {
                     }
                 }
                 ChainItem::Pair(p) => {
+                    // A chain end with no link after it is reported already.
+                    let at_end = k + 1 == items.len();
                     let before = neighbour(items, k, false);
                     let after = neighbour(items, k, true);
                     if let (Some(a), Some(b)) = (&before, &after) {
@@ -160,7 +178,7 @@ impl Mechanism {
                             );
                         }
                     }
-                    self.check_pair(chain, p, before, after, errors);
+                    self.check_pair(chain, p, before, after, at_end, errors);
                 }
             }
         }
@@ -172,17 +190,40 @@ impl Mechanism {
         p: &PairDecl,
         before: Option<&Ident>,
         after: Option<&Ident>,
+        at_end: bool,
         errors: &mut Errors,
     ) {
         let letter = p.kind.letter();
         match (&p.active, &p.passive) {
             (Some(_), Some(pas)) => errors.push(pas.span(), format!("pair `{letter}` is both `active` and `passive`")),
             (None, None) if matches!(p.kind, crate::ast::PairKind::S | crate::ast::PairKind::U) => {}
+            // A bare name instead of `active NAME` gets its own message below.
+            (None, None) if !p.pivots.is_empty() => {}
             (None, None) => errors.push(
                 p.token.span(),
                 format!("pair `{letter}` in chain `{}` is neither `active NAME` nor `passive`: an active pair names its joint variable, e.g. `{letter}(active q1)`", chain.name),
             ),
             _ => {}
+        }
+        let takes_pivots = matches!(p.kind, crate::ast::PairKind::S | crate::ast::PairKind::U);
+        if !takes_pivots {
+            for extra in &p.pivots {
+                let msg = if p.passive.is_some() {
+                    format!("a passive pair has no joint variable: remove `{extra}` or write `{letter}(active {extra})`")
+                } else if p.active.is_none() {
+                    format!("`{extra}` is not an argument of pair `{letter}`: an active pair names its joint variable, `{letter}(active {extra})`")
+                } else {
+                    format!("pair `{letter}` takes no pivot: `{extra}` is out of place (its axis is `axis = A -> B`)")
+                };
+                errors.push(extra.span(), msg);
+            }
+            return;
+        }
+        // An unknown neighbour link, or a chain that stops at a pair, is reported already;
+        // resolving pivots against it would only add noise.
+        let unknown = |l: Option<&Ident>| l.is_some_and(|l| self.link(l).is_none());
+        if at_end || unknown(before) || unknown(after) {
+            return;
         }
         let adjacent: Vec<&LinkDecl> = [before, after]
             .into_iter()

@@ -12,6 +12,7 @@ pub mod emit;
 pub mod expr;
 pub mod model;
 pub mod rigid;
+pub mod simplify;
 
 use proc_macro2::TokenStream;
 

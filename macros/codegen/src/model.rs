@@ -219,6 +219,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         None => planar,
     };
     rigid::platform_equations(&mut b, frame, k, coplanar);
+    crate::simplify::remove_duplicates(&mut b.equations);
 
     let model = Model {
         name: m.name.clone(),
