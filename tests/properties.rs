@@ -95,14 +95,11 @@ proptest! {
     fn random_inputs_never_panic(x in prop::array::uniform6(prop_oneof![Just(f64::NAN), Just(f64::INFINITY), Just(-0.0), -1e300f64..1e300, 0.0f64..400.0])) {
         let s = Stewart::new();
         let start = linkage_examples::stewart::home_start(&s).unwrap();
-        for sol in [arc_length(&s, &start, &x, &Options::PAPER), newton_homotopy(&s, &start, &x, &Options::PAPER), newton_raphson(&s, &start, &x, &Options::PAPER)] {
-            if let Ok(sol) = sol {
-                if sol.is_ok() {
-                    let mut f = [0.0; 18];
-                    s.residual(&sol.v, &x, &mut f);
-                    prop_assert!(f.iter().all(|r| r.is_finite()));
-                }
-            }
+        let solves = [arc_length(&s, &start, &x, &Options::PAPER), newton_homotopy(&s, &start, &x, &Options::PAPER), newton_raphson(&s, &start, &x, &Options::PAPER)];
+        for sol in solves.into_iter().flatten().filter(|sol| sol.is_ok()) {
+            let mut f = [0.0; 18];
+            s.residual(&sol.v, &x, &mut f);
+            prop_assert!(f.iter().all(|r| r.is_finite()));
         }
         let mut tracker = Tracker::new(s.clone(), start, Options::TIGHT);
         let _ = tracker.update(&x);
