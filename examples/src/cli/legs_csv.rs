@@ -6,24 +6,26 @@ use std::io::Write;
 pub type Row = Result<[f64; 6], &'static str>;
 
 pub fn read(path: &std::path::Path) -> Result<Vec<Row>, String> {
+    let file =
+        std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    read_from(file).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Reads rows from any reader; a missing `L1`…`L6` column or an unreadable header is an error,
+/// a bad row is a row status.
+pub fn read_from<R: std::io::Read>(source: R) -> Result<Vec<Row>, String> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
-        .from_path(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let headers = reader
-        .headers()
-        .map_err(|e| format!("{}: {e}", path.display()))?
-        .clone();
+        .from_reader(source);
+    let headers = reader.headers().map_err(|e| e.to_string())?.clone();
     let mut columns = [0usize; 6];
     for (i, c) in columns.iter_mut().enumerate() {
         let name = format!("L{}", i + 1);
-        *c = headers.iter().position(|h| h == name).ok_or_else(|| {
-            format!(
-                "{}: the header has no column `{name}` (it needs L1…L6)",
-                path.display()
-            )
-        })?;
+        *c = headers
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| format!("the header has no column `{name}` (it needs L1…L6)"))?;
     }
     let mut rows = Vec::new();
     for record in reader.records() {
