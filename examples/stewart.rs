@@ -3,12 +3,23 @@
 //! ```text
 //! cargo run --release --example stewart -- equations [--json]
 //! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] --input legs.csv [--output out.csv]
+//! cargo run --release --example stewart -- table-v [--seed S] [--json]
+//! cargo run --release --example stewart -- map --out DIR
+//! cargo run --release --example stewart -- errors --out DIR
 //! ```
 
 #[path = "stewart_cli/equations.rs"]
 mod equations;
+#[path = "stewart_cli/errors.rs"]
+mod errors;
+#[path = "stewart_cli/map.rs"]
+mod map;
+#[path = "stewart_cli/plot.rs"]
+mod plot;
 #[path = "stewart_cli/solve.rs"]
 mod solve;
+#[path = "stewart_cli/table_v.rs"]
+mod table_v;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -34,6 +45,33 @@ enum Command {
     },
     /// Solve forward kinematics for every row of a CSV of leg lengths (columns L1…L6).
     Solve(SolveArgs),
+    /// Reproduce Table V: 100 normal and 100 near-singular points solved by PH, NH and NR.
+    TableV {
+        /// Seed of the test-point generator.
+        #[arg(long, default_value_t = 2015)]
+        seed: u64,
+        /// One JSON object: {"methods": {"PH": {...}, "NH": {...}, "NR": {...}}, ...}.
+        #[arg(long)]
+        json: bool,
+        /// Half-width of the sampled box in yaw, pitch and roll (rad).
+        #[arg(long, default_value_t = 0.35)]
+        rotation: f64,
+        /// Half-width of the sampled box in x and y (mm); z uses 0.8 of it.
+        #[arg(long, default_value_t = 50.0)]
+        translation: f64,
+    },
+    /// Draw Fig. 6 (det B over L2 × L4 for L6 = 190…250 mm) and a Fig. 5-style view, as PNG.
+    Map {
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+    },
+    /// Draw Fig. 7 (relative error per test point and method) as PNG.
+    Errors {
+        #[arg(long, default_value = "figures")]
+        out: PathBuf,
+        #[arg(long, default_value_t = 2015)]
+        seed: u64,
+    },
 }
 
 #[derive(clap::Args)]
@@ -71,6 +109,14 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Equations { json } => equations::run(json),
         Command::Solve(args) => solve::run(&args),
+        Command::TableV {
+            seed,
+            json,
+            rotation,
+            translation,
+        } => table_v::run(seed, rotation, translation, json),
+        Command::Map { out } => map::run(&out),
+        Command::Errors { out, seed } => errors::run(&out, seed),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -108,42 +108,7 @@ pub fn residual_norm<S: Mechanism<N, M>, const N: usize, const M: usize>(
     f.iter().fold(0.0, |m, r| m.max(r.abs()))
 }
 
-/// Ground truth for "the start's branch along the straight joint-space segment": natural-
-/// parameter continuation in `steps` tiny steps, with the number of det B sign changes met.
-/// Valid as truth when `flips == 0` and the steps are small against the path's curvature.
-pub fn straight_path_truth<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    start: &linkage::Start<N, M>,
-    target: &[f64; M],
-    steps: usize,
-) -> ([f64; N], usize) {
-    let mut v = start.v;
-    let mut prev = start.det;
-    let mut flips = 0;
-    for k in 1..=steps {
-        let l = k as f64 / steps as f64;
-        let x: [f64; M] = std::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
-        for _ in 0..if k == steps { 30 } else { 5 } {
-            let mut f = [0.0; N];
-            sys.residual(&v, &x, &mut f);
-            let mut b = [[0.0; N]; N];
-            sys.jacobian_dense(&v, &x, &mut b);
-            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else {
-                return (v, flips + 1);
-            };
-            linkage::lu::solve(&b, &piv, &mut f);
-            for i in 0..N {
-                v[i] -= f[i];
-            }
-        }
-        let d = linkage::det_b(sys, &v, &x);
-        if d * prev <= 0.0 {
-            flips += 1;
-        }
-        prev = d;
-    }
-    (v, flips)
-}
+pub use linkage_examples::case_study::straight_segment as straight_path_truth;
 
 /// A Stewart pose reached from home by a straight path in pose space along which det B keeps
 /// the start's sign (checked at `checks` points): the ground truth v and its leg lengths.

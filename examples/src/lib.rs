@@ -1,5 +1,6 @@
 //! Mechanisms declared with `linkage::mechanism!`, shared by the examples and the tests.
 
+pub mod case_study;
 pub mod cli;
 pub mod rps;
 pub mod rss_hexapod;

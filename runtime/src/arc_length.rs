@@ -352,6 +352,7 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     min_ratio: f64,
 ) -> Solution<N> {
     let mut status = crate::newton::not_converged(sys, &v, x);
+    let mut convergence = crate::start::Convergence::new(options.tolerance, &v);
     for _ in 0..options.max_iterations {
         let Some((d, _)) = correction(sys, &v, x) else {
             status = Status::Singular { lambda: 1.0 };
@@ -361,7 +362,7 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
         for i in 0..N {
             v[i] -= d[i];
         }
-        if norm(&d) <= options.tolerance {
+        if convergence.reached(norm(&d)) {
             status = Status::Converged;
             break;
         }

@@ -43,6 +43,7 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     crate::start::check_target(sys, x, options)?;
     let mut v = start.v;
     let mut iterations = 0;
+    let mut convergence = crate::start::Convergence::new(options.tolerance, &v);
     let status = loop {
         if iterations >= options.max_iterations {
             break not_converged(sys, &v, x);
@@ -60,7 +61,7 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 residual_norm: f64::INFINITY,
             };
         }
-        if norm(&d) <= options.tolerance {
+        if convergence.reached(norm(&d)) {
             break Status::Converged;
         }
     };

@@ -43,6 +43,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let mut converged = false;
         let mut singular = false;
         let mut det = start.det;
+        let mut convergence = crate::start::Convergence::new(options.tolerance, &w);
         for _ in 0..options.max_iterations {
             iterations += 1;
             let Some((d, dt)) = correction(sys, &w, &x) else {
@@ -56,7 +57,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
             if !all_finite(&w) {
                 break;
             }
-            if norm(&d) <= options.tolerance {
+            if convergence.reached(norm(&d)) {
                 converged = true;
                 break;
             }

@@ -126,7 +126,9 @@ impl std::error::Error for SolveError {}
 /// Solver settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
-    /// Converged when the Newton correction ‖Δv‖ falls below this (same units as v).
+    /// Converged when the Newton correction ‖Δv‖ falls below this (same units as v) — or,
+    /// near a singularity where rounding forbids it, when the correction stops decreasing below
+    /// 1e-6 of ‖v‖; `Solution::error_estimate` then says what was reached.
     pub tolerance: f64,
     /// Newton iterations allowed for the final correction (and for NR altogether).
     pub max_iterations: u32,

@@ -31,6 +31,33 @@ pub(crate) fn check_target<S: Mechanism<N, M>, const N: usize, const M: usize>(
         .map_err(|input| SolveError::InvalidInput { input })
 }
 
+/// When a Newton iteration has converged: the correction is below the tolerance, or it has
+/// stopped decreasing while already below 1e-6 of the scale — the floor that rounding sets
+/// near a singularity, where a tighter tolerance cannot be met. Linear convergence (ratio
+/// ½, as at a double root) keeps iterating.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Convergence {
+    tolerance: f64,
+    floor: f64,
+    previous: f64,
+}
+
+impl Convergence {
+    pub(crate) fn new(tolerance: f64, v: &[f64]) -> Self {
+        Convergence {
+            tolerance,
+            floor: 1e-6 * crate::math::norm(v).max(1.0),
+            previous: f64::INFINITY,
+        }
+    }
+
+    pub(crate) fn reached(&mut self, size: f64) -> bool {
+        let stalled = size <= self.floor && size >= 0.9 * self.previous;
+        self.previous = size;
+        size <= self.tolerance || stalled
+    }
+}
+
 /// A Newton correction `Δ = B⁻¹ F` at `(v, x)`, with det B; `None` if B is singular.
 pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,

@@ -1,0 +1,46 @@
+//! Section 5 of the paper, reproduced: test points (`sampling`), Table V (`table_v`) and the
+//! joint-space maps of Figs. 5–6 (`joint_map`).
+
+pub mod joint_map;
+pub mod sampling;
+pub mod table_v;
+
+use linkage::{Mechanism, Start};
+
+/// Ground truth for "the start's branch along the straight joint-space segment": natural-
+/// parameter continuation in `steps` small steps (Newton at each), with the number of sign
+/// changes of det B met on the way. Trustworthy when no sign change is met and the steps are
+/// small against the path's curvature.
+pub fn straight_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    target: &[f64; M],
+    steps: usize,
+) -> ([f64; N], usize) {
+    let mut v = start.v;
+    let mut prev = start.det;
+    let mut flips = 0;
+    for k in 1..=steps {
+        let l = k as f64 / steps as f64;
+        let x: [f64; M] = std::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
+        for _ in 0..if k == steps { 30 } else { 6 } {
+            let mut f = [0.0; N];
+            sys.residual(&v, &x, &mut f);
+            let mut b = [[0.0; N]; N];
+            sys.jacobian_dense(&v, &x, &mut b);
+            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else {
+                return (v, flips + 1);
+            };
+            linkage::lu::solve(&b, &piv, &mut f);
+            for i in 0..N {
+                v[i] -= f[i];
+            }
+        }
+        let d = linkage::det_b(sys, &v, &x);
+        if d * prev <= 0.0 {
+            flips += 1;
+        }
+        prev = d;
+    }
+    (v, flips)
+}
