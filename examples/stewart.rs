@@ -8,6 +8,8 @@
 //! cargo run --release --example stewart -- errors --out DIR
 //! ```
 
+#[path = "stewart_cli/bench.rs"]
+mod bench;
 #[path = "stewart_cli/equations.rs"]
 mod equations;
 #[path = "stewart_cli/errors.rs"]
@@ -20,6 +22,8 @@ mod plot;
 mod solve;
 #[path = "stewart_cli/table_v.rs"]
 mod table_v;
+#[path = "stewart_cli/trajectory.rs"]
+mod trajectory;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -59,11 +63,39 @@ enum Command {
         /// Half-width of the sampled box in x and y (mm); z uses 0.8 of it.
         #[arg(long, default_value_t = 50.0)]
         translation: f64,
+        /// Also write the test points (legs, true pose and pivots) to this CSV.
+        #[arg(long)]
+        export: Option<PathBuf>,
+    },
+    /// Write a smooth manoeuvre around home, sampled at --rate Hz, as a leg-length CSV.
+    Trajectory {
+        #[arg(long)]
+        out: PathBuf,
+        #[arg(long, default_value_t = 2.0)]
+        seconds: f64,
+        #[arg(long, default_value_t = 1000.0)]
+        rate: f64,
     },
     /// Draw Fig. 6 (det B over L2 × L4 for L6 = 190…250 mm) and a Fig. 5-style view, as PNG.
     Map {
         #[arg(long, default_value = "figures")]
         out: PathBuf,
+    },
+    /// Time per solve over every row of a leg-length CSV (from the start, or tracking).
+    Bench {
+        #[arg(long, value_enum, default_value_t = Method::Nr)]
+        method: Method,
+        /// Solve each row from the previous row's solution (PH: the trajectory tracker).
+        #[arg(long)]
+        track: bool,
+        #[arg(long)]
+        input: PathBuf,
+        /// {"method", "points", "mean_us", "median_us", "p99_us", ...}
+        #[arg(long)]
+        json: bool,
+        /// Use the dense-LU baseline instead of the generated elimination.
+        #[arg(long)]
+        dense: bool,
     },
     /// Draw Fig. 7 (relative error per test point and method) as PNG.
     Errors {
@@ -114,8 +146,17 @@ fn main() -> ExitCode {
             json,
             rotation,
             translation,
-        } => table_v::run(seed, rotation, translation, json),
+            export,
+        } => table_v::run(seed, rotation, translation, json, export.as_deref()),
+        Command::Trajectory { out, seconds, rate } => trajectory::run(&out, seconds, rate),
         Command::Map { out } => map::run(&out),
+        Command::Bench {
+            method,
+            track,
+            input,
+            json,
+            dense,
+        } => bench::run(method, track, &input, json, dense),
         Command::Errors { out, seed } => errors::run(&out, seed),
     };
     match result {

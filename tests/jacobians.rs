@@ -1,8 +1,9 @@
-//! Every generated Jacobian (∂F/∂v sparse and dense, ∂F/∂x) against finite differences.
+//! Every generated Jacobian (∂F/∂v sparse and dense, ∂F/∂x) against finite differences, and
+//! every generated factorisation of ∂F/∂v against dense LU.
 
 use linkage::Mechanism;
 use linkage_examples::{rps, rss_hexapod, stewart};
-use linkage_tests::{check_jacobians, Rng};
+use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 fn perturbed<const K: usize>(rng: &mut Rng, a: &[f64; K], by: f64) -> [f64; K] {
     std::array::from_fn(|i| a[i] + rng.uniform(-by, by))

@@ -163,3 +163,36 @@ pub fn stewart_pose_samples(
     }
     out
 }
+
+/// The generated factorisation of B against dense LU: same determinant, same solution.
+pub fn check_factorization<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) {
+    let mut fac = sys.new_factor();
+    let info = sys.factor(v, x, &mut fac).expect("nonsingular");
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    let dense = b;
+    let piv = linkage::lu::factor::<N, _>(&mut b).expect("nonsingular");
+    assert!(
+        (info.det - piv.det).abs() <= 1e-9 * piv.det.abs(),
+        "{}: det {} vs {}",
+        S::NAME,
+        info.det,
+        piv.det
+    );
+    let rhs: [f64; N] = std::array::from_fn(|i| (i as f64 * 0.7).sin() * 100.0);
+    let mut y = rhs;
+    sys.solve(&fac, &mut y);
+    for r in 0..N {
+        let back: f64 = (0..N).map(|c| dense[r][c] * y[c]).sum();
+        assert!(
+            (back - rhs[r]).abs() <= 1e-9 * (1.0 + rhs[r].abs()),
+            "{}: row {r}: {back} vs {}",
+            S::NAME,
+            rhs[r]
+        );
+    }
+}

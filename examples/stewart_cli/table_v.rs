@@ -3,7 +3,13 @@
 use linkage_examples::case_study::sampling::Protocol;
 use linkage_examples::case_study::table_v::{self, summarize, Report};
 
-pub fn run(seed: u64, rotation: f64, translation: f64, json: bool) -> Result<(), String> {
+pub fn run(
+    seed: u64,
+    rotation: f64,
+    translation: f64,
+    json: bool,
+    export: Option<&std::path::Path>,
+) -> Result<(), String> {
     if !(rotation > 0.0 && rotation.is_finite() && translation > 0.0 && translation.is_finite()) {
         return Err("--rotation and --translation must be positive".into());
     }
@@ -15,6 +21,9 @@ pub fn run(seed: u64, rotation: f64, translation: f64, json: bool) -> Result<(),
         ..Protocol::default()
     };
     let report = table_v::run(protocol, |stage| eprintln!("table-v: {stage}…"));
+    if let Some(path) = export {
+        write_points(&report, path)?;
+    }
     if json {
         println!("{}", table_v::to_json(&report));
     } else {
@@ -79,4 +88,41 @@ fn print_table(r: &Report) {
     println!("(*) the straight joint-space segment reaches it with no sign change of det B (checked by fine continuation),");
     println!("    while the pose path reaches the true pose: two solutions on the start's branch (see README, Errata)");
     println!("paper (Table V): PH 100 % / 0.026 % / 3.203 s; NH 61 % / 0.024 % / 2.286 s; NR 10 % / 0.036 % / 0.208 s");
+}
+
+/// The test points: kind, legs, true pose (Appendix B) and pivots (Eq. 19's order).
+fn write_points(r: &Report, path: &std::path::Path) -> Result<(), String> {
+    use std::io::Write;
+    let io = |e: std::io::Error| format!("{}: {e}", path.display());
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
+    let v_names: Vec<String> = (1..=18).map(|i| format!("v{i}")).collect();
+    writeln!(
+        w,
+        "kind,L1,L2,L3,L4,L5,L6,yaw,pitch,roll,x,y,z,{}",
+        v_names.join(",")
+    )
+    .map_err(io)?;
+    for p in r.normal.iter().chain(&r.near) {
+        let e = p.pose.euler();
+        let t = p.pose.translation;
+        let nums: Vec<String> =
+            p.x.iter()
+                .chain(&e)
+                .chain(&t)
+                .chain(&p.v)
+                .map(|x| format!("{x:.15e}"))
+                .collect();
+        writeln!(
+            w,
+            "{},{}",
+            if p.near_singular {
+                "near_singular"
+            } else {
+                "normal"
+            },
+            nums.join(",")
+        )
+        .map_err(io)?;
+    }
+    w.flush().map_err(io)
 }

@@ -4,28 +4,33 @@
 //! μ = λ‖x* − x0‖, so that λ moves as much as the millimetre-sized v. Each step:
 //! - predicts along the unit tangent (Eq. 12), the tangent's orientation kept by the bordered
 //!   system whose last row is the previous tangent (Eq. 9);
-//! - corrects with Newton on `[H(y); t·(y − y_pred)] = 0` (Keller's constraint, Eq. 8 as
-//!   corrected in ERRATA.md), re-evaluating the bordered matrix (Eq. 10) each iteration;
-//! - **accepts the step only if Newton contracts fast**: the first correction must be small
-//!   against the step and each next one at most a quarter of the previous. A corrector that
-//!   would slide onto a neighbouring branch fails this test and the step is halved;
+//! - corrects on `[H(y); t·(y − y_pred)] = 0` (Keller's constraint, Eq. 8 as corrected in
+//!   ERRATA.md) with the bordered matrix of Eq. 10 taken at the last accepted point — the
+//!   chord iteration of Eq. 11 — solved by bordering on the generated factorisation of B;
+//! - **accepts the step only if the corrector contracts fast**: the first correction must be
+//!   small against the step and each next one at most a quarter of the previous. A corrector
+//!   that would slide onto a neighbouring branch fails this test and the step is halved;
 //! - rejects a step that turns the tangent by more than ~37°;
 //! - watches the sign of det B: it flips exactly where λ turns back (a fold). A fold means the
 //!   straight joint-space path leaves the valid joint space, and the curve beyond it belongs to
 //!   another assembly mode, so the solve stops there with [`Status::Fold`].
 //!
-//! The last step lands on λ = 1 exactly, and a Newton iteration polishes the result to the
-//! requested tolerance.
+//! Near a fold B is nearly singular and bordering on it loses accuracy; there the step falls
+//! back to a dense LU of the whole bordered matrix, which stays regular through the fold. The
+//! last step lands on λ = 1 exactly, and Newton's method polishes the result to the requested
+//! tolerance.
 
 use crate::lu::{factor, solve, Bordered, Extended};
 use crate::math::norm;
 use crate::newton::finish;
-use crate::start::correction;
-use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
+use crate::start::Convergence;
+use crate::{Linear, Mechanism, Options, Solution, SolveError, Start, Status};
 
-const MAX_CORRECTOR: usize = 6;
+const MAX_CORRECTOR: usize = 5;
 const CONTRACTION: f64 = 0.25;
 const MIN_TANGENT_COS: f64 = 0.8;
+/// Below this pivot ratio the generated factorisation is not trusted for bordering.
+const MIN_PIVOT_RATIO: f64 = 1e-10;
 
 struct Path<'a, S, const N: usize, const M: usize> {
     sys: &'a S,
@@ -33,6 +38,7 @@ struct Path<'a, S, const N: usize, const M: usize> {
     dx: [f64; M],
     length: f64,
     tol: f64,
+    linear: Linear,
 }
 
 #[derive(Clone, Copy)]
@@ -47,6 +53,18 @@ struct Tangent<const N: usize> {
     mu: f64,
 }
 
+/// B and H_μ at an accepted point, factored: what the next corrector and tangent reuse.
+struct Frame<F, const N: usize> {
+    factor: F,
+    det: f64,
+    /// B⁻¹ H_μ, with H_μ = (∂F/∂x)(x* − x0)/‖x* − x0‖.
+    y2: [f64; N],
+}
+
+fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    a.iter().zip(b).map(|(p, q)| p * q).sum()
+}
+
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
     fn x(&self, mu: f64) -> [f64; M] {
         let l = mu / self.length;
@@ -57,105 +75,173 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         x
     }
 
-    /// H, and the bordered matrix with the given last row.
-    fn system(&self, p: &Point<N>, row: &Tangent<N>) -> ([f64; N], Bordered<N>) {
-        let x = self.x(p.mu);
+    fn residual(&self, p: &Point<N>) -> [f64; N] {
         let mut f = [0.0; N];
-        self.sys.residual(&p.v, &x, &mut f);
+        self.sys.residual(&p.v, &self.x(p.mu), &mut f);
+        f
+    }
+
+    fn column(&self, p: &Point<N>) -> [f64; N] {
+        let mut a = [[0.0; M]; N];
+        self.sys.input_jacobian(&p.v, &self.x(p.mu), &mut a);
+        let mut c = [0.0; N];
+        for i in 0..N {
+            c[i] = (0..M).map(|j| a[i][j] * self.dx[j]).sum::<f64>() / self.length;
+        }
+        c
+    }
+
+    /// The generated factorisation at `p`, if it is trustworthy for bordering.
+    fn frame(&self, p: &Point<N>) -> Option<Frame<S::Factor, N>> {
+        if self.linear == Linear::Dense {
+            return None;
+        }
+        let mut factor = self.sys.new_factor();
+        let info = self.sys.factor(&p.v, &self.x(p.mu), &mut factor)?;
+        if !(info.pivot_ratio > MIN_PIVOT_RATIO) {
+            return None;
+        }
+        let column = self.column(p);
+        let mut y2 = column;
+        self.sys.solve(&factor, &mut y2);
+        Some(Frame {
+            factor,
+            det: info.det,
+            y2,
+        })
+    }
+
+    /// The dense bordered matrix `[[B, H_μ], [rowᵀ]]` at `p`, and H at `p`.
+    fn bordered(&self, p: &Point<N>, row: &Tangent<N>) -> ([f64; N], Bordered<N>) {
+        let x = self.x(p.mu);
+        let f = self.residual(p);
         let mut m = Bordered {
             block: [[0.0; N]; N],
-            column: [0.0; N],
+            column: self.column(p),
             row: row.v,
             corner: row.mu,
         };
         self.sys.jacobian_dense(&p.v, &x, &mut m.block);
-        let mut a = [[0.0; M]; N];
-        self.sys.input_jacobian(&p.v, &x, &mut a);
-        for i in 0..N {
-            let mut s = 0.0;
-            for j in 0..M {
-                s += a[i][j] * self.dx[j];
-            }
-            m.column[i] = s / self.length;
-        }
         (f, m)
     }
 
+    /// Solves `[[B, c], [rᵀ, d]] [z; μ] = [f; g]` by bordering on a frame.
+    fn border(
+        &self,
+        frame: &Frame<S::Factor, N>,
+        row: &Tangent<N>,
+        f: [f64; N],
+        g: f64,
+    ) -> Option<([f64; N], f64)> {
+        let den = row.mu - dot(&row.v, &frame.y2);
+        let size = row.mu.abs() + norm(&row.v) * norm(&frame.y2);
+        if !(den.abs() > 1e-10 * size) {
+            return None;
+        }
+        let mut y1 = f;
+        self.sys.solve(&frame.factor, &mut y1);
+        let mu = (g - dot(&row.v, &y1)) / den;
+        let mut z = y1;
+        for i in 0..N {
+            z[i] -= mu * frame.y2[i];
+        }
+        Some((z, mu))
+    }
+
     /// The unit tangent at `p`, oriented along `prev`, and det B there.
-    fn tangent(&self, p: &Point<N>, prev: &Tangent<N>) -> Option<(Tangent<N>, f64)> {
-        let (_, mut m) = self.system(p, prev);
-        let mut b = m.block;
-        let det = factor::<N, _>(&mut b).map_or(0.0, |piv| piv.det);
-        let piv = factor::<N, _>(&mut m)?;
-        let mut z = Extended {
-            head: [0.0; N],
-            tail: 1.0,
+    fn tangent(
+        &self,
+        p: &Point<N>,
+        prev: &Tangent<N>,
+        frame: Option<&Frame<S::Factor, N>>,
+    ) -> Option<(Tangent<N>, f64)> {
+        let (z, zmu, det) = match frame.and_then(|fr| {
+            self.border(fr, prev, [0.0; N], 1.0)
+                .map(|(z, m)| (z, m, fr.det))
+        }) {
+            Some(t) => t,
+            None => {
+                let (_, mut m) = self.bordered(p, prev);
+                let mut b = m.block;
+                let det = crate::lu::factor_dense(&mut b).map_or(0.0, |piv| piv.det);
+                let piv = factor::<N, _>(&mut m)?;
+                let mut z = Extended {
+                    head: [0.0; N],
+                    tail: 1.0,
+                };
+                solve(&m, &piv, &mut z);
+                (z.head, z.tail, det)
+            }
         };
-        solve(&m, &piv, &mut z);
-        let nrm = z.norm();
+        let nrm = crate::math::sqrt(dot(&z, &z) + zmu * zmu);
         if !(nrm > 0.0) || !nrm.is_finite() {
             return None;
         }
-        for zi in &mut z.head {
-            *zi /= nrm;
-        }
         Some((
             Tangent {
-                v: z.head,
-                mu: z.tail / nrm,
+                v: z.map(|zi| zi / nrm),
+                mu: zmu / nrm,
             },
             det,
         ))
     }
 
-    /// Newton on `[H; t·(y − y_pred)] = 0` (or on H at fixed μ), with the contraction test.
+    /// Corrects `pred` on `[H; t·(y − pred)] = 0` (or on H at fixed μ), with the contraction
+    /// test. With a frame the iteration is the chord method of Eq. 11; without, full Newton on
+    /// the dense bordered matrix.
     fn correct(
         &self,
         pred: &Point<N>,
         t: &Tangent<N>,
         fixed_mu: bool,
         first_max: f64,
-    ) -> Result<(Point<N>, u32), u32> {
+        frame: Option<&Frame<S::Factor, N>>,
+    ) -> Result<(Point<N>, u32, f64), u32> {
         let mut p = *pred;
         let mut prev = f64::INFINITY;
+        let mut first = 0.0;
         for k in 0..MAX_CORRECTOR {
-            let (d, dmu) = if fixed_mu {
-                let x = self.x(p.mu);
-                match correction(self.sys, &p.v, &x) {
-                    Some((d, _)) => (d, 0.0),
-                    None => return Err(k as u32 + 1),
+            let its = k as u32 + 1;
+            let g = dot(&t.v, &p.v) - dot(&t.v, &pred.v) + t.mu * (p.mu - pred.mu);
+            let step = match (frame, fixed_mu) {
+                (Some(fr), true) => {
+                    let mut d = self.residual(&p);
+                    self.sys.solve(&fr.factor, &mut d);
+                    Some((d, 0.0))
                 }
-            } else {
-                let (f, mut m) = self.system(&p, t);
-                let mut g = 0.0;
-                for i in 0..N {
-                    g += t.v[i] * (p.v[i] - pred.v[i]);
+                (Some(fr), false) => self.border(fr, t, self.residual(&p), g),
+                (None, true) => {
+                    crate::start::correction_with(self.sys, &p.v, &self.x(p.mu), self.linear)
+                        .map(|(d, _)| (d, 0.0))
                 }
-                g += t.mu * (p.mu - pred.mu);
-                let Some(piv) = factor::<N, _>(&mut m) else {
-                    return Err(k as u32 + 1);
-                };
-                let mut rhs = Extended { head: f, tail: g };
-                solve(&m, &piv, &mut rhs);
-                (rhs.head, rhs.tail)
+                (None, false) => {
+                    let (f, mut m) = self.bordered(&p, t);
+                    factor::<N, _>(&mut m).map(|piv| {
+                        let mut rhs = Extended { head: f, tail: g };
+                        solve(&m, &piv, &mut rhs);
+                        (rhs.head, rhs.tail)
+                    })
+                }
             };
-            let mut s = dmu * dmu;
-            for di in &d {
-                s += di * di;
-            }
-            let size = crate::math::sqrt(s);
+            let Some((d, dmu)) = step else {
+                return Err(its);
+            };
+            let size = crate::math::sqrt(dot(&d, &d) + dmu * dmu);
             if !size.is_finite() {
-                return Err(k as u32 + 1);
+                return Err(its);
             }
             for i in 0..N {
                 p.v[i] -= d[i];
             }
             p.mu -= dmu;
+            if k == 0 {
+                first = size;
+            }
             if size <= self.tol {
-                return Ok((p, k as u32 + 1));
+                return Ok((p, its, first));
             }
             if (k == 0 && size > first_max) || (k > 0 && size > CONTRACTION * prev) {
-                return Err(k as u32 + 1);
+                return Err(its);
             }
             prev = size;
         }
@@ -198,7 +284,8 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         start,
         dx,
         length,
-        tol: 1e-9 * scale,
+        tol: 1e-6 * scale,
+        linear: options.linear,
     };
     let mut p = Point {
         v: start.v,
@@ -208,7 +295,8 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         v: [0.0; N],
         mu: 1.0,
     };
-    let Some((mut t, _)) = path.tangent(&p, &e_mu) else {
+    let mut frame = path.frame(&p);
+    let Some((mut t, _)) = path.tangent(&p, &e_mu, frame.as_ref()) else {
         return Ok(finish(
             sys,
             start,
@@ -224,7 +312,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     let mut det_prev = start.det;
     let (h_max, h_min) = (length / 2.0, 1e-10 * length);
-    let mut h = length / 8.0;
+    let mut h = length / 4.0;
     let (mut accepted, mut rejected, mut iterations) = (0u32, 0u32, 0u32);
     let mut min_ratio = 1.0f64;
     let stop = |p: &Point<N>, status, acc, rej, it, ratio| {
@@ -257,10 +345,11 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         for i in 0..N {
             pred.v[i] += step * t.v[i];
         }
-        match path.correct(&pred, &t, end, 0.5 * step + path.tol) {
-            Ok((q, its)) => {
+        match path.correct(&pred, &t, end, 0.5 * step + path.tol, frame.as_ref()) {
+            Ok((q, its, first)) => {
                 iterations += its;
-                let Some((t1, det1)) = path.tangent(&q, &t) else {
+                let next_frame = path.frame(&q);
+                let Some((t1, det1)) = path.tangent(&q, &t, next_frame.as_ref()) else {
                     return stop(
                         &p,
                         Status::Singular {
@@ -272,30 +361,22 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                         min_ratio,
                     );
                 };
-                let turn: f64 =
-                    t.v.iter().zip(&t1.v).map(|(a, b)| a * b).sum::<f64>() + t.mu * t1.mu;
                 if det1 * det_prev <= 0.0 {
                     // det B changed sign between p and q: the curve passes a fold (λ turns
                     // back) or a singular point. Either way the branch ends here.
                     let status = Status::Fold {
                         lambda: p.mu.max(q.mu) / length,
                     };
-                    return stop(
-                        &p,
-                        status,
-                        accepted,
-                        rejected,
-                        iterations,
-                        min_ratio.min(0.0),
-                    );
+                    return stop(&p, status, accepted, rejected, iterations, 0.0);
                 }
-                if turn < MIN_TANGENT_COS && !end {
+                if dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !end {
                     rejected += 1;
                     h = step * 0.5;
                 } else {
                     accepted += 1;
                     p = q;
                     t = t1;
+                    frame = next_frame;
                     det_prev = det1;
                     min_ratio = min_ratio.min((det1 / start.det).abs());
                     if end {
@@ -304,13 +385,17 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                             min_ratio,
                         ));
                     }
-                    h = if its <= 2 {
-                        (2.0 * step).min(h_max)
-                    } else if its >= 4 {
-                        0.5 * step
+                    // The Euler predictor's error grows like h²: aim the next first correction
+                    // at a twentieth of the step, changing h by at most a factor of two.
+                    let ideal = if first > 0.0 {
+                        0.05 * step * step / first
                     } else {
-                        step
+                        2.0 * step
                     };
+                    h = ideal.clamp(0.5 * step, 2.0 * step).min(h_max);
+                    if its >= 4 {
+                        h = h.min(step);
+                    }
                 }
             }
             Err(its) => {
@@ -352,9 +437,9 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     min_ratio: f64,
 ) -> Solution<N> {
     let mut status = crate::newton::not_converged(sys, &v, x);
-    let mut convergence = crate::start::Convergence::new(options.tolerance, &v);
+    let mut convergence = Convergence::new(options.tolerance, &v);
     for _ in 0..options.max_iterations {
-        let Some((d, _)) = correction(sys, &v, x) else {
+        let Some((d, _)) = crate::start::correction_with(sys, &v, x, options.linear) else {
             status = Status::Singular { lambda: 1.0 };
             break;
         };

@@ -55,7 +55,7 @@ pub use mechanism::Mechanism;
 pub use newton::newton_raphson;
 pub use newton_homotopy::newton_homotopy;
 pub use pose::{pose_from_unknowns, unknowns_from_pose, Pose};
-pub use solution::{Options, Solution, SolveError, Status};
+pub use solution::{Linear, Options, Solution, SolveError, Status};
 pub use start::{det_b, error_estimate, Start};
 pub use tracker::{Sample, TrackError, Tracker};
 

@@ -68,6 +68,131 @@ pub struct Pivots<const N: usize> {
     pub pivot_ratio: f64,
 }
 
+impl<const N: usize> Pivots<N> {
+    /// No swaps, determinant 1: the state before a factorisation.
+    pub const fn new() -> Self {
+        Pivots {
+            swaps: [0; N],
+            det: 1.0,
+            pivot_ratio: 1.0,
+        }
+    }
+}
+
+impl<const N: usize> Default for Pivots<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// What a factorisation of B tells besides itself.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Factored {
+    /// det B.
+    pub det: f64,
+    /// Smallest |pivot| / largest |pivot| of the dense part: a conditioning indicator.
+    pub pivot_ratio: f64,
+}
+
+/// Storage of the factorisation that `mechanism!` generates for a sparsity pattern: the
+/// `K`×`K` dense Schur complement with its pivots, `L` multipliers and `U` entries of the
+/// statically eliminated rows.
+#[derive(Clone, Copy, Debug)]
+pub struct SparseFactor<const K: usize, const L: usize, const U: usize> {
+    pub z: [[f64; K]; K],
+    pub piv: Pivots<K>,
+    pub l: [f64; L],
+    pub u: [f64; U],
+}
+
+impl<const K: usize, const L: usize, const U: usize> SparseFactor<K, L, U> {
+    pub const fn new() -> Self {
+        SparseFactor {
+            z: [[0.0; K]; K],
+            piv: Pivots::new(),
+            l: [0.0; L],
+            u: [0.0; U],
+        }
+    }
+}
+
+impl<const K: usize, const L: usize, const U: usize> Default for SparseFactor<K, L, U> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Factors a dense `N`×`N` array in place (`L` unit lower, `U` upper) with partial pivoting:
+/// the same algorithm as [`factor`], written over rows so that the compiler can drop bounds
+/// checks. `None` for an exactly singular or non-finite matrix.
+pub fn factor_dense<const N: usize>(a: &mut [[f64; N]; N]) -> Option<Pivots<N>> {
+    let mut piv = Pivots {
+        swaps: [0; N],
+        det: 1.0,
+        pivot_ratio: 0.0,
+    };
+    let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
+    for k in 0..N {
+        let mut p = k;
+        let mut best = a[k][k].abs();
+        for (i, row) in a.iter().enumerate().skip(k + 1) {
+            let v = row[k].abs();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        if !(best > 0.0) || !best.is_finite() {
+            return None;
+        }
+        piv.swaps[k] = p;
+        if p != k {
+            a.swap(k, p);
+            piv.det = -piv.det;
+        }
+        let (top, bottom) = a.split_at_mut(k + 1);
+        let pivot_row = &top[k];
+        let d = pivot_row[k];
+        piv.det *= d;
+        pmin = pmin.min(best);
+        pmax = pmax.max(best);
+        let inv = 1.0 / d;
+        for row in bottom.iter_mut() {
+            let l = row[k] * inv;
+            row[k] = l;
+            if l != 0.0 {
+                for (x, u) in row[k + 1..].iter_mut().zip(&pivot_row[k + 1..]) {
+                    *x -= l * u;
+                }
+            }
+        }
+    }
+    piv.pivot_ratio = if N == 0 { 1.0 } else { pmin / pmax };
+    Some(piv)
+}
+
+/// Solves `A y = b` in place with a factorisation from [`factor_dense`].
+pub fn solve_dense<const N: usize>(a: &[[f64; N]; N], piv: &Pivots<N>, b: &mut [f64; N]) {
+    for k in 0..N {
+        let p = piv.swaps[k];
+        if p != k {
+            b.swap(k, p);
+        }
+    }
+    for i in 0..N {
+        let s: f64 = a[i][..i].iter().zip(&b[..i]).map(|(l, y)| l * y).sum();
+        b[i] -= s;
+    }
+    for i in (0..N).rev() {
+        let s: f64 = a[i][i + 1..]
+            .iter()
+            .zip(&b[i + 1..])
+            .map(|(u, y)| u * y)
+            .sum();
+        b[i] = (b[i] - s) / a[i][i];
+    }
+}
+
 /// Factors `a` in place (`L` unit lower, `U` upper). Returns `None` for an exactly singular
 /// or non-finite matrix.
 pub fn factor<const N: usize, A: Square>(a: &mut A) -> Option<Pivots<N>> {
@@ -218,6 +343,27 @@ mod tests {
         for i in 0..3 {
             let r: f64 = (0..3).map(|j| orig[i][j] * b[j]).sum();
             assert!((r - [3.0, 2.0, 4.0][i]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn dense_and_generic_factorisations_agree() {
+        let a = [
+            [2.0, -1.0, 0.5, 3.0],
+            [1.0, 4.0, -2.0, 0.0],
+            [0.0, 1.5, 1.0, -1.0],
+            [-3.0, 0.0, 2.0, 1.0],
+        ];
+        let (mut g, mut d) = (a, a);
+        let pg: Pivots<4> = factor(&mut g).unwrap();
+        let pd = factor_dense(&mut d).unwrap();
+        assert_eq!(g, d);
+        assert_eq!(pg.det, pd.det);
+        let (mut yg, mut yd) = ([1.0, 2.0, 3.0, 4.0], [1.0, 2.0, 3.0, 4.0]);
+        solve(&g, &pg, &mut yg);
+        solve_dense(&d, &pd, &mut yd);
+        for i in 0..4 {
+            assert!((yg[i] - yd[i]).abs() < 1e-14);
         }
     }
 

@@ -34,6 +34,21 @@ pub trait Mechanism<const N: usize, const M: usize> {
     fn jacobian(&self, v: &[f64; N], x: &[f64; M], values: &mut [f64]);
     /// `B = ∂F/∂v` as a dense matrix.
     fn jacobian_dense(&self, v: &[f64; N], x: &[f64; M], b: &mut [[f64; N]; N]);
+    /// Storage for [`Self::factor`].
+    type Factor: Copy + core::fmt::Debug;
+    /// An empty factorisation to fill with [`Self::factor`].
+    fn new_factor(&self) -> Self::Factor;
+    /// Evaluates B at (v, x) and factors it with elimination code generated for its sparsity
+    /// pattern (static pivots where B has constant entries, partial pivoting on the rest).
+    /// `None` if B is singular or not finite.
+    fn factor(
+        &self,
+        v: &[f64; N],
+        x: &[f64; M],
+        f: &mut Self::Factor,
+    ) -> Option<crate::lu::Factored>;
+    /// Solves `B y = b` in place with a factorisation from [`Self::factor`].
+    fn solve(&self, f: &Self::Factor, b: &mut [f64; N]);
     /// `∂F/∂x` (the matrix A of Eq. 5 is its negative).
     fn input_jacobian(&self, v: &[f64; N], x: &[f64; M], a: &mut [[f64; M]; N]);
     /// A platform pivot's coordinates in the platform frame; NaN for an index out of range.

@@ -48,7 +48,7 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if iterations >= options.max_iterations {
             break not_converged(sys, &v, x);
         }
-        let Some((d, _)) = correction(sys, &v, x) else {
+        let Some((d, _)) = crate::start::correction_with(sys, &v, x, options.linear) else {
             break Status::Singular { lambda: 1.0 };
         };
         iterations += 1;

@@ -5,7 +5,7 @@
 
 use crate::math::norm;
 use crate::newton::{finish, not_converged};
-use crate::start::{all_finite, correction};
+use crate::start::all_finite;
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.
@@ -46,7 +46,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let mut convergence = crate::start::Convergence::new(options.tolerance, &w);
         for _ in 0..options.max_iterations {
             iterations += 1;
-            let Some((d, dt)) = correction(sys, &w, &x) else {
+            let Some((d, dt)) = crate::start::correction_with(sys, &w, &x, options.linear) else {
                 singular = true;
                 break;
             };

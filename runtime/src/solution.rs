@@ -136,6 +136,18 @@ pub struct Options {
     pub max_steps: u32,
     /// Newton homotopy: the number of uniform λ steps.
     pub homotopy_steps: u32,
+    /// How linear systems in B are solved.
+    pub linear: Linear,
+}
+
+/// How the solvers factor B = ∂F/∂v.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Linear {
+    /// The elimination `mechanism!` generated for B's sparsity pattern (fast).
+    #[default]
+    Generated,
+    /// Dense LU with partial pivoting on the assembled B: the internal baseline.
+    Dense,
 }
 
 impl Options {
@@ -145,6 +157,7 @@ impl Options {
         max_iterations: 150,
         max_steps: 2000,
         homotopy_steps: 10,
+        linear: Linear::Generated,
     };
     /// Near machine precision for millimetre-sized mechanisms.
     pub const TIGHT: Options = Options {
@@ -152,6 +165,7 @@ impl Options {
         max_iterations: 50,
         max_steps: 2000,
         homotopy_steps: 10,
+        linear: Linear::Generated,
     };
 
     pub(crate) fn is_valid(&self) -> bool {

@@ -1,6 +1,6 @@
 //! The initial configuration every solve starts from, checked once.
 
-use crate::lu::{factor, solve};
+use crate::lu::factor;
 use crate::math::norm;
 use crate::{Mechanism, SolveError};
 
@@ -58,22 +58,44 @@ impl Convergence {
     }
 }
 
-/// A Newton correction `Δ = B⁻¹ F` at `(v, x)`, with det B; `None` if B is singular.
+/// A Newton correction `Δ = B⁻¹ F` at `(v, x)` with the generated factorisation, and det B;
+/// `None` if B is singular.
 pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
     x: &[f64; M],
 ) -> Option<([f64; N], f64)> {
+    correction_with(sys, v, x, crate::Linear::Generated)
+}
+
+/// [`correction`] with the chosen linear solver.
+pub(crate) fn correction_with<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    linear: crate::Linear,
+) -> Option<([f64; N], f64)> {
     let mut f = [0.0; N];
     sys.residual(v, x, &mut f);
-    let mut b = [[0.0; N]; N];
-    sys.jacobian_dense(v, x, &mut b);
-    let piv = factor::<N, _>(&mut b)?;
-    solve(&b, &piv, &mut f);
+    let det = match linear {
+        crate::Linear::Generated => {
+            let mut fac = sys.new_factor();
+            let info = sys.factor(v, x, &mut fac)?;
+            sys.solve(&fac, &mut f);
+            info.det
+        }
+        crate::Linear::Dense => {
+            let mut b = [[0.0; N]; N];
+            sys.jacobian_dense(v, x, &mut b);
+            let piv = crate::lu::factor_dense(&mut b)?;
+            crate::lu::solve_dense(&b, &piv, &mut f);
+            piv.det
+        }
+    };
     if !all_finite(&f) {
         return None;
     }
-    Some((f, piv.det))
+    Some((f, det))
 }
 
 /// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the

@@ -82,12 +82,17 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
         quote!(#[allow(unused_variables)])
     };
     let priv_ = quote!(::linkage::__private);
+    let plan = crate::factor::plan(n, &jac);
+    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, &jac, m);
+    let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
     let new_doc =
         format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");
     let _ = format_ident!("unused");
 
     quote! {
         #(#attrs)*
+        ///
+        #[doc = #ops_doc]
         #[derive(Clone, Debug, PartialEq)]
         #vis struct #name {
             geometry: [f64; #ng],
@@ -199,6 +204,10 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
                 #(#jacobian_dense)*
             }
 
+            type Factor = #factor_type;
+
+            #factor_fns
+
             #[inline]
             #[allow(unused_variables)]
             fn input_jacobian(&self, v: &[f64; #n], x: &[f64; #m], a: &mut [[f64; #m]; #n]) {
@@ -267,7 +276,7 @@ fn listing(
     s
 }
 
-fn lit(x: f64) -> TokenStream {
+pub fn lit(x: f64) -> TokenStream {
     let l = Literal::f64_suffixed(x.abs());
     if x.is_sign_negative() {
         quote!((-#l))

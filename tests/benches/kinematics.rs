@@ -1,0 +1,100 @@
+//! criterion benches: residual, Jacobian, factorisation, one NR solve, one PH path and one
+//! trajectory update, for every example mechanism. `cargo bench -p linkage-tests`.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use linkage::{arc_length, newton_raphson, Mechanism, Options, Start, Tracker};
+use linkage_examples::{rps, rss_hexapod, stewart};
+
+fn bench_mechanism<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
+    c: &mut Criterion,
+    name: &str,
+    sys: &S,
+    start: Start<N, M>,
+    target: [f64; M],
+    step: [f64; M],
+) {
+    let mut g = c.benchmark_group(name);
+    let mut f = [0.0; N];
+    g.bench_function("residual", |b| {
+        b.iter(|| sys.residual(black_box(&start.v), black_box(&start.x), &mut f))
+    });
+    let mut values = vec![0.0; S::NNZ];
+    g.bench_function("jacobian_sparse", |b| {
+        b.iter(|| sys.jacobian(black_box(&start.v), black_box(&start.x), &mut values))
+    });
+    let mut fac = sys.new_factor();
+    g.bench_function("factor_generated", |b| {
+        b.iter(|| sys.factor(black_box(&start.v), black_box(&start.x), &mut fac))
+    });
+    g.bench_function("factor_solve_generated", |b| {
+        b.iter(|| {
+            sys.factor(black_box(&start.v), black_box(&start.x), &mut fac);
+            let mut y = black_box(start.v);
+            sys.solve(&fac, &mut y);
+            y
+        })
+    });
+    g.bench_function("factor_solve_dense", |b| {
+        b.iter(|| {
+            let mut m = [[0.0; N]; N];
+            sys.jacobian_dense(black_box(&start.v), black_box(&start.x), &mut m);
+            let piv = linkage::lu::factor::<N, _>(&mut m);
+            let mut y = black_box(start.v);
+            if let Some(piv) = piv {
+                linkage::lu::solve(&m, &piv, &mut y);
+            }
+            y
+        })
+    });
+    g.bench_function("nr_solve", |b| {
+        b.iter(|| newton_raphson(sys, &start, black_box(&target), &Options::TIGHT))
+    });
+    g.bench_function("ph_path", |b| {
+        b.iter(|| arc_length(sys, &start, black_box(&target), &Options::TIGHT))
+    });
+    let mut tracker = Tracker::new(sys.clone(), start, Options::TIGHT);
+    let mut k = 0u64;
+    g.bench_function("trajectory_update", |b| {
+        b.iter(|| {
+            // Oscillate around the start in small steps, as 1 kHz samples would.
+            k += 1;
+            let s = ((k % 200) as f64 - 100.0).abs() / 100.0;
+            let x: [f64; M] = std::array::from_fn(|j| start.x[j] + s * step[j]);
+            tracker.update(black_box(&x))
+        })
+    });
+    g.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    let s = stewart::Stewart::new();
+    let st = stewart::home_start(&s).unwrap();
+    bench_mechanism(
+        c,
+        "stewart",
+        &s,
+        st,
+        [190.0, 200.0, 190.0, 180.0, 190.0, 210.0],
+        [2.0, -1.0, 1.5, 0.5, -2.0, 1.0],
+    );
+    let h = rss_hexapod::RssHexapod::new();
+    let hs = rss_hexapod::home_start(&h).unwrap();
+    bench_mechanism(
+        c,
+        "rss_hexapod",
+        &h,
+        hs,
+        hs.x.map(|q| q + 0.1),
+        [0.02, -0.01, 0.015, 0.005, -0.02, 0.01],
+    );
+    let r = rps::Rps3::new();
+    let rs = rps::home_start(&r).unwrap();
+    bench_mechanism(c, "rps", &r, rs, rs.x.map(|l| l + 5.0), [1.0, -0.5, 0.7]);
+}
+
+criterion_group! {
+    name = kinematics;
+    config = Criterion::default().warm_up_time(std::time::Duration::from_millis(300)).measurement_time(std::time::Duration::from_secs(1));
+    targets = benches
+}
+criterion_main!(kinematics);
