@@ -111,7 +111,15 @@ pub fn factor(
         }
     }
     let (nl, nu) = (l_index.len(), u_index.len());
-    let scale = lit(plan.sign * plan.statics.iter().map(|s| s.2).product::<f64>());
+    let scale = plan.sign * plan.statics.iter().map(|s| s.2).product::<f64>();
+    let det = match scale {
+        1.0 => quote!(piv.det),
+        -1.0 => quote!(-piv.det),
+        _ => {
+            let scale = lit(scale);
+            quote!(#scale * piv.det)
+        }
+    };
     let mut forward = Vec::new();
     for (s, &(r, _, _)) in plan.statics.iter().enumerate() {
         for &i in &plan.rows {
@@ -135,6 +143,9 @@ pub fn factor(
             .cols
             .iter()
             .filter_map(|&j| u_index.get(&(s, j)).map(|&uj| quote!(- f.u[#uj] * out[#j])));
+        if p == -1.0 {
+            return quote!(out[#c] = -(b[#r] #(#terms)*););
+        }
         let inv = lit(1.0 / p);
         quote!(out[#c] = (b[#r] #(#terms)*) * #inv;)
     });
@@ -154,7 +165,7 @@ pub fn factor(
             #(#z_stmts)*
             let piv = ::linkage::lu::factor_dense::<#k>(&mut f.z)?;
             f.piv = piv;
-            let det = #scale * piv.det;
+            let det = #det;
             if !det.is_finite() {
                 return None;
             }
