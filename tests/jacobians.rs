@@ -17,12 +17,11 @@ fn check_around<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) {
     let mut rng = Rng::new(42);
     check_jacobians(sys, v, x);
+    check_factorization(sys, v, x);
     for _ in 0..20 {
-        check_jacobians(
-            sys,
-            &perturbed(&mut rng, v, 30.0),
-            &perturbed(&mut rng, x, dx),
-        );
+        let (v, x) = (perturbed(&mut rng, v, 30.0), perturbed(&mut rng, x, dx));
+        check_jacobians(sys, &v, &x);
+        check_factorization(sys, &v, &x);
     }
 }
 
