@@ -23,7 +23,6 @@
 use crate::lu::{factor, solve, Bordered, Extended};
 use crate::math::norm;
 use crate::newton::finish;
-use crate::start::Convergence;
 use crate::{Linear, Mechanism, Options, Solution, SolveError, Start, Status};
 
 const MAX_CORRECTOR: usize = 5;
@@ -428,31 +427,24 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
 fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
-    mut v: [f64; N],
+    v: [f64; N],
     x: &[f64; M],
     options: &Options,
     accepted: u32,
     rejected: u32,
-    mut iterations: u32,
+    iterations: u32,
     min_ratio: f64,
 ) -> Solution<N> {
-    let mut status = crate::newton::not_converged(sys, &v, x);
-    let mut convergence = Convergence::new(options.tolerance, &v);
-    for _ in 0..options.max_iterations {
-        let Some((d, _)) = crate::start::correction_with(sys, &v, x, options.linear) else {
-            status = Status::Singular { lambda: 1.0 };
-            break;
-        };
-        iterations += 1;
-        for i in 0..N {
-            v[i] -= d[i];
-        }
-        if convergence.reached(norm(&d)) {
-            status = Status::Converged;
-            break;
-        }
-    }
-    finish(
-        sys, start, v, x, status, 1.0, accepted, rejected, iterations, min_ratio,
+    let run = crate::start::newton(sys, v, x, options);
+    crate::newton::conclude(
+        sys,
+        start,
+        &run,
+        x,
+        1.0,
+        accepted,
+        rejected,
+        iterations + run.iterations,
+        min_ratio,
     )
 }

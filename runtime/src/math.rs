@@ -54,8 +54,12 @@ pub fn norm3(a: [f64; 3]) -> f64 {
     sqrt(dot3(a, a))
 }
 
-/// Euclidean norm of a slice, scaled to avoid overflow.
+/// Euclidean norm of a slice; rescaled only when the plain sum of squares over- or underflows.
 pub fn norm(v: &[f64]) -> f64 {
+    let s: f64 = v.iter().map(|x| x * x).sum();
+    if s.is_finite() && s > 1e-280 {
+        return sqrt(s);
+    }
     let scale = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if scale == 0.0 || !scale.is_finite() {
         return scale;

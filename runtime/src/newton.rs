@@ -41,31 +41,72 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
     crate::start::check_target(sys, x, options)?;
-    let mut v = start.v;
-    let mut iterations = 0;
-    let mut convergence = crate::start::Convergence::new(options.tolerance, &v);
-    let status = loop {
-        if iterations >= options.max_iterations {
-            break not_converged(sys, &v, x);
-        }
-        let Some((d, _)) = crate::start::correction_with(sys, &v, x, options.linear) else {
-            break Status::Singular { lambda: 1.0 };
+    let run = crate::start::newton(sys, start.v, x, options);
+    Ok(conclude(
+        sys,
+        start,
+        &run,
+        x,
+        1.0,
+        0,
+        0,
+        run.iterations,
+        1.0,
+    ))
+}
+
+/// The solution after a final Newton run: its own estimate and det B when it converged,
+/// re-evaluated otherwise.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    run: &crate::start::Newton<N>,
+    x: &[f64; M],
+    lambda: f64,
+    steps_accepted: u32,
+    steps_rejected: u32,
+    newton_iterations: u32,
+    min_det_ratio: f64,
+) -> Solution<N> {
+    if !run.converged {
+        let status = if run.singular {
+            Status::Singular { lambda }
+        } else {
+            not_converged(sys, &run.v, x)
         };
-        iterations += 1;
-        for i in 0..N {
-            v[i] -= d[i];
-        }
-        if !all_finite(&v) {
-            v = start.v;
-            break Status::NotConverged {
-                residual_norm: f64::INFINITY,
-            };
-        }
-        if convergence.reached(norm(&d)) {
-            break Status::Converged;
-        }
+        let v = if all_finite(&run.v) { run.v } else { start.v };
+        return finish(
+            sys,
+            start,
+            v,
+            x,
+            status,
+            lambda,
+            steps_accepted,
+            steps_rejected,
+            newton_iterations,
+            min_det_ratio,
+        );
+    }
+    // The last factorisation was at the iterate before the last (small) correction; det B
+    // cannot change sign over it unless B is singular to rounding there.
+    let ratio = (run.det / start.det).abs();
+    let status = if run.det * start.det > 0.0 {
+        Status::Converged
+    } else {
+        Status::BranchChanged
     };
-    Ok(finish(sys, start, v, x, status, 1.0, 0, 0, iterations, 1.0))
+    Solution {
+        v: run.v,
+        status,
+        lambda,
+        steps_accepted,
+        steps_rejected,
+        newton_iterations,
+        error_estimate: run.estimate,
+        min_det_ratio: min_det_ratio.min(ratio),
+    }
 }
 
 pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(

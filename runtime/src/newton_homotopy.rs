@@ -3,9 +3,7 @@
 //! iteration fails is halved. It follows the start's branch while steps are small compared with
 //! the distance to a singularity, and it cannot pass a fold.
 
-use crate::math::norm;
-use crate::newton::{finish, not_converged};
-use crate::start::all_finite;
+use crate::newton::{conclude, finish, not_converged};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.
@@ -39,46 +37,16 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         let next = (lambda + step).min(1.0);
         let x = at(next);
-        let mut w = v;
-        let mut converged = false;
-        let mut singular = false;
-        let mut det = start.det;
-        let mut convergence = crate::start::Convergence::new(options.tolerance, &w);
-        for _ in 0..options.max_iterations {
-            iterations += 1;
-            let Some((d, dt)) = crate::start::correction_with(sys, &w, &x, options.linear) else {
-                singular = true;
-                break;
-            };
-            det = dt;
-            for i in 0..N {
-                w[i] -= d[i];
-            }
-            if !all_finite(&w) {
-                break;
-            }
-            if convergence.reached(norm(&d)) {
-                converged = true;
-                break;
-            }
-        }
-        if converged {
+        let run = crate::start::newton(sys, v, &x, options);
+        iterations += run.iterations;
+        if run.converged {
             accepted += 1;
-            v = w;
+            v = run.v;
             lambda = next;
-            min_ratio = min_ratio.min((det / start.det).abs());
+            min_ratio = min_ratio.min((run.det / start.det).abs());
             if lambda >= 1.0 {
-                return Ok(finish(
-                    sys,
-                    start,
-                    v,
-                    &x,
-                    Status::Converged,
-                    1.0,
-                    accepted,
-                    rejected,
-                    iterations,
-                    min_ratio,
+                return Ok(conclude(
+                    sys, start, &run, &x, 1.0, accepted, rejected, iterations, min_ratio,
                 ));
             }
             step = (step * 2.0).min(nominal);
@@ -86,7 +54,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
             rejected += 1;
             step *= 0.5;
             if step < 1e-6 {
-                let status = if singular {
+                let status = if run.singular {
                     Status::Singular { lambda }
                 } else {
                     Status::StepTooSmall { lambda }

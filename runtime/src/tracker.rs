@@ -2,9 +2,8 @@
 //! solution, never leaving the start's branch.
 
 use crate::arc_length::arc_length;
-use crate::lu::{factor, solve};
 use crate::math::norm;
-use crate::start::{all_finite, correction};
+use crate::start::{correction_in, Convergence};
 
 use crate::{Mechanism, Options, SolveError, Start, Status};
 
@@ -40,16 +39,21 @@ impl core::fmt::Display for TrackError {
 
 /// Follows one branch through a stream of joint vectors.
 ///
-/// Each update predicts with the linearisation `B Δv = −(∂F/∂x) Δx` (Eq. 5), corrects with
-/// Newton under the same contraction test as [`arc_length`](crate::arc_length), and falls back
-/// to full pseudo-arc-length continuation from the last sample when that test fails.
+/// Each update predicts with the linearisation `B Δv = −(∂F/∂x) Δx` (Eq. 5), reusing the
+/// factorisation of B kept from the previous update, corrects with Newton under the same
+/// contraction test as [`arc_length`](crate::arc_length) (the predictor step counts as the
+/// zeroth correction, so a single Newton step can confirm convergence), and falls back to full
+/// pseudo-arc-length continuation from the last sample when that test fails. A sample is
+/// accepted only if det B keeps the start's sign.
 #[derive(Clone, Debug)]
-pub struct Tracker<S, const N: usize, const M: usize> {
+pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     sys: S,
     start: Start<N, M>,
     v: [f64; N],
     x: [f64; M],
     options: Options,
+    /// B factored near (v, x), for the next predictor; `None` until first needed.
+    factor: Option<S::Factor>,
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
@@ -60,6 +64,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             sys,
             start,
             options,
+            factor: None,
         }
     }
 
@@ -75,12 +80,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// Solves the next sample. On error nothing changes.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
         crate::start::check_target(&self.sys, x, &self.options).map_err(TrackError::Input)?;
-        let scale = norm(&self.v).max(1.0);
-        let tol = self.options.tolerance.min(1e-6 * scale);
         let mut iterations = 0;
-        if let Some(v) = self.fast(x, tol, &mut iterations) {
-            if let Some(sample) = self.accept(v, x, iterations, false) {
-                return Ok(sample);
+        if let Some((v, det, factor)) = self.fast(x, &mut iterations) {
+            if det * self.start.det > 0.0 {
+                self.factor = Some(factor);
+                return Ok(self.accept(v, x, det, iterations, false));
             }
         }
         // Fallback: continuation from the last sample, whose branch is the start's.
@@ -93,40 +97,55 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
         }
-        self.accept(sol.v, x, iterations + sol.newton_iterations, true)
-            .ok_or(TrackError::Lost(Status::BranchChanged))
+        let det = crate::start::det_b(&self.sys, &sol.v, x);
+        if det * self.start.det <= 0.0 {
+            return Err(TrackError::Lost(Status::BranchChanged));
+        }
+        self.factor = None;
+        Ok(self.accept(sol.v, x, det, iterations + sol.newton_iterations, true))
     }
 
-    fn fast(&self, x: &[f64; M], tol: f64, iterations: &mut u32) -> Option<[f64; N]> {
-        // Predictor: v + Δv with B Δv = −(∂F/∂x)(x − x_prev).
-        let mut b = [[0.0; N]; N];
-        self.sys.jacobian_dense(&self.v, &self.x, &mut b);
-        let piv = factor::<N, _>(&mut b)?;
+    /// Predictor and Newton corrector; `(v, det B at the last iterate, its factorisation)`.
+    fn fast(&mut self, x: &[f64; M], iterations: &mut u32) -> Option<([f64; N], f64, S::Factor)> {
+        let mut fac = match self.factor {
+            Some(f) => f,
+            None => {
+                let mut f = self.sys.new_factor();
+                self.sys.factor(&self.v, &self.x, &mut f)?;
+                f
+            }
+        };
         let mut a = [[0.0; M]; N];
         self.sys.input_jacobian(&self.v, &self.x, &mut a);
         let mut dv = [0.0; N];
         for i in 0..N {
             dv[i] = -(0..M).map(|j| a[i][j] * (x[j] - self.x[j])).sum::<f64>();
         }
-        solve(&b, &piv, &mut dv);
+        self.sys.solve(&fac, &mut dv);
         let step = norm(&dv);
         let mut v = self.v;
         for i in 0..N {
             v[i] += dv[i];
         }
-        let mut prev = f64::INFINITY;
+        let mut convergence = Convergence::new(self.options.tolerance, &v);
+        // The predictor step is the zeroth correction: it seeds the contraction estimate.
+        convergence.reached(step.max(f64::MIN_POSITIVE));
+        let mut prev = step;
         for k in 0..6 {
-            let (d, _) = correction(&self.sys, &v, x)?;
+            let (d, det) = correction_in(&self.sys, &v, x, self.options.linear, &mut fac)?;
             *iterations += 1;
             for i in 0..N {
                 v[i] -= d[i];
             }
             let size = norm(&d);
-            if size <= tol {
-                return Some(v);
-            }
-            if (k == 0 && size > 0.5 * step + tol) || (k > 0 && size > 0.25 * prev) {
+            if !size.is_finite()
+                || (k == 0 && size > 0.5 * step + self.options.tolerance)
+                || (k > 0 && size > 0.25 * prev)
+            {
                 return None;
+            }
+            if convergence.reached(size) {
+                return Some((v, det, fac));
             }
             prev = size;
         }
@@ -137,20 +156,17 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         &mut self,
         v: [f64; N],
         x: &[f64; M],
+        det: f64,
         newton_iterations: u32,
         fell_back: bool,
-    ) -> Option<Sample<N>> {
-        let det = crate::start::det_b(&self.sys, &v, x);
-        if det * self.start.det <= 0.0 || !all_finite(&v) {
-            return None;
-        }
+    ) -> Sample<N> {
         self.v = v;
         self.x = *x;
-        Some(Sample {
+        Sample {
             v,
             proximity: (det / self.start.det).abs(),
             newton_iterations,
             fell_back,
-        })
+        }
     }
 }
