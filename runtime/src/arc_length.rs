@@ -262,8 +262,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     for j in 0..M {
         dx[j] = target[j] - start.x[j];
     }
-    let length = norm(&dx);
-    if length == 0.0 {
+    if norm(&dx) == 0.0 {
         return Ok(finish(
             sys,
             start,
@@ -277,6 +276,9 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             1.0,
         ));
     }
+    // Scale λ by how far v moves over the whole path to first order, ‖B⁻¹(∂F/∂x)(x* − x0)‖,
+    // so that λ and v weigh alike in the arc length whatever the inputs' units (mm, rad).
+    let length = first_order_travel(sys, start, &dx).unwrap_or_else(|| norm(&dx));
     let scale = norm(&start.v).max(length).max(1.0);
     let path = Path {
         sys,
@@ -420,6 +422,25 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         lambda: p.mu / length,
     };
     stop(&p, status, accepted, rejected, iterations, min_ratio)
+}
+
+/// ‖B⁻¹ (∂F/∂x) dx‖ at the start, if B is regular there.
+fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    dx: &[f64; M],
+) -> Option<f64> {
+    let mut fac = sys.new_factor();
+    sys.factor(&start.v, &start.x, &mut fac)?;
+    let mut a = [[0.0; M]; N];
+    sys.input_jacobian(&start.v, &start.x, &mut a);
+    let mut y = [0.0; N];
+    for i in 0..N {
+        y[i] = (0..M).map(|j| a[i][j] * dx[j]).sum();
+    }
+    sys.solve(&fac, &mut y);
+    let travel = norm(&y);
+    (travel.is_finite() && travel > 1e-12 * norm(dx).max(1e-300)).then_some(travel)
 }
 
 /// Newton at λ = 1 down to the requested tolerance.
