@@ -240,3 +240,44 @@ fn unreachable_legs_end_in_a_typed_outcome() {
         ) < 1e-3
     );
 }
+
+/// Where the straight segment ends in a fold, `arc_length_detour` may still reach the target;
+/// whatever it reaches must be confirmed by fine continuation along the same polyline.
+#[test]
+fn detours_around_folds_stay_on_the_branch() {
+    let s = stewart::Stewart::new();
+    let st = stewart::home_start(&s).unwrap();
+    let (mut folds, mut reached) = (0, 0);
+    for sample in stewart_pose_samples(2, 400, 1.2, 150.0, 100) {
+        let r = linkage::arc_length_detour(&s, &st, &sample.x, &Options::TIGHT).unwrap();
+        let Some(via) = r.via else {
+            assert!(r.left_at.is_none());
+            continue;
+        };
+        folds += 1;
+        assert!(
+            r.solution.is_ok(),
+            "a detour is reported only when it arrived"
+        );
+        reached += 1;
+        let mut here = st;
+        for corner in [r.left_at.unwrap(), via, sample.x] {
+            let (v, flips) = straight_path_truth(&s, &here, &corner, 3000);
+            assert_eq!(flips, 0, "the detour crossed a singularity");
+            here = Start {
+                v,
+                x: corner,
+                det: st.det,
+            };
+        }
+        assert!(
+            max_diff(&here.v, &r.solution.v) < 1e-6,
+            "{}",
+            max_diff(&here.v, &r.solution.v)
+        );
+    }
+    assert!(
+        reached > 0 && folds > 0,
+        "the sample should contain folds that a detour passes"
+    );
+}

@@ -81,7 +81,14 @@ fn solve_all<S: SixSix>(
             }
             continue;
         }
-        match method.solve(&sys, &current, x, &options) {
+        // PH goes around a fold when it can (`arc_length_detour`); NH and NR as the paper has them.
+        let result = match method {
+            linkage::Method::ArcLength => {
+                linkage::arc_length_detour(&sys, &current, x, &options).map(|d| d.solution)
+            }
+            _ => method.solve(&sys, &current, x, &options),
+        };
+        match result {
             Err(e) => out.row(n, e.word(), None, None, None)?,
             Ok(sol) if sol.is_ok() => {
                 let steps = match args.method {

@@ -85,6 +85,11 @@ fn print_table(r: &Report) {
         r.segment_leaves_vjs,
         r.near.len()
     );
+    let d = &r.detours;
+    println!(
+        "PH with detours around folds: {} of {} reached ({} at the true pivots, {} a second solution on the start's branch confirmed by continuation, {} wrong)",
+        d.reached, d.folds, d.at_truth, d.path_dependent, d.wrong_branch
+    );
     println!("(*) the straight joint-space segment reaches it with no sign change of det B (checked by fine continuation),");
     println!("    while the pose path reaches the true pose: two solutions on the start's branch (see README, Errata)");
     println!("paper (Table V): PH 100 % / 0.026 % / 3.203 s; NH 61 % / 0.024 % / 2.286 s; NR 10 % / 0.036 % / 0.208 s");

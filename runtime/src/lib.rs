@@ -35,6 +35,7 @@ extern crate self as linkage;
 pub use linkage_macros::mechanism;
 
 mod arc_length;
+mod detour;
 mod error;
 pub mod lu;
 mod math;
@@ -50,6 +51,7 @@ mod tracker;
 pub mod __private;
 
 pub use arc_length::arc_length;
+pub use detour::{arc_length_detour, Detoured};
 pub use error::{GeometryError, InverseError};
 pub use mechanism::Mechanism;
 pub use newton::newton_raphson;

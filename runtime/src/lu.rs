@@ -69,6 +69,11 @@ pub struct Pivots<const N: usize> {
 }
 
 impl<const N: usize> Pivots<N> {
+    /// The row swap made at each step of the factorisation.
+    pub fn swaps(&self) -> [usize; N] {
+        self.swaps
+    }
+
     /// No swaps, determinant 1: the state before a factorisation.
     pub const fn new() -> Self {
         Pivots {

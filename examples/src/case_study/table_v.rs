@@ -130,6 +130,25 @@ pub struct Report {
     pub segment_leaves_vjs: usize,
     /// `(method name, paper settings, tight tolerance)` outcomes, per point: normal then near.
     pub outcomes: Vec<(&'static str, Vec<Outcome>, Vec<Outcome>)>,
+    /// PH with detours (`arc_length_detour`, tight tolerance) on the points where the straight
+    /// segment ends in a fold.
+    pub detours: Detours,
+}
+
+/// What detours around folds achieved.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct Detours {
+    /// Points where straight PH reported a fold.
+    pub folds: usize,
+    /// Of those, reached through a waypoint.
+    pub reached: usize,
+    /// Of those reached, at the true pivots.
+    pub at_truth: usize,
+    /// Of those reached elsewhere: fine continuation along the same polyline confirms the
+    /// result (a second solution on the start's branch).
+    pub path_dependent: usize,
+    /// Reached elsewhere and not confirmed: would be a wrong branch labelled ok.
+    pub wrong_branch: usize,
 }
 
 pub const METHODS: [(&str, Method); 3] = [
@@ -167,6 +186,8 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Report {
         };
         outcomes.push((name, solve_all(&paper), solve_all(&tight)));
     }
+    progress("detours around folds");
+    let detours = detour_all(&sampler, &points, &outcomes[0].2);
     Report {
         protocol,
         mean_det,
@@ -174,7 +195,53 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Report {
         near,
         segment_leaves_vjs,
         outcomes,
+        detours,
     }
+}
+
+/// Fine continuation along start → corners…: no sign change of det B, and it ends at `v`.
+fn polyline_confirms(sampler: &Sampler, corners: &[[f64; 6]], v: &[f64; 18]) -> bool {
+    let mut here = sampler.start;
+    for corner in corners {
+        let (next, flips) = straight_segment(&sampler.sys, &here, corner, 4000);
+        if flips > 0 {
+            return false;
+        }
+        here = linkage::Start {
+            v: next,
+            x: *corner,
+            det: sampler.start.det,
+        };
+    }
+    rel_error(&here.v, v) < 1e-6
+}
+
+fn detour_all(sampler: &Sampler, points: &[&TestPoint], ph: &[Outcome]) -> Detours {
+    let mut d = Detours::default();
+    for (p, o) in points.iter().zip(ph) {
+        if !matches!(o.status, Status::Fold { .. }) {
+            continue;
+        }
+        d.folds += 1;
+        let Ok(r) = linkage::arc_length_detour(&sampler.sys, &sampler.start, &p.x, &Options::TIGHT)
+        else {
+            continue;
+        };
+        let (Some(via), Some(left_at), true) = (r.via, r.left_at, r.solution.is_ok()) else {
+            continue;
+        };
+        d.reached += 1;
+        if rel_error(&r.solution.v, &p.v) < 1e-3 {
+            d.at_truth += 1;
+            continue;
+        }
+        if polyline_confirms(sampler, &[left_at, via, p.x], &r.solution.v) {
+            d.path_dependent += 1;
+        } else {
+            d.wrong_branch += 1;
+        }
+    }
+    d
 }
 
 /// The report as `stewart table-v --json` prints it: `{"methods": {"PH": {...}, ...}, ...}`,
@@ -192,6 +259,7 @@ pub fn to_json(r: &Report) -> serde_json::Value {
     let p = &r.protocol;
     serde_json::json!({
         "methods": methods,
+        "ph_detours": r.detours,
         "points": { "normal": n, "near_singular": r.near.len() },
         "near_singular_segment_leaves_vjs": r.segment_leaves_vjs,
         "protocol": {

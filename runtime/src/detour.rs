@@ -1,0 +1,166 @@
+//! Going around a fold: when the straight joint-space segment leaves the valid joint space,
+//! try to reach the target along a two-segment path that bends away from the singular surface.
+//!
+//! At the last point before the fold, B is nearly singular; its left null vector w (wᵀB ≈ 0,
+//! found by inverse iteration) gives the singular surface's normal in joint space,
+//! n = (∂F/∂x)ᵀ w, since along the surface wᵀ(B dv + (∂F/∂x) dx) = 0 forces n·dx ≈ 0. The
+//! detour steps from there along ±n, to the side the straight segment came from, then heads
+//! for the target. Every segment is pseudo-arc-length continuation, which refuses to pass a
+//! fold, so whatever is reached is connected to the start by a nonsingular path: it is on the
+//! start's branch. It is the valid solution for a machine that moves along that path (see the
+//! README on path dependence).
+
+use crate::arc_length::arc_length;
+use crate::lu::factor_dense;
+use crate::math::norm;
+use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
+
+/// A solve that may have gone around a fold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Detoured<const N: usize, const M: usize> {
+    pub solution: Solution<N>,
+    /// The waypoint of the detour, if the straight segment was not the way.
+    pub via: Option<[f64; M]>,
+    /// Where the detour left the straight segment (the last point before the fold): the path
+    /// taken is start → `left_at` → `via` → target.
+    pub left_at: Option<[f64; M]>,
+}
+
+/// Solves `Aᵀ y = b` with the factors and row swaps from [`factor_dense`].
+fn solve_transposed<const N: usize>(a: &[[f64; N]; N], swaps: &[usize; N], b: &mut [f64; N]) {
+    // Uᵀ z = b (forward), Lᵀ y = z (backward), then undo the row swaps in reverse.
+    for i in 0..N {
+        let s: f64 = (0..i).map(|j| a[j][i] * b[j]).sum();
+        b[i] = (b[i] - s) / a[i][i];
+    }
+    for i in (0..N).rev() {
+        let s: f64 = (i + 1..N).map(|j| a[j][i] * b[j]).sum();
+        b[i] -= s;
+    }
+    for k in (0..N).rev() {
+        if swaps[k] != k {
+            b.swap(k, swaps[k]);
+        }
+    }
+}
+
+/// The joint-space normal of the singular surface near (v, x), unit length.
+fn surface_normal<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Option<[f64; M]> {
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    let piv = factor_dense(&mut b)?;
+    let swaps = piv.swaps();
+    let mut w = [1.0; N];
+    for _ in 0..3 {
+        solve_transposed(&b, &swaps, &mut w);
+        let nw = norm(&w);
+        if !(nw > 0.0 && nw.is_finite()) {
+            return None;
+        }
+        w.iter_mut().for_each(|x| *x /= nw);
+    }
+    let mut a = [[0.0; M]; N];
+    sys.input_jacobian(v, x, &mut a);
+    let mut n = [0.0; M];
+    for j in 0..M {
+        n[j] = (0..N).map(|i| w[i] * a[i][j]).sum();
+    }
+    let nn = norm(&n);
+    (nn > 0.0 && nn.is_finite()).then(|| n.map(|c| c / nn))
+}
+
+/// [`arc_length`], and where the straight segment ends in a fold, detours through waypoints
+/// offset from the fold along the singular surface's normal by 10 %, 25 %, 50 % and 100 % of
+/// the remaining distance.
+pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    target: &[f64; M],
+    options: &Options,
+) -> Result<Detoured<N, M>, SolveError> {
+    let straight = arc_length(sys, start, target, options)?;
+    let Status::Fold { lambda } = straight.status else {
+        return Ok(Detoured {
+            solution: straight,
+            via: None,
+            left_at: None,
+        });
+    };
+    // The last accepted point before the fold, on the start's branch.
+    let l = straight.lambda.min(lambda);
+    let x_fold: [f64; M] = core::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
+    let Some(n) = surface_normal(sys, &straight.v, &x_fold) else {
+        return Ok(Detoured {
+            solution: straight,
+            via: None,
+            left_at: None,
+        });
+    };
+    let dx: [f64; M] = core::array::from_fn(|j| target[j] - start.x[j]);
+    // Inward: against the direction in which the straight segment approached the surface.
+    let side = if (0..M).map(|j| n[j] * dx[j]).sum::<f64>() > 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let remaining: f64 = norm(&core::array::from_fn::<f64, M, _>(|j| {
+        target[j] - x_fold[j]
+    }));
+    let here = Start {
+        v: straight.v,
+        x: x_fold,
+        det: start.det,
+    };
+    for share in [0.1, 0.25, 0.5, 1.0] {
+        let via: [f64; M] = core::array::from_fn(|j| x_fold[j] + side * share * remaining * n[j]);
+        if sys.validate_inputs(&via).is_err() {
+            continue;
+        }
+        let Ok(first) = arc_length(sys, &here, &via, options) else {
+            continue;
+        };
+        if !first.is_ok() {
+            continue;
+        }
+        let mid = Start {
+            v: first.v,
+            x: via,
+            det: start.det,
+        };
+        let Ok(second) = arc_length(sys, &mid, target, options) else {
+            continue;
+        };
+        if second.is_ok() {
+            let solution = Solution {
+                steps_accepted: straight.steps_accepted
+                    + first.steps_accepted
+                    + second.steps_accepted,
+                steps_rejected: straight.steps_rejected
+                    + first.steps_rejected
+                    + second.steps_rejected,
+                newton_iterations: straight.newton_iterations
+                    + first.newton_iterations
+                    + second.newton_iterations,
+                min_det_ratio: straight
+                    .min_det_ratio
+                    .min(first.min_det_ratio)
+                    .min(second.min_det_ratio),
+                ..second
+            };
+            return Ok(Detoured {
+                solution,
+                via: Some(via),
+                left_at: Some(x_fold),
+            });
+        }
+    }
+    Ok(Detoured {
+        solution: straight,
+        via: None,
+        left_at: None,
+    })
+}
