@@ -3,27 +3,7 @@
 
 use linkage::Mechanism;
 
-/// SplitMix64: a seeded, reproducible sampler (tests need repeatability, not quality).
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
+pub use linkage_examples::case_study::sampling::Rng;
 
 /// Checks ∂F/∂v (sparse and dense) and ∂F/∂x against central finite differences at (v, x),
 /// and that the sparsity pattern holds every nonzero. Panics with the offending entry.

@@ -22,7 +22,7 @@
 
 use crate::lu::{factor, solve, Bordered, Extended};
 use crate::math::norm;
-use crate::newton::finish;
+use crate::newton::{finish, Account};
 use crate::{Linear, Mechanism, Options, Solution, SolveError, Start, Status};
 
 const MAX_CORRECTOR: usize = 5;
@@ -269,11 +269,13 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             start.v,
             target,
             Status::Converged,
-            1.0,
-            0,
-            0,
-            0,
-            1.0,
+            Account {
+                lambda: 1.0,
+                accepted: 0,
+                rejected: 0,
+                iterations: 0,
+                min_det_ratio: 1.0,
+            },
         ));
     }
     // Scale λ by how far v moves over the whole path to first order, ‖B⁻¹(∂F/∂x)(x* − x0)‖,
@@ -304,11 +306,13 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             p.v,
             &start.x,
             Status::Singular { lambda: 0.0 },
-            0.0,
-            0,
-            0,
-            0,
-            1.0,
+            Account {
+                lambda: 0.0,
+                accepted: 0,
+                rejected: 0,
+                iterations: 0,
+                min_det_ratio: 1.0,
+            },
         ));
     };
     let mut det_prev = start.det;
@@ -324,11 +328,13 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             p.v,
             &x,
             status,
-            p.mu / length,
-            acc,
-            rej,
-            it,
-            ratio,
+            Account {
+                lambda: p.mu / length,
+                accepted: acc,
+                rejected: rej,
+                iterations: it,
+                min_det_ratio: ratio,
+            },
         ))
     };
     while accepted + rejected < options.max_steps {
@@ -381,10 +387,14 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     det_prev = det1;
                     min_ratio = min_ratio.min((det1 / start.det).abs());
                     if end {
-                        return Ok(polish(
-                            sys, start, p.v, target, options, accepted, rejected, iterations,
-                            min_ratio,
-                        ));
+                        let account = Account {
+                            lambda: 1.0,
+                            accepted,
+                            rejected,
+                            iterations,
+                            min_det_ratio: min_ratio,
+                        };
+                        return Ok(polish(sys, start, p.v, target, options, account));
                     }
                     // The Euler predictor's error grows like h²: aim the next first correction
                     // at a twentieth of the step, changing h by at most a factor of two.
@@ -444,28 +454,15 @@ fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: usize>(
 }
 
 /// Newton at λ = 1 down to the requested tolerance.
-#[allow(clippy::too_many_arguments)]
 fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     v: [f64; N],
     x: &[f64; M],
     options: &Options,
-    accepted: u32,
-    rejected: u32,
-    iterations: u32,
-    min_ratio: f64,
+    mut account: Account,
 ) -> Solution<N> {
     let run = crate::start::newton(sys, v, x, options);
-    crate::newton::conclude(
-        sys,
-        start,
-        &run,
-        x,
-        1.0,
-        accepted,
-        rejected,
-        iterations + run.iterations,
-        min_ratio,
-    )
+    account.iterations += run.iterations;
+    crate::newton::conclude(sys, start, &run, x, account)
 }

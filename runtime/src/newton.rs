@@ -47,28 +47,57 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
         start,
         &run,
         x,
-        1.0,
-        0,
-        0,
-        run.iterations,
-        1.0,
+        Account {
+            lambda: 1.0,
+            accepted: 0,
+            rejected: 0,
+            iterations: run.iterations,
+            min_det_ratio: 1.0,
+        },
     ))
+}
+
+/// What a solve met on its way, for its [`Solution`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Account {
+    pub lambda: f64,
+    pub accepted: u32,
+    pub rejected: u32,
+    pub iterations: u32,
+    pub min_det_ratio: f64,
+}
+
+impl Account {
+    fn into_solution<const N: usize>(
+        self,
+        v: [f64; N],
+        status: Status,
+        error_estimate: f64,
+        det_ratio: f64,
+    ) -> Solution<N> {
+        Solution {
+            v,
+            status,
+            lambda: self.lambda,
+            steps_accepted: self.accepted,
+            steps_rejected: self.rejected,
+            newton_iterations: self.iterations,
+            error_estimate,
+            min_det_ratio: self.min_det_ratio.min(det_ratio),
+        }
+    }
 }
 
 /// The solution after a final Newton run: its own estimate and det B when it converged,
 /// re-evaluated otherwise.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     run: &crate::start::Newton<N>,
     x: &[f64; M],
-    lambda: f64,
-    steps_accepted: u32,
-    steps_rejected: u32,
-    newton_iterations: u32,
-    min_det_ratio: f64,
+    account: Account,
 ) -> Solution<N> {
+    let lambda = account.lambda;
     if !run.converged {
         let status = if run.singular {
             Status::Singular { lambda }
@@ -76,18 +105,7 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
             not_converged(sys, &run.v, x)
         };
         let v = if all_finite(&run.v) { run.v } else { start.v };
-        return finish(
-            sys,
-            start,
-            v,
-            x,
-            status,
-            lambda,
-            steps_accepted,
-            steps_rejected,
-            newton_iterations,
-            min_det_ratio,
-        );
+        return finish(sys, start, v, x, status, account);
     }
     // The last factorisation was at the iterate before the last (small) correction; det B
     // cannot change sign over it unless B is singular to rounding there.
@@ -97,16 +115,7 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     } else {
         Status::BranchChanged
     };
-    Solution {
-        v: run.v,
-        status,
-        lambda,
-        steps_accepted,
-        steps_rejected,
-        newton_iterations,
-        error_estimate: run.estimate,
-        min_det_ratio: min_det_ratio.min(ratio),
-    }
+    account.into_solution(run.v, status, run.estimate, ratio)
 }
 
 pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(
@@ -122,18 +131,13 @@ pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(
 }
 
 /// Fills in the error estimate and checks the branch by the sign of det B.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn finish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     v: [f64; N],
     x: &[f64; M],
     mut status: Status,
-    lambda: f64,
-    steps_accepted: u32,
-    steps_rejected: u32,
-    newton_iterations: u32,
-    min_det_ratio: f64,
+    account: Account,
 ) -> Solution<N> {
     let (error_estimate, det) = match correction(sys, &v, x) {
         Some((d, det)) => (norm(&d), det),
@@ -143,14 +147,5 @@ pub(crate) fn finish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if status == Status::Converged && det * start.det <= 0.0 {
         status = Status::BranchChanged;
     }
-    Solution {
-        v,
-        status,
-        lambda,
-        steps_accepted,
-        steps_rejected,
-        newton_iterations,
-        error_estimate,
-        min_det_ratio: min_det_ratio.min(ratio),
-    }
+    account.into_solution(v, status, error_estimate, ratio)
 }

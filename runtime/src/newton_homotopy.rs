@@ -3,7 +3,7 @@
 //! iteration fails is halved. It follows the start's branch while steps are small compared with
 //! the distance to a singularity, and it cannot pass a fold.
 
-use crate::newton::{conclude, finish, not_converged};
+use crate::newton::{conclude, finish, not_converged, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.
@@ -32,7 +32,18 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
             let x = at(lambda);
             let status = not_converged(sys, &v, &x);
             return Ok(finish(
-                sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio,
+                sys,
+                start,
+                v,
+                &x,
+                status,
+                Account {
+                    lambda,
+                    accepted,
+                    rejected,
+                    iterations,
+                    min_det_ratio: min_ratio,
+                },
             ));
         }
         let next = (lambda + step).min(1.0);
@@ -46,7 +57,17 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
             min_ratio = min_ratio.min((run.det / start.det).abs());
             if lambda >= 1.0 {
                 return Ok(conclude(
-                    sys, start, &run, &x, 1.0, accepted, rejected, iterations, min_ratio,
+                    sys,
+                    start,
+                    &run,
+                    &x,
+                    Account {
+                        lambda: 1.0,
+                        accepted,
+                        rejected,
+                        iterations,
+                        min_det_ratio: min_ratio,
+                    },
                 ));
             }
             step = (step * 2.0).min(nominal);
@@ -61,7 +82,18 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 };
                 let x = at(lambda);
                 return Ok(finish(
-                    sys, start, v, &x, status, lambda, accepted, rejected, iterations, min_ratio,
+                    sys,
+                    start,
+                    v,
+                    &x,
+                    status,
+                    Account {
+                        lambda,
+                        accepted,
+                        rejected,
+                        iterations,
+                        min_det_ratio: min_ratio,
+                    },
                 ));
             }
         }

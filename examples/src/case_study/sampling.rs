@@ -61,7 +61,7 @@ pub struct TestPoint {
     pub near_singular: bool,
 }
 
-/// SplitMix64.
+/// SplitMix64: seeded and reproducible (the protocol needs repeatability, not quality).
 pub struct Rng(u64);
 
 impl Rng {
@@ -75,9 +75,14 @@ impl Rng {
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
     }
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
     /// Uniform in [-1, 1).
     pub fn symmetric(&mut self) -> f64 {
-        2.0 * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64) - 1.0
+        self.uniform(-1.0, 1.0)
     }
 }
 

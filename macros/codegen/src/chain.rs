@@ -280,6 +280,20 @@ fn single_variable(p: &PairDecl, c: &ChainDecl) -> Result<(), (Span, String)> {
     }
 }
 
+/// An active slider's joint variable, its offset constant, and the leg length `x + offset`.
+fn leg_length(b: &mut Builder, slider: &PairDecl, chain: &str) -> (usize, Option<Expr>, Expr) {
+    let input = b.input(&slider.variables[0]);
+    let offset = slider
+        .offset
+        .as_ref()
+        .map(|o| b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}")));
+    let length = match &offset {
+        Some(o) => Expr::plus(Expr::Input(input), o.clone()),
+        None => Expr::Input(input),
+    };
+    (input, offset, length)
+}
+
 /// Emits the chain's equations on platform point `p` (of `k` points).
 pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) -> ChainModel {
     let g: Vec3 = [0, 1, 2].map(|a| Expr::Unknown(a * k + p));
@@ -287,14 +301,7 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
     match shape {
         Shape::Leg { anchor, slider, .. } => {
             let a = b.pivot_constants("base", &anchor.to_string());
-            let input = b.input(&slider.variables[0]);
-            let offset = slider.offset.as_ref().map(|o| {
-                b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}"))
-            });
-            let length = match &offset {
-                Some(o) => Expr::plus(Expr::Input(input), o.clone()),
-                None => Expr::Input(input),
-            };
+            let (input, offset, length) = leg_length(b, slider, &chain);
             let eq = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
                 equations: vec![eq],
@@ -435,14 +442,7 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     },
                 )
             });
-            let input = b.input(&slider.variables[0]);
-            let offset = slider.offset.as_ref().map(|o| {
-                b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}"))
-            });
-            let length = match &offset {
-                Some(o) => Expr::plus(Expr::Input(input), o.clone()),
-                None => Expr::Input(input),
-            };
+            let (input, offset, length) = leg_length(b, slider, &chain);
             let plane = expr::dot(&e, &expr::vsub(&g, &a));
             let dist = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
