@@ -15,87 +15,51 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Result<Solution<N>, SolveError> {
     crate::start::check_target(sys, target, options)?;
     let mut v = start.v;
-    let mut lambda = 0.0;
     let nominal = 1.0 / options.homotopy_steps as f64;
     let mut step = nominal;
-    let (mut accepted, mut rejected, mut iterations) = (0u32, 0u32, 0u32);
-    let mut min_ratio = 1.0f64;
+    let mut account = Account {
+        lambda: 0.0,
+        accepted: 0,
+        rejected: 0,
+        iterations: 0,
+        min_det_ratio: 1.0,
+    };
     let at = |l: f64| -> [f64; M] {
-        let mut x = [0.0; M];
-        for j in 0..M {
-            x[j] = start.x[j] + l * (target[j] - start.x[j]);
-        }
-        x
+        core::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]))
     };
     loop {
-        if accepted + rejected >= options.max_steps {
-            let x = at(lambda);
-            let status = not_converged(sys, &v, &x);
-            return Ok(finish(
-                sys,
-                start,
-                v,
-                &x,
-                status,
-                Account {
-                    lambda,
-                    accepted,
-                    rejected,
-                    iterations,
-                    min_det_ratio: min_ratio,
-                },
-            ));
-        }
-        let next = (lambda + step).min(1.0);
-        let x = at(next);
-        let run = crate::start::newton(sys, v, &x, options);
-        iterations += run.iterations;
-        if run.converged {
-            accepted += 1;
-            v = run.v;
-            lambda = next;
-            min_ratio = min_ratio.min((run.det / start.det).abs());
-            if lambda >= 1.0 {
-                return Ok(conclude(
-                    sys,
-                    start,
-                    &run,
-                    &x,
-                    Account {
-                        lambda: 1.0,
-                        accepted,
-                        rejected,
-                        iterations,
-                        min_det_ratio: min_ratio,
-                    },
-                ));
-            }
-            step = (step * 2.0).min(nominal);
+        let mut failure = None;
+        if account.accepted + account.rejected >= options.max_steps {
+            failure = Some(not_converged(sys, &v, &at(account.lambda)));
         } else {
-            rejected += 1;
-            step *= 0.5;
-            if step < 1e-6 {
-                let status = if run.singular {
-                    Status::Singular { lambda }
-                } else {
-                    Status::StepTooSmall { lambda }
-                };
-                let x = at(lambda);
-                return Ok(finish(
-                    sys,
-                    start,
-                    v,
-                    &x,
-                    status,
-                    Account {
-                        lambda,
-                        accepted,
-                        rejected,
-                        iterations,
-                        min_det_ratio: min_ratio,
-                    },
-                ));
+            let next = (account.lambda + step).min(1.0);
+            let x = at(next);
+            let run = crate::start::newton(sys, v, &x, options);
+            account.iterations += run.iterations;
+            if run.converged {
+                account.accepted += 1;
+                v = run.v;
+                account.lambda = next;
+                account.min_det_ratio = account.min_det_ratio.min((run.det / start.det).abs());
+                if next >= 1.0 {
+                    return Ok(conclude(sys, start, &run, &x, account));
+                }
+                step = (step * 2.0).min(nominal);
+            } else {
+                account.rejected += 1;
+                step *= 0.5;
+                if step < 1e-6 {
+                    let lambda = account.lambda;
+                    failure = Some(if run.singular {
+                        Status::Singular { lambda }
+                    } else {
+                        Status::StepTooSmall { lambda }
+                    });
+                }
             }
+        }
+        if let Some(status) = failure {
+            return Ok(finish(sys, start, v, &at(account.lambda), status, account));
         }
     }
 }
