@@ -251,6 +251,33 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
 /// Solves F(v, x*) = 0 by pseudo-arc-length continuation from the start along the straight
 /// joint-space segment, stopping with [`Status::Fold`] where that segment leaves the valid
 /// joint space.
+///
+/// ```
+/// use linkage::{arc_length, Mechanism, Options, Status};
+/// # linkage::mechanism! {
+/// #     pub struct Rps;
+/// #     base {
+/// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+/// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+/// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+/// #     }
+/// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+/// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+/// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+/// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+/// # }
+/// # let rps = Rps::new();
+/// # let v0 = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+/// # let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+/// # let start = linkage::Start::new(&rps, v0, x0).unwrap();
+/// // `start`: a 3-RPS at its home pose, legs ≈ 158 mm (see the crate docs for the declaration).
+/// let sol = arc_length(&rps, &start, &[170.0, 150.0, 160.0], &Options::TIGHT).unwrap();
+/// assert_eq!(sol.status, Status::Converged);
+/// assert!(sol.error_estimate < 1e-9 && sol.lambda == 1.0);
+/// // Legs no platform pose can take: the path meets the workspace boundary, a fold.
+/// let far = arc_length(&rps, &start, &[400.0, 60.0, 158.0], &Options::TIGHT).unwrap();
+/// assert!(!far.is_ok() && far.lambda < 1.0);
+/// ```
 pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,

@@ -74,6 +74,27 @@ fn point<const N: usize>(v: &[f64; N], points: usize, p: usize) -> [f64; 3] {
 
 /// The platform pose that places its frame pivots where `v` has them. `None` if they are
 /// collinear or not finite.
+///
+/// ```
+/// use linkage::{pose_from_unknowns, unknowns_from_pose, Pose};
+/// # linkage::mechanism! {
+/// #     pub struct Rps;
+/// #     base {
+/// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+/// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+/// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+/// #     }
+/// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+/// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+/// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+/// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+/// # }
+/// # let rps = Rps::new();
+/// let pose = Pose::from_euler(0.1, -0.05, 0.02, [1.0, 2.0, 140.0]);
+/// let v = unknowns_from_pose(&rps, &pose);
+/// let back = pose_from_unknowns(&rps, &v).unwrap();
+/// assert!((back.euler()[0] - 0.1).abs() < 1e-12 && (back.translation[2] - 140.0).abs() < 1e-12);
+/// ```
 pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],

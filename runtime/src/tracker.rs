@@ -45,6 +45,37 @@ impl core::fmt::Display for TrackError {
 /// zeroth correction, so a single Newton step can confirm convergence), and falls back to full
 /// pseudo-arc-length continuation from the last sample when that test fails. A sample is
 /// accepted only if det B keeps the start's sign.
+///
+/// ```
+/// use linkage::{Mechanism, Options, Tracker};
+/// # linkage::mechanism! {
+/// #     pub struct Rps;
+/// #     base {
+/// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+/// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+/// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+/// #     }
+/// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+/// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+/// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+/// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+/// # }
+/// # let rps = Rps::new();
+/// # let v0 = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+/// # let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+/// # let start = linkage::Start::new(&rps, v0, x0).unwrap();
+/// let mut tracker = Tracker::new(rps.clone(), start, Options::TIGHT);
+/// for k in 1..=1000 {
+///     // 1 kHz samples of a slow heave.
+///     let t = k as f64 * 1e-3;
+///     let legs = x0.map(|l| l + 10.0 * (2.0 * std::f64::consts::PI * t).sin());
+///     let sample = tracker.update(&legs).unwrap();
+///     assert!(sample.proximity > 0.1, "far from a singularity");
+/// }
+/// // A bad sample is refused, and the tracker carries on.
+/// assert!(tracker.update(&[f64::NAN; 3]).is_err());
+/// assert!(tracker.update(&x0).is_ok());
+/// ```
 #[derive(Clone, Debug)]
 pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     sys: S,
