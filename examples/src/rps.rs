@@ -2,7 +2,7 @@
 //! active prismatic pairs, and joined to the platform by spherical pairs. Three degrees of
 //! freedom: heave, roll and pitch (with parasitic motions).
 
-use linkage::{Mechanism, Pose, SolveError, Start};
+use linkage::{Pose, SolveError, Start};
 
 linkage::mechanism! {
     /// A 3-RPS with a 100 mm base triangle and a 50 mm platform triangle (circumradii); each
@@ -15,7 +15,7 @@ linkage::mechanism! {
         A3 = [86.603, -50.0, 0.0],     B3 = [91.603, -41.340, 0.0],
     }
 
-    platform {
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
         G1 = [0.0, 50.0, 0.0],
         G2 = [-43.301, -25.0, 0.0],
         G3 = [43.301, -25.0, 0.0],
@@ -26,16 +26,13 @@ linkage::mechanism! {
     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
 }
 
-/// The home pose: platform level, 150 mm above the base.
+/// The home pose: platform level, 150 mm above the base (the declaration's `home`).
 pub fn home_pose() -> Pose {
-    Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0])
+    let [yaw, pitch, roll, x, y, z] = Rps3::HOME;
+    Pose::from_euler(yaw, pitch, roll, [x, y, z])
 }
 
 /// The home configuration (legs ≈ 158.1 mm).
 pub fn home_start(sys: &Rps3) -> Result<Start<9, 3>, SolveError> {
-    let v = linkage::unknowns_from_pose(sys, &home_pose());
-    let x = sys
-        .inverse(&v, &[0.0; 3])
-        .map_err(|_| SolveError::NonFinite)?;
-    Start::new(sys, v, x)
+    sys.home_start()
 }

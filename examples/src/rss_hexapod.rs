@@ -1,7 +1,7 @@
 //! A 6-RSS rotary hexapod: six motors on the base turn cranks (active revolute pairs), and
 //! rods with spherical joints at both ends carry the platform.
 
-use linkage::{Mechanism, Pose, SolveError, Start};
+use linkage::{Pose, SolveError, Start};
 
 linkage::mechanism! {
     /// A rotary hexapod with 40 mm cranks and 171 mm rods. Motor axes are tangent to a
@@ -19,7 +19,7 @@ linkage::mechanism! {
         A6 = [-17.365, -98.481, 0.0],  B6 = [2.331, -101.954, 0.0],
     }
 
-    platform {
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
         G1 = [49.497, -49.497, 0.0],
         G2 = [49.497, 49.497, 0.0],
         G3 = [18.117, 67.615, 0.0],
@@ -49,16 +49,13 @@ linkage::mechanism! {
     chain arm6 = base - R(active q6, axis = A6 -> B6) - crank6 - S(C6) - rod6 - S(G6) - platform;
 }
 
-/// The home pose: platform level, 150 mm above the base.
+/// The home pose: platform level, 150 mm above the base (the declaration's `home`).
 pub fn home_pose() -> Pose {
-    Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0])
+    let [yaw, pitch, roll, x, y, z] = RssHexapod::HOME;
+    Pose::from_euler(yaw, pitch, roll, [x, y, z])
 }
 
 /// The home configuration, crank angles from inverse kinematics (near zero).
 pub fn home_start(sys: &RssHexapod) -> Result<Start<18, 6>, SolveError> {
-    let v = linkage::unknowns_from_pose(sys, &home_pose());
-    let x = sys
-        .inverse(&v, &[0.0; 6])
-        .map_err(|_| SolveError::NonFinite)?;
-    Start::new(sys, v, x)
+    sys.home_start()
 }

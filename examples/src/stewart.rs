@@ -18,7 +18,7 @@ macro_rules! stewart {
                 D6 = [115.911, 200.764, 0.0],
             }
 
-            platform(frame = [G1, G3, G5], form = $form) {
+            platform(frame = [G1, G3, G5], form = $form, home = [0.0, 0.0, 0.0, 58.971, -11.739, 159.011]) {
                 G1 = [122.475, 122.475, 0.0],
                 G2 = [51.764, 0.0, 0.0],
                 G3 = [0.0, 0.0, 0.0],

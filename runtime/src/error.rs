@@ -2,36 +2,7 @@
 
 use core::fmt;
 
-/// A geometry that cannot define the mechanism.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum GeometryError {
-    /// A geometry value is NaN or infinite.
-    NonFinite { name: &'static str },
-    /// No geometry value or pivot has this name.
-    UnknownName,
-    /// The platform's three frame pivots are (nearly) collinear.
-    CollinearFrame,
-    /// A platform pivot left the plane of the frame, but the system was generated in the
-    /// coplanar form of Eq. 16; declare the platform with `form = general`.
-    NotCoplanar,
-    /// A pair's axis is given by (nearly) coincident points.
-    DegenerateAxis,
-}
-
-impl fmt::Display for GeometryError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            GeometryError::NonFinite { name } => write!(f, "geometry value `{name}` is not finite"),
-            GeometryError::UnknownName => write!(f, "no geometry value or pivot has that name"),
-            GeometryError::CollinearFrame => write!(f, "the platform's frame pivots are collinear"),
-            GeometryError::NotCoplanar => write!(
-                f,
-                "a platform pivot is off the frame's plane but the system uses the coplanar form"
-            ),
-            GeometryError::DegenerateAxis => write!(f, "a pair axis is given by coincident points"),
-        }
-    }
-}
+pub use linkage_geometry::GeometryError;
 
 /// Why joint inputs could not be recovered from pivot positions.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,7 +29,5 @@ impl fmt::Display for InverseError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for GeometryError {}
 #[cfg(feature = "std")]
 impl std::error::Error for InverseError {}

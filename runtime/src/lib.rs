@@ -18,7 +18,7 @@ extern crate self as linkage;
 ///     pub struct Name;
 ///     params { name = 1.5, ... }                        // optional geometry parameters
 ///     base { A1 = [x, y, z], ... }                      // base pivots, base frame
-///     platform(frame = [P1, P2, P3]) { P1 = [x, y, z], ... }  // platform pivots, its frame
+///     platform(frame = [P1, P2, P3], home = [yaw, pitch, roll, x, y, z]) { P1 = [x, y, z], ... }
 ///     link crank1 { C1 = [x, y, z] }                    // pivots at the home configuration, base frame
 ///     link rod1 { length = 150.0 }                      // a binary link between two point joints
 ///     chain leg1 = base - S(A1) - P(active L1) - S(P1) - platform;
@@ -30,8 +30,10 @@ extern crate self as linkage;
 /// A coordinate is a number or a name declared in `params`. Pairs: `R`, `P`, `C`, `H` (with
 /// `lead = ...`), `S`, `U`; each `active NAME` (its joint variable) or `passive`; `S` and `U`
 /// name their centre pivot. `frame` chooses the three platform pivots that locate it
-/// (default: the largest triangle); `offset = ...` on a `P` pair adds a constant to the leg
-/// length. The generated type implements [`Mechanism`].
+/// (default: the largest triangle); `form = coplanar | general` the rigid-body form (default:
+/// from the geometry); `home` a reference pose, checked at compile time (the mechanism must
+/// assemble there, ∂F/∂v must be regular) and offered as `home_start()`. `offset = ...` on a
+/// `P` pair adds a constant to the leg length. The generated type implements [`Mechanism`].
 pub use linkage_macros::mechanism;
 
 mod arc_length;

@@ -6,6 +6,7 @@
 //!              | "base" "{" pivot* "}"
 //!              | "platform" ("(" option ("," option)* ")")? "{" pivot* "}"
 //! option      := "frame" "=" "[" IDENT "," IDENT "," IDENT "]" | "form" "=" ("coplanar" | "general")
+//!              | "home" "=" "[" number × 6 "]"      (yaw, pitch, roll, x, y, z)
 //!              | "link" IDENT "{" (pivot | "length" "=" coord ","?)* "}"
 //!              | "chain" IDENT "=" item ("-" item)* ";"
 //! pivot       := IDENT "=" "[" coord "," coord "," coord "]" ","?
@@ -81,6 +82,9 @@ pub struct LinkDecl {
     /// `form = coplanar | general`: the rigid-body form of the platform (default: from the
     /// declared geometry).
     pub form: Option<Ident>,
+    /// `home = [yaw, pitch, roll, x, y, z]`: the platform's reference pose, checked at
+    /// compile time and offered as `home_start()`.
+    pub home: Option<(Span, [f64; 6])>,
 }
 
 pub struct ChainDecl {
@@ -136,6 +140,7 @@ mod kw {
     syn::custom_keyword!(chain);
     syn::custom_keyword!(frame);
     syn::custom_keyword!(form);
+    syn::custom_keyword!(home);
     syn::custom_keyword!(length);
     syn::custom_keyword!(active);
     syn::custom_keyword!(passive);
@@ -191,6 +196,7 @@ impl Parse for Mechanism {
                 let kw: kw::platform = input.parse()?;
                 let mut frame = None;
                 let mut form = None;
+                let mut home = None;
                 if input.peek(token::Paren) {
                     let args;
                     parenthesized!(args in input);
@@ -213,9 +219,22 @@ impl Parse for Mechanism {
                                 ));
                             }
                             form = Some(f);
+                        } else if args.peek(kw::home) {
+                            let kw: kw::home = args.parse()?;
+                            args.parse::<Token![=]>()?;
+                            let list;
+                            let bracket = bracketed!(list in args);
+                            let values: Vec<Number> = list
+                                .parse_terminated(parse_number, Token![,])?
+                                .into_iter()
+                                .collect();
+                            let values: [f64; 6] = values.iter().map(|n| n.value).collect::<Vec<_>>().try_into().map_err(|_| {
+                                syn::Error::new(bracket.span.join(), "`home` is a pose `[yaw, pitch, roll, x, y, z]` (radians, base-frame units)")
+                            })?;
+                            home = Some((kw.span, values));
                         } else {
                             return Err(args.error(
-                                "expected `frame = [A, B, C]` or `form = coplanar | general`",
+                                "expected `frame = [A, B, C]`, `form = coplanar | general` or `home = [yaw, pitch, roll, x, y, z]`",
                             ));
                         }
                         if !args.is_empty() {
@@ -230,6 +249,7 @@ impl Parse for Mechanism {
                     frame,
                 )?;
                 link.form = form;
+                link.home = home;
                 if m.platform.is_some() {
                     return Err(syn::Error::new(
                         kw.span,
@@ -276,6 +296,7 @@ fn parse_link_body(
         length: None,
         frame,
         form: None,
+        home: None,
     };
     while !body.is_empty() {
         if body.peek(kw::length) && body.peek2(Token![=]) {

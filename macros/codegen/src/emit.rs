@@ -7,7 +7,11 @@ use crate::model::{Inverse, Model, Recipe};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
-pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
+pub fn expand(
+    mech: &Mechanism,
+    model: &Model,
+    home: Option<&crate::reference::Reference>,
+) -> TokenStream {
     let name = &mech.name;
     let vis = &mech.vis;
     let attrs = &mech.attrs;
@@ -82,6 +86,29 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
         quote!(#[allow(unused_variables)])
     };
     let priv_ = quote!(::linkage::__private);
+    let home_items = home.map(|r| {
+        let pose = r.pose.map(lit);
+        let x0 = r.x.iter().map(|x| lit(*x));
+        quote! {
+            /// The declared `home` pose `[yaw, pitch, roll, x, y, z]`, checked at compile time:
+            /// the mechanism assembles there and ∂F/∂v is regular.
+            pub const HOME: [f64; 6] = [#(#pose),*];
+            /// The joint inputs at `HOME`, from inverse kinematics on the declared geometry.
+            pub const HOME_INPUTS: [f64; #m] = [#(#x0),*];
+
+            /// The start configuration at [`Self::HOME`] for the current geometry (inputs from
+            /// inverse kinematics).
+            pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
+                let [yaw, pitch, roll, x, y, z] = Self::HOME;
+                let v = ::linkage::unknowns_from_pose(self, &::linkage::Pose::from_euler(yaw, pitch, roll, [x, y, z]));
+                let inputs = <Self as ::linkage::Mechanism<#n, #m>>::inverse(self, &v, &Self::HOME_INPUTS).map_err(|e| match e {
+                    ::linkage::InverseError::Unreachable { input } | ::linkage::InverseError::NoClosedForm { input } => ::linkage::SolveError::InvalidInput { input },
+                    ::linkage::InverseError::NonFinite => ::linkage::SolveError::NonFinite,
+                })?;
+                ::linkage::Start::new(self, v, inputs)
+            }
+        }
+    });
     let plan = crate::factor::plan(n, &jac);
     let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, &jac, m);
     let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
@@ -151,6 +178,8 @@ pub fn expand(mech: &Mechanism, model: &Model) -> TokenStream {
                 *self = Self::from_geometry(g)?;
                 Ok(())
             }
+
+            #home_items
 
             /// Moves pivot `pivot` of link `link` (its own frame); the mechanism is unchanged on error.
             pub fn set_pivot(&mut self, link: &str, pivot: &str, p: [f64; 3]) -> ::core::result::Result<(), ::linkage::GeometryError> {

@@ -13,6 +13,7 @@ pub mod emit_factor;
 pub mod expr;
 pub mod factor;
 pub mod model;
+pub mod reference;
 pub mod rigid;
 pub mod simplify;
 
@@ -53,7 +54,11 @@ fn fallback_name(input: &TokenStream) -> Option<syn::Ident> {
 fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
     let mech = parse(input)?;
     let model = model::build(&mech)?;
-    Ok(emit::expand(&mech, &model))
+    let home = match mech.platform.as_ref().and_then(|p| p.home) {
+        Some(home) => Some(reference::check(&model, home)?),
+        None => None,
+    };
+    Ok(emit::expand(&mech, &model, home.as_ref()))
 }
 
 /// Parses and validates a declaration.

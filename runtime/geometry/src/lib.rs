@@ -1,0 +1,204 @@
+//! Geometry kernels shared by the `mechanism!` generator, which evaluates them at compile time
+//! on the declared geometry, and by the `linkage` runtime, which evaluates them whenever the
+//! geometry changes. One implementation, so both agree to the last bit.
+
+#![no_std]
+#![forbid(unsafe_code)]
+
+pub mod math;
+
+use core::f64::consts::PI;
+use core::fmt;
+use math::{acos, atan2, cross3, dot3, norm3, sqrt, sub3};
+
+/// A geometry that cannot define the mechanism.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GeometryError {
+    /// A geometry value is NaN or infinite.
+    NonFinite { name: &'static str },
+    /// No geometry value or pivot has this name.
+    UnknownName,
+    /// The platform's three frame pivots are (nearly) collinear.
+    CollinearFrame,
+    /// A platform pivot left the plane of the frame, but the system was generated in the
+    /// coplanar form of Eq. 16; declare the platform with `form = general`.
+    NotCoplanar,
+    /// A pair's axis is given by (nearly) coincident points.
+    DegenerateAxis,
+}
+
+impl fmt::Display for GeometryError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            GeometryError::NonFinite { name } => write!(f, "geometry value `{name}` is not finite"),
+            GeometryError::UnknownName => write!(f, "no geometry value or pivot has that name"),
+            GeometryError::CollinearFrame => write!(f, "the platform's frame pivots are collinear"),
+            GeometryError::NotCoplanar => write!(
+                f,
+                "a platform pivot is off the frame's plane but the system uses the coplanar form"
+            ),
+            GeometryError::DegenerateAxis => write!(f, "a pair axis is given by coincident points"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+extern crate std;
+
+#[cfg(feature = "std")]
+impl std::error::Error for GeometryError {}
+
+#[inline(always)]
+pub fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    norm3(sub3(a, b))
+}
+
+/// Coefficients `[a, b, c, d]` with `q = a p1 + b p2 + c p3 + d (p2 − p1) × (p3 − p1)` and
+/// `a + b + c = 1` (Eq. 17 for coplanar points, where d = 0).
+pub fn rigid_coefficients(
+    frame: [[f64; 3]; 3],
+    q: [f64; 3],
+    coplanar: bool,
+) -> Result<[f64; 4], GeometryError> {
+    let [p1, p2, p3] = frame;
+    let e1 = sub3(p2, p1);
+    let e2 = sub3(p3, p1);
+    let n = cross3(e1, e2);
+    let nn = dot3(n, n);
+    let scale = norm3(e1).max(norm3(e2));
+    if !(nn > 1e-18 * scale * scale * scale * scale) {
+        return Err(GeometryError::CollinearFrame);
+    }
+    let r = sub3(q, p1);
+    let d = dot3(r, n) / nn;
+    if coplanar && (d * sqrt(nn)).abs() > 1e-9 * scale.max(norm3(r)) {
+        return Err(GeometryError::NotCoplanar);
+    }
+    let (g11, g12, g22) = (dot3(e1, e1), dot3(e1, e2), dot3(e2, e2));
+    let (r1, r2) = (dot3(r, e1), dot3(r, e2));
+    // The Gram determinant g11 g22 − g12² equals ‖n‖² (Lagrange's identity).
+    let b = (g22 * r1 - g12 * r2) / nn;
+    let c = (g11 * r2 - g12 * r1) / nn;
+    Ok([1.0 - b - c, b, c, if coplanar { 0.0 } else { d }])
+}
+
+/// `[e, o, u, w]` for rotating `q` about the axis `a → b`: e the unit axis, o the foot of q on
+/// the axis, u = q − o the arm and w = e × u, so that Eq. 2 gives `o + u cos θ + w sin θ`.
+pub fn axis_frame(a: [f64; 3], b: [f64; 3], q: [f64; 3]) -> Result<[f64; 12], GeometryError> {
+    let d = sub3(b, a);
+    let len = norm3(d);
+    let scale = norm3(a).max(norm3(b)).max(1.0);
+    if !(len > 1e-12 * scale) {
+        return Err(GeometryError::DegenerateAxis);
+    }
+    let e = [d[0] / len, d[1] / len, d[2] / len];
+    let r = sub3(q, a);
+    let t = dot3(e, r);
+    let o = [a[0] + t * e[0], a[1] + t * e[1], a[2] + t * e[2]];
+    let u = sub3(q, o);
+    let w = cross3(e, u);
+    Ok([
+        e[0], e[1], e[2], o[0], o[1], o[2], u[0], u[1], u[2], w[0], w[1], w[2],
+    ])
+}
+
+/// The angle θ nearest `reference` with `‖g − (o + u cos θ + w sin θ)‖ = length`.
+pub fn revolute_rod_inverse(
+    g: [f64; 3],
+    o: [f64; 3],
+    u: [f64; 3],
+    w: [f64; 3],
+    length: f64,
+    reference: f64,
+) -> Option<f64> {
+    let h = sub3(g, o);
+    let a = 2.0 * dot3(h, u);
+    let b = 2.0 * dot3(h, w);
+    let c = dot3(h, h) + dot3(u, u) - length * length;
+    let r = sqrt(a * a + b * b);
+    if !(r > 0.0) || !c.is_finite() || c.abs() > r * (1.0 + 1e-12) {
+        return None;
+    }
+    let phi = atan2(b, a);
+    let delta = acos((c / r).clamp(-1.0, 1.0));
+    let near = |t: f64| {
+        let mut d = (t - reference) % (2.0 * PI);
+        if d > PI {
+            d -= 2.0 * PI;
+        } else if d <= -PI {
+            d += 2.0 * PI;
+        }
+        reference + d
+    };
+    let (t1, t2) = (near(phi + delta), near(phi - delta));
+    Some(if (t1 - reference).abs() <= (t2 - reference).abs() {
+        t1
+    } else {
+        t2
+    })
+}
+
+/// The slide s nearest `reference` with `‖g − (c0 + s e)‖ = length`.
+pub fn prismatic_rod_inverse(
+    g: [f64; 3],
+    c0: [f64; 3],
+    e: [f64; 3],
+    length: f64,
+    reference: f64,
+) -> Option<f64> {
+    let h = sub3(g, c0);
+    let t = dot3(e, h);
+    let disc = t * t - dot3(h, h) + length * length;
+    if !(disc >= 0.0) {
+        return None;
+    }
+    let (s1, s2) = (t + sqrt(disc), t - sqrt(disc));
+    Some(if (s1 - reference).abs() <= (s2 - reference).abs() {
+        s1
+    } else {
+        s2
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use math::{cos, sin};
+
+    #[test]
+    fn rigid_coefficients_reproduce_the_point_and_reject_mirrors() {
+        let frame = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 3.0, 0.0]];
+        let q = [0.5, 1.0, 2.0];
+        let [a, b, c, d] = rigid_coefficients(frame, q, false).unwrap();
+        let n = cross3(sub3(frame[1], frame[0]), sub3(frame[2], frame[0]));
+        for k in 0..3 {
+            let rebuilt = a * frame[0][k] + b * frame[1][k] + c * frame[2][k] + d * n[k];
+            assert!((rebuilt - q[k]).abs() < 1e-12);
+        }
+        assert_eq!(
+            rigid_coefficients(frame, q, true),
+            Err(GeometryError::NotCoplanar)
+        );
+        let line = [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+        assert_eq!(
+            rigid_coefficients(line, q, false),
+            Err(GeometryError::CollinearFrame)
+        );
+    }
+
+    #[test]
+    fn revolute_inverse_round_trips() {
+        let f = axis_frame([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [30.0, 0.0, 5.0]).unwrap();
+        let (o, u, w) = ([f[3], f[4], f[5]], [f[6], f[7], f[8]], [f[9], f[10], f[11]]);
+        let th = 0.3;
+        let tip = [
+            o[0] + u[0] * cos(th) + w[0] * sin(th),
+            o[1] + u[1] * cos(th) + w[1] * sin(th),
+            o[2] + u[2] * cos(th) + w[2] * sin(th),
+        ];
+        let g = [tip[0] + 10.0, tip[1] + 40.0, tip[2] + 80.0];
+        let l = distance(g, tip);
+        let back = revolute_rod_inverse(g, o, u, w, l, 0.25).unwrap();
+        assert!((back - th).abs() < 1e-9, "{back}");
+    }
+}
