@@ -74,6 +74,15 @@ impl<const N: usize> Pivots<N> {
         self.swaps
     }
 
+    /// A factorisation's record, for generated elimination code.
+    pub const fn from_parts(swaps: [usize; N], det: f64, pivot_ratio: f64) -> Self {
+        Pivots {
+            swaps,
+            det,
+            pivot_ratio,
+        }
+    }
+
     /// No swaps, determinant 1: the state before a factorisation.
     pub const fn new() -> Self {
         Pivots {

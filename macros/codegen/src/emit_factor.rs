@@ -150,6 +150,8 @@ pub fn factor(
         quote!(out[#c] = (b[#r] #(#terms)*) * #inv;)
     });
     let ty = quote!(::linkage::lu::SparseFactor<#k, #nl, #nu>);
+    let dense_lu = unrolled_lu(k);
+    let dense_solve = unrolled_solve(k);
     let fns = quote! {
         fn new_factor(&self) -> Self::Factor {
             ::linkage::lu::SparseFactor::new()
@@ -163,7 +165,7 @@ pub fn factor(
             #(#l_stmts)*
             #(#u_stmts)*
             #(#z_stmts)*
-            let piv = ::linkage::lu::factor_dense::<#k>(&mut f.z)?;
+            let piv = { #dense_lu };
             f.piv = piv;
             let det = #det;
             if !det.is_finite() {
@@ -177,7 +179,7 @@ pub fn factor(
             #(#forward)*
             let mut y = [0.0f64; #k];
             #(#gather)*
-            ::linkage::lu::solve_dense(&f.z, &f.piv, &mut y);
+            #dense_solve
             let mut out = [0.0f64; #n];
             #(#scatter)*
             #(#back)*
@@ -185,4 +187,65 @@ pub fn factor(
         }
     };
     (ty, fns, (adds, mults + plan.statics.len()))
+}
+
+/// LU with partial pivoting of the `k`×`k` block `f.z`, unrolled: every loop bound is a
+/// literal, so the compiler schedules the whole elimination as straight-line code. Evaluates
+/// to `::linkage::lu::Pivots<k>`; returns `None` from the enclosing function when a column has
+/// no usable pivot.
+fn unrolled_lu(k: usize) -> TokenStream {
+    let steps = (0..k).map(|c| {
+        let search =
+            (c + 1..k).map(|i| quote!(let a = z[#i][#c].abs(); if a > best { best = a; p = #i; }));
+        let rows = (c + 1..k).map(|i| {
+            let updates = (c + 1..k).map(|j| quote!(z[#i][#j] -= l * pr[#j];));
+            quote!({ let l = z[#i][#c] * inv; z[#i][#c] = l; #(#updates)* })
+        });
+        quote! {
+            let mut p = #c;
+            let mut best = z[#c][#c].abs();
+            #(#search)*
+            if !(best > 0.0) || !best.is_finite() {
+                return None;
+            }
+            swaps[#c] = p;
+            if p != #c {
+                z.swap(#c, p);
+                det = -det;
+            }
+            let pr = z[#c];
+            det *= pr[#c];
+            pmin = pmin.min(best);
+            pmax = pmax.max(best);
+            let inv = 1.0 / pr[#c];
+            #(#rows)*
+        }
+    });
+    quote! {
+        let z = &mut f.z;
+        let mut swaps = [0usize; #k];
+        let mut det = 1.0f64;
+        let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
+        #(#steps)*
+        ::linkage::lu::Pivots::from_parts(swaps, det, if #k == 0 { 1.0 } else { pmin / pmax })
+    }
+}
+
+/// The matching solve on `y`, unrolled.
+fn unrolled_solve(k: usize) -> TokenStream {
+    let permute = (0..k).map(|c| quote!(let p = swaps[#c]; if p != #c { y.swap(#c, p); }));
+    let forward = (1..k).map(|i| {
+        let terms = (0..i).map(|j| quote!(- f.z[#i][#j] * y[#j]));
+        quote!(y[#i] = y[#i] #(#terms)*;)
+    });
+    let backward = (0..k).rev().map(|i| {
+        let terms = (i + 1..k).map(|j| quote!(- f.z[#i][#j] * y[#j]));
+        quote!(y[#i] = (y[#i] #(#terms)*) / f.z[#i][#i];)
+    });
+    quote! {
+        let swaps = f.piv.swaps();
+        #(#permute)*
+        #(#forward)*
+        #(#backward)*
+    }
 }
