@@ -234,10 +234,7 @@ fn unrolled_lu(k: usize) -> TokenStream {
 /// The matching solve on `y`, unrolled.
 fn unrolled_solve(k: usize) -> TokenStream {
     let permute = (0..k).map(|c| quote!(let p = swaps[#c]; if p != #c { y.swap(#c, p); }));
-    let forward = (1..k).map(|i| {
-        let terms = (0..i).map(|j| quote!(- f.z[#i][#j] * y[#j]));
-        quote!(y[#i] = y[#i] #(#terms)*;)
-    });
+    let forward = (1..k).flat_map(|i| (0..i).map(move |j| quote!(y[#i] -= f.z[#i][#j] * y[#j];)));
     let backward = (0..k).rev().map(|i| {
         let terms = (i + 1..k).map(|j| quote!(- f.z[#i][#j] * y[#j]));
         quote!(y[#i] = (y[#i] #(#terms)*) / f.z[#i][#i];)
