@@ -236,6 +236,9 @@ fn unrolled_solve(k: usize) -> TokenStream {
     let permute = (0..k).map(|c| quote!(let p = swaps[#c]; if p != #c { y.swap(#c, p); }));
     let forward = (1..k).flat_map(|i| (0..i).map(move |j| quote!(y[#i] -= f.z[#i][#j] * y[#j];)));
     let backward = (0..k).rev().map(|i| {
+        if i + 1 == k {
+            return quote!(y[#i] /= f.z[#i][#i];);
+        }
         let terms = (i + 1..k).map(|j| quote!(- f.z[#i][#j] * y[#j]));
         quote!(y[#i] = (y[#i] #(#terms)*) / f.z[#i][#i];)
     });
