@@ -7,7 +7,7 @@ use linkage_examples::stewart::{
     find_start, legs_for_pose, SixSix, Stewart, StewartGeneral, HOME_LEGS,
 };
 use linkage_examples::{rps, rss_hexapod};
-use linkage_tests::{check_jacobians, max_diff, straight_path_truth};
+use linkage_tests::{check_factorization, check_jacobians, max_diff, straight_path_truth};
 use proptest::prelude::*;
 
 /// Table III's joints moved by up to `by` mm in x and y, and `lift` mm in z.
@@ -137,5 +137,17 @@ proptest! {
         let r = rps::Rps3::new();
         let rs = rps::home_start(&r).unwrap();
         check_jacobians(&r, &std::array::from_fn(|i| rs.v[i] + dv[i]), &std::array::from_fn(|j| rs.x[j] + dx[j]));
+    }
+
+    #[test]
+    fn generated_factorisations_equal_dense_lu_on_random_geometries((base, platform) in geometry(10.0, 20.0), dv in prop::array::uniform32(-30.0f64..30.0)) {
+        // The general (non-coplanar) form has its own sparsity pattern and elimination plan.
+        let s = StewartGeneral::with_joints(&base, &platform).unwrap();
+        let v0 = linkage::unknowns_from_pose(&s, &Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 159.011]));
+        let v: [f64; 18] = std::array::from_fn(|i| v0[i] + dv[i]);
+        check_jacobians(&s, &v, &HOME_LEGS);
+        check_factorization(&s, &v, &HOME_LEGS);
+        let c = Stewart::with_joints(&base, &platform.map(|p| [p[0], p[1], 0.0])).unwrap();
+        check_factorization(&c, &v, &HOME_LEGS);
     }
 }

@@ -2,7 +2,7 @@
 //! so that every phase is testable without rustc.
 //!
 //! Pipeline: [`ast`] parses the DSL keeping spans, [`check`] validates names and collects every
-//! error, [`model`] and [`chain`]/[`rigid`] build the constraint system of Gao & Wu (2015) as
+//! error, [`mod@model`] and [`chain`]/[`rigid`] build the constraint system of Gao & Wu (2015) as
 //! symbolic [`expr`]essions, and [`emit`] writes the Rust.
 
 pub mod ast;
