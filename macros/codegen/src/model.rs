@@ -166,18 +166,20 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             Err(e) => errors.push(e.0, e.1),
         }
     }
-    let frame_idx = match choose_frame(&b, platform) {
-        Ok(f) => f,
-        Err((span, msg)) => {
-            errors.push(span, msg);
-            errors.finish()?;
-            unreachable!()
-        }
+    let frame = choose_frame(&b, platform);
+    if let Err((span, msg)) = &frame {
+        errors.push(*span, msg);
+    }
+    errors.finish()?;
+    let Ok(frame_idx) = frame else {
+        return Err(syn::Error::new(
+            platform.name.span(),
+            "no frame for the platform",
+        ));
     };
     for f in frame_idx {
         used[f] = true;
     }
-    errors.finish()?;
 
     // Platform points, in declaration order.
     let mut point_of_pivot = HashMap::new();
