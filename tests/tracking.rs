@@ -76,3 +76,53 @@ fn tracker_takes_big_steps_by_continuation() {
     }
     let _ = Status::Converged;
 }
+
+/// Samples walking straight through a fold: the tracker follows the branch up to the fold and
+/// refuses what lies beyond; every sample it accepts is confirmed by fine continuation from
+/// the previous one, so it never returns a configuration across the singular surface.
+#[test]
+fn tracker_refuses_to_cross_a_fold() {
+    use linkage::{arc_length, Status};
+    use linkage_tests::{stewart_pose_samples, straight_path_truth};
+    let s = Stewart::new();
+    let st = home_start(&s).unwrap();
+    let target = stewart_pose_samples(2, 400, 1.2, 150.0, 100)
+        .into_iter()
+        .map(|p| p.x)
+        .find(|x| {
+            matches!(
+                arc_length(&s, &st, x, &Options::TIGHT).unwrap().status,
+                Status::Fold { .. }
+            )
+        })
+        .expect("the seeded sample holds a target behind a fold");
+    let mut tracker = Tracker::new(s.clone(), st, Options::TIGHT);
+    let (mut accepted, mut refused) = (0, 0);
+    let mut previous = st;
+    for k in 1..=400 {
+        let l = k as f64 / 400.0;
+        let x: [f64; 6] = std::array::from_fn(|j| st.x[j] + l * (target[j] - st.x[j]));
+        match tracker.update(&x) {
+            Ok(sample) => {
+                // Ground truth: fine continuation from the previous accepted sample (after a
+                // refusal, the tracker may legitimately reach a later sample another way).
+                let (truth, flips) = straight_path_truth(&s, &previous, &x, 200);
+                assert_eq!(flips, 0, "accepted a sample across a sign change of det B");
+                assert!(max_diff(&sample.v, &truth) < 1e-6);
+                assert!(linkage::det_b(&s, &sample.v, &x) * st.det > 0.0);
+                previous = linkage::Start {
+                    v: sample.v,
+                    x,
+                    det: st.det,
+                };
+                accepted += 1;
+            }
+            Err(TrackError::Lost(_)) => refused += 1,
+            Err(e) => panic!("{e}"),
+        }
+    }
+    assert!(
+        accepted > 0 && refused > 0,
+        "{accepted} accepted, {refused} refused"
+    );
+}
