@@ -30,7 +30,14 @@ pub fn expand(
     let equation_text: Vec<String> = model.equations.iter().map(|e| model.render(e)).collect();
     let jacobian_text: Vec<String> = jac.iter().map(|(_, _, e)| model.render(e)).collect();
     let pattern = jac.iter().map(|(r, c, _)| quote!((#r, #c)));
-    let listing = listing(model, &equation_text, &jac, &jacobian_text);
+    let listing = listing(model, &equation_text, &jac, &jacobian_text).replacen(
+        "\nunknowns:",
+        &format!(
+            "\nmobility: {}\nunknowns:",
+            crate::mobility::of(mech).describe()
+        ),
+        1,
+    );
     let point_names = model.points.iter().map(|p| p.name.as_str());
     let [f0, f1, f2] = model.frame;
     let recipes = model

@@ -12,6 +12,7 @@ pub mod emit;
 pub mod emit_factor;
 pub mod expr;
 pub mod factor;
+pub mod mobility;
 pub mod model;
 pub mod reference;
 pub mod rigid;

@@ -240,6 +240,19 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
 }
 
 fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
+    let mobility = crate::mobility::of(m);
+    let inputs = model.inputs.len() as i64;
+    if mobility.effective() != inputs {
+        return Err(syn::Error::new(
+            m.name.span(),
+            format!(
+                "the mechanism has {inputs} active joint variable{} but mobility {} ({}); declare one active pair per degree of freedom",
+                if inputs == 1 { "" } else { "s" },
+                mobility.effective(),
+                mobility.describe()
+            ),
+        ));
+    }
     let (n, e) = (model.unknowns.len(), model.equations.len());
     if n != e {
         let inputs = model.inputs.len() as i64;

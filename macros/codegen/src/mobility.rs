@@ -1,0 +1,72 @@
+//! Mobility by the Grübler–Kutzbach criterion, M = 6(L − 1 − J) + Σ fᵢ, less the idle
+//! freedoms it counts but no input can drive: the spin of a leg or rod about the line through
+//! its two spherical joints.
+
+use crate::ast::{Mechanism, PairDecl, PairKind};
+use crate::model::{normalize, Normalized};
+
+pub struct Mobility {
+    pub links: usize,
+    pub joints: usize,
+    pub freedoms: usize,
+    pub idle: usize,
+}
+
+impl Mobility {
+    pub fn gruebler(&self) -> i64 {
+        6 * (self.links as i64 - 1 - self.joints as i64) + self.freedoms as i64
+    }
+
+    pub fn effective(&self) -> i64 {
+        self.gruebler() - self.idle as i64
+    }
+
+    pub fn describe(&self) -> String {
+        format!(
+            "Grübler–Kutzbach: M = 6(L − 1 − J) + Σf = 6({} − 1 − {}) + {} = {}, less {} idle spin{} = {}",
+            self.links,
+            self.joints,
+            self.freedoms,
+            self.gruebler(),
+            self.idle,
+            if self.idle == 1 { "" } else { "s" },
+            self.effective()
+        )
+    }
+}
+
+fn freedoms(kind: PairKind) -> usize {
+    match kind {
+        PairKind::R | PairKind::P | PairKind::H => 1,
+        PairKind::C | PairKind::U => 2,
+        PairKind::S => 3,
+    }
+}
+
+/// A chain's last two joints both spherical: the link between them can spin about the line
+/// through their centres without moving anything.
+fn idle_spin(n: &Normalized) -> usize {
+    let spherical = |p: &PairDecl| p.kind == PairKind::S;
+    match n.pairs.as_slice() {
+        [.., a, b] if spherical(a) && spherical(b) => 1,
+        [a, slider, b] if spherical(a) && slider.kind == PairKind::P && spherical(b) => 1,
+        _ => 0,
+    }
+}
+
+pub fn of(m: &Mechanism) -> Mobility {
+    let mut mob = Mobility {
+        links: 2,
+        joints: 0,
+        freedoms: 0,
+        idle: 0,
+    };
+    for c in &m.chains {
+        let n = normalize(m, c);
+        mob.links += n.links.len().saturating_sub(2);
+        mob.joints += n.pairs.len();
+        mob.freedoms += n.pairs.iter().map(|p| freedoms(p.kind)).sum::<usize>();
+        mob.idle += idle_spin(&n);
+    }
+    mob
+}
