@@ -68,8 +68,9 @@ pub struct Solution<const N: usize> {
     pub steps_accepted: u32,
     pub steps_rejected: u32,
     pub newton_iterations: u32,
-    /// ‖B⁻¹F‖ at the result: the next Newton correction, a first-order estimate of the
-    /// distance to the exact solution (the practical form of Eq. 13).
+    /// Estimated distance to the exact solution: the next Newton correction ‖B⁻¹F‖ at the
+    /// result, measured, or extrapolated from the contraction of the last two corrections
+    /// when Newton stopped early (the practical form of Eq. 13).
     pub error_estimate: f64,
     /// The smallest |det B| / |det B at the start| met at accepted points.
     pub min_det_ratio: f64,
