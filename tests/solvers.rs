@@ -25,6 +25,10 @@ fn stewart_home_matches_the_errata_check_value() {
 
 #[test]
 fn stewart_fk_equals_ik_on_random_poses_for_every_method() {
+    let dense = Options {
+        linear: linkage::Linear::Dense,
+        ..Options::TIGHT
+    };
     let s = stewart::Stewart::new();
     let st = stewart::home_start(&s).unwrap();
     for sample in stewart_pose_samples(1, 100, 0.3, 40.0, 200) {
@@ -40,6 +44,14 @@ fn stewart_fk_equals_ik_on_random_poses_for_every_method() {
             (
                 "NR",
                 newton_raphson(&s, &st, &sample.x, &Options::TIGHT).unwrap(),
+            ),
+            (
+                "PH, dense LU",
+                arc_length(&s, &st, &sample.x, &dense).unwrap(),
+            ),
+            (
+                "NR, dense LU",
+                newton_raphson(&s, &st, &sample.x, &dense).unwrap(),
             ),
         ] {
             assert_eq!(sol.status, Status::Converged, "{name}");
