@@ -2,6 +2,7 @@
 
 pub mod case_study;
 pub mod cli;
+pub mod demo;
 pub mod rps;
 pub mod rss_hexapod;
 pub mod stewart;
