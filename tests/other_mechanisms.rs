@@ -1,0 +1,208 @@
+//! The chain shapes the other examples do not use: a prismatic driver (a 6-PSS hexaglide)
+//! and helical and cylindrical drivers, through the same checks as every mechanism.
+
+use linkage::{arc_length, Mechanism, Options, Pose, Start, Status};
+use linkage_tests::{check_factorization, check_jacobians, max_diff, Rng};
+
+mod hexaglide {
+    linkage::mechanism! {
+        /// Six vertical linear actuators (P) carrying rods (S–S) to the platform.
+        pub struct Hexaglide;
+        params { rod = 162.7108 }
+        base {
+            A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
+            A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
+            A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
+            A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
+            A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
+            A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
+            G1 = [45.315, 21.131, 0.0],
+            G2 = [40.958, 28.679, 0.0],
+            G3 = [-40.958, 28.679, 0.0],
+            G4 = [-45.315, 21.131, 0.0],
+            G5 = [-4.358, -49.810, 0.0],
+            G6 = [4.358, -49.810, 0.0],
+        }
+        link carriage1 { C1 = [108.329, 19.101, 0.0] }
+        link rod1 { length = rod }
+        link carriage2 { C2 = [70.707, 84.265, 0.0] }
+        link rod2 { length = rod }
+        link carriage3 { C3 = [-70.707, 84.265, 0.0] }
+        link rod3 { length = rod }
+        link carriage4 { C4 = [-108.329, 19.101, 0.0] }
+        link rod4 { length = rod }
+        link carriage5 { C5 = [-37.622, -103.366, 0.0] }
+        link rod5 { length = rod }
+        link carriage6 { C6 = [37.622, -103.366, 0.0] }
+        link rod6 { length = rod }
+        chain arm1 = base - P(active z1, axis = A1 -> B1) - carriage1 - S(C1) - rod1 - S(G1) - platform;
+        chain arm2 = base - P(active z2, axis = A2 -> B2) - carriage2 - S(C2) - rod2 - S(G2) - platform;
+        chain arm3 = base - P(active z3, axis = A3 -> B3) - carriage3 - S(C3) - rod3 - S(G3) - platform;
+        chain arm4 = base - P(active z4, axis = A4 -> B4) - carriage4 - S(C4) - rod4 - S(G4) - platform;
+        chain arm5 = base - P(active z5, axis = A5 -> B5) - carriage5 - S(C5) - rod5 - S(G5) - platform;
+        chain arm6 = base - P(active z6, axis = A6 -> B6) - carriage6 - S(C6) - rod6 - S(G6) - platform;
+    }
+}
+
+mod screws {
+    linkage::mechanism! {
+        /// Six rotating lead screws (H, lead 5 mm) whose nuts carry rods to the platform.
+        pub struct Screws;
+        params { rod = 162.7108 }
+        base {
+            A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
+            A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
+            A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
+            A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
+            A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
+            A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
+        }
+        platform {
+            G1 = [45.315, 21.131, 0.0],
+            G2 = [40.958, 28.679, 0.0],
+            G3 = [-40.958, 28.679, 0.0],
+            G4 = [-45.315, 21.131, 0.0],
+            G5 = [-4.358, -49.810, 0.0],
+            G6 = [4.358, -49.810, 0.0],
+        }
+        link carriage1 { C1 = [108.329, 19.101, 0.0] }
+        link rod1 { length = rod }
+        link carriage2 { C2 = [70.707, 84.265, 0.0] }
+        link rod2 { length = rod }
+        link carriage3 { C3 = [-70.707, 84.265, 0.0] }
+        link rod3 { length = rod }
+        link carriage4 { C4 = [-108.329, 19.101, 0.0] }
+        link rod4 { length = rod }
+        link carriage5 { C5 = [-37.622, -103.366, 0.0] }
+        link rod5 { length = rod }
+        link carriage6 { C6 = [37.622, -103.366, 0.0] }
+        link rod6 { length = rod }
+        chain arm1 = base - H(active q1, axis = A1 -> B1, lead = 5.0) - carriage1 - S(C1) - rod1 - S(G1) - platform;
+        chain arm2 = base - H(active q2, axis = A2 -> B2, lead = 5.0) - carriage2 - S(C2) - rod2 - S(G2) - platform;
+        chain arm3 = base - H(active q3, axis = A3 -> B3, lead = 5.0) - carriage3 - S(C3) - rod3 - S(G3) - platform;
+        chain arm4 = base - H(active q4, axis = A4 -> B4, lead = 5.0) - carriage4 - S(C4) - rod4 - S(G4) - platform;
+        chain arm5 = base - H(active q5, axis = A5 -> B5, lead = 5.0) - carriage5 - S(C5) - rod5 - S(G5) - platform;
+        chain arm6 = base - H(active q6, axis = A6 -> B6, lead = 5.0) - carriage6 - S(C6) - rod6 - S(G6) - platform;
+    }
+}
+
+mod cylinders {
+    linkage::mechanism! {
+        /// Three cylindrical drivers (C: rotation and slide) and three prismatic ones.
+        pub struct Cylinders;
+        params { rod = 162.7108 }
+        base {
+            A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
+            A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
+            A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
+            A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
+            A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
+            A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
+        }
+        platform {
+            G1 = [45.315, 21.131, 0.0],
+            G2 = [40.958, 28.679, 0.0],
+            G3 = [-40.958, 28.679, 0.0],
+            G4 = [-45.315, 21.131, 0.0],
+            G5 = [-4.358, -49.810, 0.0],
+            G6 = [4.358, -49.810, 0.0],
+        }
+        link carriage1 { C1 = [108.329, 19.101, 0.0] }
+        link rod1 { length = rod }
+        link carriage2 { C2 = [70.707, 84.265, 0.0] }
+        link rod2 { length = rod }
+        link carriage3 { C3 = [-70.707, 84.265, 0.0] }
+        link rod3 { length = rod }
+        link carriage4 { C4 = [-108.329, 19.101, 0.0] }
+        link rod4 { length = rod }
+        link carriage5 { C5 = [-37.622, -103.366, 0.0] }
+        link rod5 { length = rod }
+        link carriage6 { C6 = [37.622, -103.366, 0.0] }
+        link rod6 { length = rod }
+        chain arm1 = base - C(active q1 z1, axis = A1 -> B1) - carriage1 - S(C1) - rod1 - S(G1) - platform;
+        chain arm2 = base - C(active q2 z2, axis = A2 -> B2) - carriage2 - S(C2) - rod2 - S(G2) - platform;
+        chain arm3 = base - C(active q3 z3, axis = A3 -> B3) - carriage3 - S(C3) - rod3 - S(G3) - platform;
+        chain arm4 = base - P(active z4, axis = A4 -> B4) - carriage4 - S(C4) - rod4 - S(G4) - platform;
+        chain arm5 = base - P(active z5, axis = A5 -> B5) - carriage5 - S(C5) - rod5 - S(G5) - platform;
+        chain arm6 = base - P(active z6, axis = A6 -> B6) - carriage6 - S(C6) - rod6 - S(G6) - platform;
+    }
+}
+
+use cylinders::Cylinders;
+use hexaglide::Hexaglide;
+use screws::Screws;
+
+fn home_v<S: Mechanism<18, M>, const M: usize>(sys: &S) -> [f64; 18] {
+    linkage::unknowns_from_pose(sys, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]))
+}
+
+fn around<S: Mechanism<18, M>, const M: usize>(sys: &S, v: [f64; 18], x: [f64; M]) {
+    let mut rng = Rng::new(3);
+    for k in 0..20 {
+        let dv: [f64; 18] = std::array::from_fn(|i| {
+            v[i] + if k == 0 {
+                0.0
+            } else {
+                rng.uniform(-20.0, 20.0)
+            }
+        });
+        let dx: [f64; M] =
+            std::array::from_fn(|j| x[j] + if k == 0 { 0.0 } else { rng.uniform(-0.5, 0.5) });
+        check_jacobians(sys, &dv, &dx);
+        check_factorization(sys, &dv, &dx);
+    }
+}
+
+#[test]
+fn hexaglide_jacobians_and_fk_against_ik() {
+    let h = Hexaglide::new();
+    let start = h.home_start().unwrap();
+    assert!(
+        start.x.iter().all(|z| z.abs() < 1e-2),
+        "home at zero slide: {:?}",
+        start.x
+    );
+    around(&h, start.v, start.x);
+    let mut rng = Rng::new(4);
+    for _ in 0..50 {
+        let pose = Pose::from_euler(
+            rng.uniform(-0.1, 0.1),
+            rng.uniform(-0.1, 0.1),
+            rng.uniform(-0.1, 0.1),
+            [
+                rng.uniform(-10.0, 10.0),
+                rng.uniform(-10.0, 10.0),
+                150.0 + rng.uniform(-15.0, 15.0),
+            ],
+        );
+        let v = linkage::unknowns_from_pose(&h, &pose);
+        let x = h.inverse(&v, &start.x).unwrap();
+        let sol = arc_length(&h, &start, &x, &Options::TIGHT).unwrap();
+        assert_eq!(sol.status, Status::Converged);
+        assert!(max_diff(&sol.v, &v) < 1e-6, "{}", max_diff(&sol.v, &v));
+    }
+}
+
+#[test]
+fn helical_and_cylindrical_drivers_have_exact_jacobians_and_solve() {
+    let s = Screws::new();
+    let v = home_v(&s);
+    around(&s, v, [0.0; 6]);
+    assert!(matches!(
+        s.inverse(&v, &[0.0; 6]),
+        Err(linkage::InverseError::NoClosedForm { .. })
+    ));
+    let start = Start::new(&s, v, [0.0; 6]).unwrap();
+    let sol = arc_length(&s, &start, &[0.2; 6], &Options::TIGHT).unwrap();
+    assert_eq!(sol.status, Status::Converged);
+    let mut f = [0.0; 18];
+    s.residual(&sol.v, &[0.2; 6], &mut f);
+    assert!(f.iter().all(|r| r.abs() < 1e-6));
+
+    let c = Cylinders::new();
+    let v = home_v(&c);
+    around(&c, v, [0.0; 9]);
+    assert_eq!(Cylinders::INPUTS.len(), 9);
+}
