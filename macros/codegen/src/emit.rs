@@ -71,7 +71,23 @@ pub fn expand(
         let [x, y, z] = p.local;
         quote!(#i => [g[#x], g[#y], g[#z]],)
     });
-    let inverse = model.inverses.iter().map(|inv| inverse(model, inv));
+    // A chain without a closed-form inverse makes the whole inverse unavailable.
+    let no_closed_form = model.inverses.iter().find_map(|inv| match inv {
+        Inverse::None { inputs } => inputs.first().copied(),
+        _ => None,
+    });
+    let inverse_body = match no_closed_form {
+        Some(input) => quote!(Err(::linkage::InverseError::NoClosedForm { input: #input })),
+        None => {
+            let steps = model.inverses.iter().map(|inv| inverse(model, inv));
+            quote! {
+                let c = &self.constants;
+                let mut out = *reference;
+                #(#steps)*
+                Ok(out)
+            }
+        }
+    };
     // A leg's length (input plus offset) must be positive.
     let ranges = model.inverses.iter().filter_map(|inv| match inv {
         Inverse::Distance { input, offset, .. } => {
@@ -276,10 +292,7 @@ pub fn expand(
 
             #[allow(unused_variables, unused_mut)]
             fn inverse(&self, v: &[f64; #n], reference: &[f64; #m]) -> ::core::result::Result<[f64; #m], ::linkage::InverseError> {
-                let c = &self.constants;
-                let mut out = *reference;
-                #(#inverse)*
-                Ok(out)
+                #inverse_body
             }
         }
     }
@@ -465,10 +478,6 @@ fn inverse(model: &Model, inv: &Inverse) -> TokenStream {
             quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input])
                 .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
         }
-        Inverse::None { inputs } if inputs.is_empty() => quote!(),
-        Inverse::None { inputs } => {
-            let first = inputs[0];
-            quote!(return Err(::linkage::InverseError::NoClosedForm { input: #first });)
-        }
+        Inverse::None { .. } => quote!(),
     }
 }
