@@ -211,7 +211,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
                 (Some(fr), false) => self.border(fr, t, self.residual(&p), g),
                 (None, true) => {
                     crate::start::correction_with(self.sys, &p.v, &self.x(p.mu), self.linear)
-                        .map(|(d, _)| (d, 0.0))
+                        .map(|(d, _, _)| (d, 0.0))
                 }
                 (None, false) => {
                     let (f, mut m) = self.bordered(&p, t);

@@ -140,7 +140,7 @@ pub(crate) fn finish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     account: Account,
 ) -> Solution<N> {
     let (error_estimate, det) = match correction(sys, &v, x) {
-        Some((d, det)) => (norm(&d), det),
+        Some((_, det, size)) => (size, det),
         None => (f64::INFINITY, det_b(sys, &v, x)),
     };
     let ratio = (det / start.det).abs();

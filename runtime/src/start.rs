@@ -99,7 +99,7 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut convergence = Convergence::new(options.tolerance, &v);
     let mut fac = sys.new_factor();
     while out.iterations < options.max_iterations {
-        let Some((d, det)) = correction_in(sys, &out.v, x, options.linear, &mut fac) else {
+        let Some((d, det, size)) = correction_in(sys, &out.v, x, options.linear, &mut fac) else {
             out.singular = true;
             break;
         };
@@ -108,10 +108,7 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
         for i in 0..N {
             out.v[i] -= d[i];
         }
-        if !all_finite(&out.v) {
-            break;
-        }
-        if convergence.reached(crate::math::norm(&d)) {
+        if convergence.reached(size) {
             out.converged = true;
             break;
         }
@@ -126,7 +123,7 @@ pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
     x: &[f64; M],
-) -> Option<([f64; N], f64)> {
+) -> Option<([f64; N], f64, f64)> {
     correction_with(sys, v, x, crate::Linear::Generated)
 }
 
@@ -136,7 +133,7 @@ pub(crate) fn correction_with<S: Mechanism<N, M>, const N: usize, const M: usize
     v: &[f64; N],
     x: &[f64; M],
     linear: crate::Linear,
-) -> Option<([f64; N], f64)> {
+) -> Option<([f64; N], f64, f64)> {
     correction_in(sys, v, x, linear, &mut sys.new_factor())
 }
 
@@ -147,7 +144,7 @@ pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     linear: crate::Linear,
     fac: &mut S::Factor,
-) -> Option<([f64; N], f64)> {
+) -> Option<([f64; N], f64, f64)> {
     let mut f = [0.0; N];
     sys.residual(v, x, &mut f);
     let det = match linear {
@@ -164,10 +161,12 @@ pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
             piv.det
         }
     };
-    if !all_finite(&f) {
+    // One pass gives the size callers need and rejects NaN or infinite corrections.
+    let size = crate::math::norm(&f);
+    if !size.is_finite() {
         return None;
     }
-    Some((f, det))
+    Some((f, det, size))
 }
 
 /// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the
@@ -177,7 +176,7 @@ pub fn error_estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> f64 {
-    correction(sys, v, x).map_or(f64::INFINITY, |(d, _)| crate::math::norm(&d))
+    correction(sys, v, x).map_or(f64::INFINITY, |(_, _, size)| size)
 }
 
 /// det B at `(v, x)`; 0 where B is singular.
@@ -204,7 +203,7 @@ impl<const N: usize, const M: usize> Start<N, M> {
         let given = v;
         let mut v = v;
         for _ in 0..8 {
-            let (d, _) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
+            let (d, _, _) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
             for i in 0..N {
                 v[i] -= d[i];
             }
@@ -214,7 +213,7 @@ impl<const N: usize, const M: usize> Start<N, M> {
         }
         let mut f = [0.0; N];
         sys.residual(&v, &x, &mut f);
-        let (d, det) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
+        let (d, det, _) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
         // Refinement may polish rounding, not move the start: a large move could land on
         // another assembly mode.
         let mut moved = [0.0; N];

@@ -163,12 +163,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         convergence.reached(step.max(f64::MIN_POSITIVE));
         let mut prev = step;
         for k in 0..6 {
-            let (d, det) = correction_in(&self.sys, &v, x, self.options.linear, &mut fac)?;
+            let (d, det, size) = correction_in(&self.sys, &v, x, self.options.linear, &mut fac)?;
             *iterations += 1;
             for i in 0..N {
                 v[i] -= d[i];
             }
-            let size = norm(&d);
             if !size.is_finite()
                 || (k == 0 && size > 0.5 * step + self.options.tolerance)
                 || (k > 0 && size > 0.25 * prev)
