@@ -210,7 +210,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
                 }
                 (Some(fr), false) => self.border(fr, t, self.residual(&p), g),
                 (None, true) => {
-                    crate::start::correction_with(self.sys, &p.v, &self.x(p.mu), self.linear)
+                    crate::correction::correction_with(self.sys, &p.v, &self.x(p.mu), self.linear)
                         .map(|(d, _, _)| (d, 0.0))
                 }
                 (None, false) => {
@@ -489,7 +489,7 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
     mut account: Account,
 ) -> Solution<N> {
-    let run = crate::start::newton(sys, v, x, options);
+    let run = crate::correction::newton(sys, v, x, options);
     account.iterations += run.iterations;
     crate::newton::conclude(sys, start, &run, x, account)
 }

@@ -37,6 +37,7 @@ extern crate self as linkage;
 pub use linkage_macros::mechanism;
 
 mod arc_length;
+mod correction;
 mod detour;
 mod error;
 pub mod lu;
@@ -53,6 +54,7 @@ mod tracker;
 pub mod __private;
 
 pub use arc_length::arc_length;
+pub use correction::{det_b, error_estimate};
 pub use detour::{arc_length_detour, Detoured};
 pub use error::{GeometryError, InverseError};
 pub use mechanism::Mechanism;
@@ -60,7 +62,7 @@ pub use newton::newton_raphson;
 pub use newton_homotopy::newton_homotopy;
 pub use pose::{pose_from_unknowns, unknowns_from_pose, Pose};
 pub use solution::{Linear, Options, Solution, SolveError, Status};
-pub use start::{det_b, error_estimate, Start};
+pub use start::Start;
 pub use tracker::{Sample, TrackError, Tracker};
 
 /// The three solvers of Table V.

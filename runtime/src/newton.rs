@@ -2,8 +2,9 @@
 //! Fast, and with no notion of branch: near a singularity it may converge to another
 //! assembly mode. The det B sign check catches some of those, not all.
 
+use crate::correction::{correction, det_b};
 use crate::math::norm;
-use crate::start::{all_finite, correction, det_b};
+use crate::start::all_finite;
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x) = 0 by Newton's method from `start.v`.
@@ -41,7 +42,7 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
     crate::start::check_target(sys, x, options)?;
-    let run = crate::start::newton(sys, start.v, x, options);
+    let run = crate::correction::newton(sys, start.v, x, options);
     Ok(conclude(
         sys,
         start,
@@ -93,7 +94,7 @@ impl Account {
 pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
-    run: &crate::start::Newton<N>,
+    run: &crate::correction::Newton<N>,
     x: &[f64; M],
     account: Account,
 ) -> Solution<N> {

@@ -34,7 +34,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         } else {
             let next = (account.lambda + step).min(1.0);
             let x = at(next);
-            let run = crate::start::newton(sys, v, &x, options);
+            let run = crate::correction::newton(sys, v, &x, options);
             account.iterations += run.iterations;
             if run.converged {
                 account.accepted += 1;

@@ -2,8 +2,8 @@
 //! solution, never leaving the start's branch.
 
 use crate::arc_length::arc_length;
+use crate::correction::{correction_in, Convergence};
 use crate::math::norm;
-use crate::start::{correction_in, Convergence};
 
 use crate::{Mechanism, Options, SolveError, Start, Status};
 
@@ -128,7 +128,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
         }
-        let det = crate::start::det_b(&self.sys, &sol.v, x);
+        let det = crate::correction::det_b(&self.sys, &sol.v, x);
         if det * self.start.det <= 0.0 {
             return Err(TrackError::Lost(Status::BranchChanged));
         }
