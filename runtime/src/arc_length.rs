@@ -343,6 +343,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         ));
     };
     let mut det_prev = start.det;
+    let mut previous: Option<(Point<N>, Tangent<N>, f64)> = None;
     let (h_max, h_min) = (length / 2.0, 1e-10 * length);
     let mut h = length / 4.0;
     let (mut accepted, mut rejected, mut iterations) = (0u32, 0u32, 0u32);
@@ -376,8 +377,30 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             v: p.v,
             mu: if end { length } else { p.mu + step * t.mu },
         };
-        for i in 0..N {
-            pred.v[i] += step * t.v[i];
+        match (&previous, end) {
+            // Cubic Hermite extrapolation through the last two points and their tangents:
+            // third-order accurate where Euler is first-order, so steps near a fold can be
+            // longer. Only within one previous chord length, where it is reliable.
+            (Some((p0, t0, chord)), false) if step <= *chord => {
+                let u = 1.0 + step / chord;
+                let (u2, u3) = (u * u, u * u * u);
+                let (h00, h10, h01, h11) = (
+                    2.0 * u3 - 3.0 * u2 + 1.0,
+                    u3 - 2.0 * u2 + u,
+                    -2.0 * u3 + 3.0 * u2,
+                    u3 - u2,
+                );
+                for i in 0..N {
+                    pred.v[i] =
+                        h00 * p0.v[i] + h10 * chord * t0.v[i] + h01 * p.v[i] + h11 * chord * t.v[i];
+                }
+                pred.mu = h00 * p0.mu + h10 * chord * t0.mu + h01 * p.mu + h11 * chord * t.mu;
+            }
+            _ => {
+                for i in 0..N {
+                    pred.v[i] += step * t.v[i];
+                }
+            }
         }
         match path.correct(&pred, &t, end, 0.5 * step + path.tol, frame.as_ref()) {
             Ok((q, its, first)) => {
@@ -408,6 +431,13 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     h = step * 0.5;
                 } else {
                     accepted += 1;
+                    let chord = crate::math::sqrt(
+                        (0..N)
+                            .map(|i| (q.v[i] - p.v[i]) * (q.v[i] - p.v[i]))
+                            .sum::<f64>()
+                            + (q.mu - p.mu) * (q.mu - p.mu),
+                    );
+                    previous = Some((p, t, chord));
                     p = q;
                     t = t1;
                     frame = next_frame;
