@@ -344,6 +344,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     let mut det_prev = start.det;
     let mut previous: Option<(Point<N>, Tangent<N>, f64)> = None;
+    let mut just_rejected = false;
     let (h_max, h_min) = (length / 2.0, 1e-10 * length);
     let mut h = length / 4.0;
     let (mut accepted, mut rejected, mut iterations) = (0u32, 0u32, 0u32);
@@ -429,6 +430,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 if dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !end {
                     rejected += 1;
                     h = step * 0.5;
+                    just_rejected = true;
                 } else {
                     accepted += 1;
                     let chord = crate::math::sqrt(
@@ -461,15 +463,19 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                         2.0 * step
                     };
                     h = ideal.clamp(0.5 * step, 2.0 * step).min(h_max);
-                    if its >= 4 {
+                    // Right after a rejection, do not grow again: growing straight back into the
+                    // step that failed makes the step size oscillate.
+                    if its >= 4 || just_rejected {
                         h = h.min(step);
                     }
+                    just_rejected = false;
                 }
             }
             Err(its) => {
                 iterations += its;
                 rejected += 1;
                 h = 0.5 * step.min(h);
+                just_rejected = true;
             }
         }
         if h < h_min {
