@@ -4,130 +4,87 @@
 use linkage::{arc_length, Mechanism, Options, Pose, Start, Status};
 use linkage_tests::{check_factorization, check_jacobians, max_diff, Rng};
 
+/// Six drivers on vertical axes at the base, each carrying a rod (S–S) to the platform: the
+/// drivers differ, the geometry is shared.
+macro_rules! rod_hexapod {
+    ($(#[$doc:meta])* $name:ident, ($($platform:tt)*), [$k1:ident($($a1:tt)*) $k2:ident($($a2:tt)*) $k3:ident($($a3:tt)*) $k4:ident($($a4:tt)*) $k5:ident($($a5:tt)*) $k6:ident($($a6:tt)*)]) => {
+        linkage::mechanism! {
+            $(#[$doc])*
+            pub struct $name;
+            params { rod = 162.7108 }
+            base {
+                A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
+                A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
+                A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
+                A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
+                A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
+                A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
+            }
+            platform $($platform)* {
+                G1 = [45.315, 21.131, 0.0],
+                G2 = [40.958, 28.679, 0.0],
+                G3 = [-40.958, 28.679, 0.0],
+                G4 = [-45.315, 21.131, 0.0],
+                G5 = [-4.358, -49.810, 0.0],
+                G6 = [4.358, -49.810, 0.0],
+            }
+            link carriage1 { C1 = [108.329, 19.101, 0.0] }
+            link carriage2 { C2 = [70.707, 84.265, 0.0] }
+            link carriage3 { C3 = [-70.707, 84.265, 0.0] }
+            link carriage4 { C4 = [-108.329, 19.101, 0.0] }
+            link carriage5 { C5 = [-37.622, -103.366, 0.0] }
+            link carriage6 { C6 = [37.622, -103.366, 0.0] }
+            link rod1 { length = rod }
+            link rod2 { length = rod }
+            link rod3 { length = rod }
+            link rod4 { length = rod }
+            link rod5 { length = rod }
+            link rod6 { length = rod }
+            chain arm1 = base - $k1($($a1)*) - carriage1 - S(C1) - rod1 - S(G1) - platform;
+            chain arm2 = base - $k2($($a2)*) - carriage2 - S(C2) - rod2 - S(G2) - platform;
+            chain arm3 = base - $k3($($a3)*) - carriage3 - S(C3) - rod3 - S(G3) - platform;
+            chain arm4 = base - $k4($($a4)*) - carriage4 - S(C4) - rod4 - S(G4) - platform;
+            chain arm5 = base - $k5($($a5)*) - carriage5 - S(C5) - rod5 - S(G5) - platform;
+            chain arm6 = base - $k6($($a6)*) - carriage6 - S(C6) - rod6 - S(G6) - platform;
+        }
+    };
+}
+
 mod hexaglide {
-    linkage::mechanism! {
+    rod_hexapod!(
         /// Six vertical linear actuators (P) carrying rods (S–S) to the platform.
-        pub struct Hexaglide;
-        params { rod = 162.7108 }
-        base {
-            A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
-            A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
-            A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
-            A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
-            A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
-            A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
-        }
-        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
-            G1 = [45.315, 21.131, 0.0],
-            G2 = [40.958, 28.679, 0.0],
-            G3 = [-40.958, 28.679, 0.0],
-            G4 = [-45.315, 21.131, 0.0],
-            G5 = [-4.358, -49.810, 0.0],
-            G6 = [4.358, -49.810, 0.0],
-        }
-        link carriage1 { C1 = [108.329, 19.101, 0.0] }
-        link rod1 { length = rod }
-        link carriage2 { C2 = [70.707, 84.265, 0.0] }
-        link rod2 { length = rod }
-        link carriage3 { C3 = [-70.707, 84.265, 0.0] }
-        link rod3 { length = rod }
-        link carriage4 { C4 = [-108.329, 19.101, 0.0] }
-        link rod4 { length = rod }
-        link carriage5 { C5 = [-37.622, -103.366, 0.0] }
-        link rod5 { length = rod }
-        link carriage6 { C6 = [37.622, -103.366, 0.0] }
-        link rod6 { length = rod }
-        chain arm1 = base - P(active z1, axis = A1 -> B1) - carriage1 - S(C1) - rod1 - S(G1) - platform;
-        chain arm2 = base - P(active z2, axis = A2 -> B2) - carriage2 - S(C2) - rod2 - S(G2) - platform;
-        chain arm3 = base - P(active z3, axis = A3 -> B3) - carriage3 - S(C3) - rod3 - S(G3) - platform;
-        chain arm4 = base - P(active z4, axis = A4 -> B4) - carriage4 - S(C4) - rod4 - S(G4) - platform;
-        chain arm5 = base - P(active z5, axis = A5 -> B5) - carriage5 - S(C5) - rod5 - S(G5) - platform;
-        chain arm6 = base - P(active z6, axis = A6 -> B6) - carriage6 - S(C6) - rod6 - S(G6) - platform;
-    }
+        Hexaglide,
+        ((home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0])),
+        [
+            P(active z1, axis = A1 -> B1) P(active z2, axis = A2 -> B2) P(active z3, axis = A3 -> B3)
+            P(active z4, axis = A4 -> B4) P(active z5, axis = A5 -> B5) P(active z6, axis = A6 -> B6)
+        ]
+    );
 }
 
 mod screws {
-    linkage::mechanism! {
+    rod_hexapod!(
         /// Six rotating lead screws (H, lead 5 mm) whose nuts carry rods to the platform.
-        pub struct Screws;
-        params { rod = 162.7108 }
-        base {
-            A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
-            A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
-            A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
-            A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
-            A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
-            A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
-        }
-        platform {
-            G1 = [45.315, 21.131, 0.0],
-            G2 = [40.958, 28.679, 0.0],
-            G3 = [-40.958, 28.679, 0.0],
-            G4 = [-45.315, 21.131, 0.0],
-            G5 = [-4.358, -49.810, 0.0],
-            G6 = [4.358, -49.810, 0.0],
-        }
-        link carriage1 { C1 = [108.329, 19.101, 0.0] }
-        link rod1 { length = rod }
-        link carriage2 { C2 = [70.707, 84.265, 0.0] }
-        link rod2 { length = rod }
-        link carriage3 { C3 = [-70.707, 84.265, 0.0] }
-        link rod3 { length = rod }
-        link carriage4 { C4 = [-108.329, 19.101, 0.0] }
-        link rod4 { length = rod }
-        link carriage5 { C5 = [-37.622, -103.366, 0.0] }
-        link rod5 { length = rod }
-        link carriage6 { C6 = [37.622, -103.366, 0.0] }
-        link rod6 { length = rod }
-        chain arm1 = base - H(active q1, axis = A1 -> B1, lead = 5.0) - carriage1 - S(C1) - rod1 - S(G1) - platform;
-        chain arm2 = base - H(active q2, axis = A2 -> B2, lead = 5.0) - carriage2 - S(C2) - rod2 - S(G2) - platform;
-        chain arm3 = base - H(active q3, axis = A3 -> B3, lead = 5.0) - carriage3 - S(C3) - rod3 - S(G3) - platform;
-        chain arm4 = base - H(active q4, axis = A4 -> B4, lead = 5.0) - carriage4 - S(C4) - rod4 - S(G4) - platform;
-        chain arm5 = base - H(active q5, axis = A5 -> B5, lead = 5.0) - carriage5 - S(C5) - rod5 - S(G5) - platform;
-        chain arm6 = base - H(active q6, axis = A6 -> B6, lead = 5.0) - carriage6 - S(C6) - rod6 - S(G6) - platform;
-    }
+        Screws,
+        (),
+        [
+            H(active q1, axis = A1 -> B1, lead = 5.0) H(active q2, axis = A2 -> B2, lead = 5.0)
+            H(active q3, axis = A3 -> B3, lead = 5.0) H(active q4, axis = A4 -> B4, lead = 5.0)
+            H(active q5, axis = A5 -> B5, lead = 5.0) H(active q6, axis = A6 -> B6, lead = 5.0)
+        ]
+    );
 }
 
 mod cylinders {
-    linkage::mechanism! {
+    rod_hexapod!(
         /// Three cylindrical drivers (C: rotation and slide) and three prismatic ones.
-        pub struct Cylinders;
-        params { rod = 162.7108 }
-        base {
-            A1 = [118.177, 20.838, 0.0], B1 = [118.177, 20.838, 10.0],
-            A2 = [77.135, 91.925, 0.0], B2 = [77.135, 91.925, 10.0],
-            A3 = [-77.135, 91.925, 0.0], B3 = [-77.135, 91.925, 10.0],
-            A4 = [-118.177, 20.838, 0.0], B4 = [-118.177, 20.838, 10.0],
-            A5 = [-41.042, -112.763, 0.0], B5 = [-41.042, -112.763, 10.0],
-            A6 = [41.042, -112.763, 0.0], B6 = [41.042, -112.763, 10.0],
-        }
-        platform {
-            G1 = [45.315, 21.131, 0.0],
-            G2 = [40.958, 28.679, 0.0],
-            G3 = [-40.958, 28.679, 0.0],
-            G4 = [-45.315, 21.131, 0.0],
-            G5 = [-4.358, -49.810, 0.0],
-            G6 = [4.358, -49.810, 0.0],
-        }
-        link carriage1 { C1 = [108.329, 19.101, 0.0] }
-        link rod1 { length = rod }
-        link carriage2 { C2 = [70.707, 84.265, 0.0] }
-        link rod2 { length = rod }
-        link carriage3 { C3 = [-70.707, 84.265, 0.0] }
-        link rod3 { length = rod }
-        link carriage4 { C4 = [-108.329, 19.101, 0.0] }
-        link rod4 { length = rod }
-        link carriage5 { C5 = [-37.622, -103.366, 0.0] }
-        link rod5 { length = rod }
-        link carriage6 { C6 = [37.622, -103.366, 0.0] }
-        link rod6 { length = rod }
-        chain arm1 = base - C(active q1 z1, axis = A1 -> B1) - carriage1 - S(C1) - rod1 - S(G1) - platform;
-        chain arm2 = base - C(active q2 z2, axis = A2 -> B2) - carriage2 - S(C2) - rod2 - S(G2) - platform;
-        chain arm3 = base - C(active q3 z3, axis = A3 -> B3) - carriage3 - S(C3) - rod3 - S(G3) - platform;
-        chain arm4 = base - P(active z4, axis = A4 -> B4) - carriage4 - S(C4) - rod4 - S(G4) - platform;
-        chain arm5 = base - P(active z5, axis = A5 -> B5) - carriage5 - S(C5) - rod5 - S(G5) - platform;
-        chain arm6 = base - P(active z6, axis = A6 -> B6) - carriage6 - S(C6) - rod6 - S(G6) - platform;
-    }
+        Cylinders,
+        (),
+        [
+            C(active q1 z1, axis = A1 -> B1) C(active q2 z2, axis = A2 -> B2) C(active q3 z3, axis = A3 -> B3)
+            P(active z4, axis = A4 -> B4) P(active z5, axis = A5 -> B5) P(active z6, axis = A6 -> B6)
+        ]
+    );
 }
 
 use cylinders::Cylinders;
