@@ -10,7 +10,8 @@ pub fn sq(x: f64) -> f64 {
 pub use crate::math::{cos, sin};
 
 pub use linkage_geometry::{
-    axis_frame, distance, prismatic_rod_inverse, revolute_rod_inverse, rigid_coefficients,
+    axis_frame, collinear_coefficients, distance, place, prismatic_rod_inverse,
+    revolute_rod_inverse, rigid_coefficients,
 };
 
 pub fn set_named(

@@ -14,9 +14,9 @@
 //! For the active pair at the base, C(x) follows Table I: `C − B = R(C0 − B) + x e` with R of
 //! Eq. 2, written `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry.
 
-use crate::ast::{ChainDecl, Coord, LinkRole, Mechanism, PairDecl, PairKind};
+use crate::ast::{ChainDecl, ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
 use crate::expr::{self, Expr, Vec3};
-use crate::model::{is_point_joint, normalize, role, Builder, Inverse, Recipe};
+use crate::model::{is_point_joint, normalize, role, Builder, Inverse, PointRef, Recipe};
 use proc_macro2::Span;
 use syn::Ident;
 
@@ -48,6 +48,14 @@ pub enum Shape<'a> {
 }
 
 impl Shape<'_> {
+    /// Whether the links the shape eliminates belong to its chain alone.
+    pub fn links_private(&self, private: &dyn Fn(&Ident) -> bool) -> bool {
+        match self {
+            Shape::Rod { rod, .. } | Shape::Driven { rod, .. } => private(rod),
+            Shape::Leg { .. } | Shape::Swing { .. } => true,
+        }
+    }
+
     pub fn platform_pivot(&self) -> &Ident {
         match self {
             Shape::Leg { platform, .. }
@@ -62,8 +70,6 @@ pub struct ChainModel {
     pub equations: Vec<Expr>,
     pub inverse: Inverse,
 }
-
-const SUPPORTED: &str = "supported chains: `base - S(A) - P(active x) - S(G) - platform` (U for S), `base - S(A) - rod - S(G) - platform` with `link rod { length = l }`, `base - R(active q, axis = A -> B) - crank - S(C) - rod - S(G) - platform` (also `P`, `H`, `C` as the driver), `base - R(passive, axis = A -> B) - P(active x) - S(G) - platform`";
 
 fn center<'a>(p: &'a PairDecl, chain: &ChainDecl) -> Result<&'a Ident, (Span, String)> {
     match p.pivots.as_slice() {
@@ -123,57 +129,85 @@ fn check_axis(m: &Mechanism, p: &PairDecl) -> Result<(), (Span, String)> {
     Ok(())
 }
 
-pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Span, String)> {
+/// Why a chain is not reduced in closed form: it is not one of the shapes (`None`: the general
+/// model takes it), or it is one with a mistake (`Some`: a spanned error).
+type Fail = Option<(Span, String)>;
+
+/// The closed-form shape of a chain from the base to the platform, if it has one.
+pub fn classify<'a>(
+    m: &'a Mechanism,
+    c: &'a ChainDecl,
+) -> Result<Option<Shape<'a>>, (Span, String)> {
+    let ends = (c.items.first(), c.items.last());
+    if !matches!(ends, (Some(ChainItem::Link(a)), Some(ChainItem::Link(b))) if a == "base" && b == "platform")
+    {
+        return Ok(None);
+    }
+    match shape(m, c) {
+        Ok(s) => Ok(Some(s)),
+        Err(None) => Ok(None),
+        Err(Some(e)) => Err(e),
+    }
+}
+
+fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
     let n0 = normalize(m, c);
     for p in &n0.pairs {
-        check_axis(m, p)?;
+        check_axis(m, p).map_err(Some)?;
     }
     let n = normalize(m, c);
-    let letters: Vec<&str> = n.pairs.iter().map(|p| p.kind.letter()).collect();
-    let unsupported = || {
-        (
-            c.name.span(),
-            format!(
-                "chain `{}` has the unsupported shape `{}`; {SUPPORTED}",
-                c.name,
-                letters.join(" - ")
-            ),
-        )
+    let unsupported = || None;
+    // A U at both ends of a leg constrains the leg's spin, and with it the platform: only a leg
+    // with at least one S reduces to a distance.
+    let ends_ok = |a: &PairDecl, b: &PairDecl| !(a.kind == PairKind::U && b.kind == PairKind::U);
+    let base_axis = |p: &PairDecl| {
+        p.axis.as_ref().map_or(true, |(a, b)| {
+            on_link(m, "base", a) && on_link(m, "base", b)
+        })
     };
-    let platform_center = |p: &'a PairDecl| -> Result<&'a Ident, (Span, String)> {
-        let g = center(p, c)?;
+    let platform_center = |p: &'a PairDecl| -> Result<&'a Ident, Fail> {
+        let g = center(p, c).map_err(Some)?;
         if !on_link(m, "platform", g) {
-            return Err((g.span(), format!("the last pair of chain `{}` must be centred on a `platform` pivot, and `{g}` is not one", c.name)));
+            return Err(None);
         }
         Ok(g)
     };
-    let base_center = |p: &'a PairDecl| -> Result<&'a Ident, (Span, String)> {
-        let a = center(p, c)?;
+    let base_center = |p: &'a PairDecl| -> Result<&'a Ident, Fail> {
+        let a = center(p, c).map_err(Some)?;
         if !on_link(m, "base", a) {
-            return Err((a.span(), format!("the first pair of chain `{}` must be centred on a `base` pivot, and `{a}` is not one", c.name)));
+            return Err(None);
         }
         Ok(a)
     };
     let pairs = &n.pairs;
     match pairs.as_slice() {
         [s1, slider, s2]
-            if is_point_joint(s1) && slider.kind == PairKind::P && is_point_joint(s2) =>
+            if is_point_joint(s1)
+                && slider.kind == PairKind::P
+                && is_point_joint(s2)
+                && ends_ok(s1, s2)
+                && slider.axis.is_none() =>
         {
             if slider.active.is_none() {
-                return Err((slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", c.name)));
+                return Err(Some((slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", c.name))));
             }
-            single_variable(slider, c)?;
+            single_variable(slider, c).map_err(Some)?;
             Ok(Shape::Leg {
                 anchor: base_center(s1)?,
                 slider,
                 platform: platform_center(s2)?,
             })
         }
-        [s1, s2] if is_point_joint(s1) && is_point_joint(s2) => {
+        [s1, s2] if is_point_joint(s1) && is_point_joint(s2) && ends_ok(s1, s2) => {
             let rod = n.links[1].filter(|l| l.role == LinkRole::Intermediate);
             match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
-                Some((rod, length)) => Ok(Shape::Rod { anchor: base_center(s1)?, rod: &rod.name, length, platform: platform_center(s2)? }),
-                None => Err((s2.token.span(), format!("the rod between the two point joints of chain `{}` needs a length: `link rod {{ length = ... }}` between them", c.name))),
+                Some((rod, length)) => Ok(Shape::Rod {
+                    anchor: base_center(s1)?,
+                    rod: &rod.name,
+                    length,
+                    platform: platform_center(s2)?,
+                }),
+                None => Err(unsupported()),
             }
         }
         [driver, s1, s2]
@@ -181,81 +215,87 @@ pub fn classify<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, (Sp
                 driver.kind,
                 PairKind::R | PairKind::P | PairKind::H | PairKind::C
             ) && is_point_joint(s1)
-                && is_point_joint(s2) =>
+                && is_point_joint(s2)
+                && ends_ok(s1, s2)
+                && base_axis(driver) =>
         {
             if driver.active.is_none() {
-                return Err((
-                    driver.token.span(),
-                    format!(
-                        "the `{}` pair driving chain `{}` must be active",
-                        driver.kind.letter(),
-                        c.name
-                    ),
-                ));
+                return Err(unsupported());
             }
             let expected = if driver.kind == PairKind::C { 2 } else { 1 };
             if driver.variables.len() != expected {
-                return Err((
+                return Err(Some((
                     driver.token.span(),
                     format!(
                         "an active `{}` pair has {expected} joint variable(s), found {}",
                         driver.kind.letter(),
                         driver.variables.len()
                     ),
-                ));
+                )));
             }
             if driver.axis.is_none() {
-                return Err((
+                return Err(Some((
                     driver.token.span(),
                     format!(
                         "the `{}` pair of chain `{}` needs its axis: `axis = A -> B` on `base`",
                         driver.kind.letter(),
                         c.name
                     ),
-                ));
+                )));
             }
             if driver.kind == PairKind::H && driver.lead.is_none() {
-                return Err((
+                return Err(Some((
                     driver.token.span(),
                     "a helical pair needs its `lead = ...`".to_string(),
-                ));
+                )));
             }
             let link = match n.links[1] {
                 Some(l) if l.role == LinkRole::Intermediate => l,
-                _ => return Err((driver.token.span(), format!("chain `{}` needs a declared link after its driving pair, holding the centre of the next joint", c.name))),
+                _ => return Err(Some((driver.token.span(), format!("chain `{}` needs a declared link after its driving pair, holding the centre of the next joint", c.name)))),
             };
-            let tip = center(s1, c)?;
+            let tip = center(s1, c).map_err(Some)?;
             if !link.pivots.iter().any(|p| p.name == *tip) {
-                return Err((
+                return Err(Some((
                     tip.span(),
                     format!("`{tip}` is not a pivot of link `{}`", link.name),
-                ));
+                )));
             }
             let rod = n.links[2].filter(|l| l.role == LinkRole::Intermediate);
             match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
-                Some((rod, length)) => Ok(Shape::Driven { driver, link: &link.name, tip, rod: &rod.name, length, platform: platform_center(s2)? }),
-                None => Err((s2.token.span(), format!("the rod of chain `{}` needs a length: `link rod {{ length = ... }}` between its two point joints", c.name))),
+                Some((rod, length)) => Ok(Shape::Driven {
+                    driver,
+                    link: &link.name,
+                    tip,
+                    rod: &rod.name,
+                    length,
+                    platform: platform_center(s2)?,
+                }),
+                None => Err(unsupported()),
             }
         }
         [hinge, slider, s]
-            if hinge.kind == PairKind::R && slider.kind == PairKind::P && is_point_joint(s) =>
+            if hinge.kind == PairKind::R
+                && slider.kind == PairKind::P
+                && is_point_joint(s)
+                && base_axis(hinge)
+                && slider.axis.is_none() =>
         {
             if hinge.active.is_some() || slider.active.is_none() {
                 return Err(unsupported());
             }
             if hinge.axis.is_none() {
-                return Err((
+                return Err(Some((
                     hinge.token.span(),
                     format!(
                         "the `R` pair of chain `{}` needs its axis: `axis = A -> B` on `base`",
                         c.name
                     ),
-                ));
+                )));
             }
             if role(n.links[0]) != Some(LinkRole::Base) {
                 return Err(unsupported());
             }
-            single_variable(slider, c)?;
+            single_variable(slider, c).map_err(Some)?;
             Ok(Shape::Swing {
                 hinge,
                 slider,
@@ -336,9 +376,9 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
             ..
         } => {
             let (ax_a, ax_b) = driver.axis.as_ref().expect("classified");
-            let a = b.pivot_slots("base", &ax_a.to_string());
-            let bb = b.pivot_slots("base", &ax_b.to_string());
-            let c0 = b.pivot_slots(&link.to_string(), &tip.to_string());
+            let a = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
+            let bb = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
+            let c0 = PointRef::Slots(b.pivot_slots(&link.to_string(), &tip.to_string()));
             let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
                 [0, 1, 2].map(|k3| {
                     let name = format!("{prefix}{}_{chain}", ["x", "y", "z"][k3]);
@@ -427,8 +467,8 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
         }
         Shape::Swing { hinge, slider, .. } => {
             let (ax_a, ax_b) = hinge.axis.as_ref().expect("classified");
-            let a_slots = b.pivot_slots("base", &ax_a.to_string());
-            let b_slots = b.pivot_slots("base", &ax_b.to_string());
+            let a_slots = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
+            let b_slots = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
             let a = b.pivot_constants("base", &ax_a.to_string());
             let e: Vec3 = [0, 1, 2].map(|k3| {
                 let name = format!("e{}_{chain}", ["x", "y", "z"][k3]);

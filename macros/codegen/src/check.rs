@@ -1,7 +1,7 @@
 //! Name-level validation of a declaration. Never builds tokens; collects every mistake so the
 //! user sees them all in one build.
 
-use crate::ast::{ChainItem, Coord, LinkDecl, Mechanism, PairDecl};
+use crate::ast::{ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
 use std::collections::HashMap;
 use syn::Ident;
 
@@ -125,23 +125,40 @@ impl Mechanism {
 
     fn check_chain(&self, chain: &crate::ast::ChainDecl, errors: &mut Errors) {
         let items = &chain.items;
+        // A chain begins at the base or at any declared link (e.g. the second rod of a
+        // parallelogram on a crank) and ends at a link.
         match items.first() {
-            Some(ChainItem::Link(l)) if l == "base" => {}
-            Some(ChainItem::Link(l)) if self.link(l).is_none() => {}
-            Some(ChainItem::Link(l)) => errors.push(
+            Some(ChainItem::Link(l)) if l == "platform" => errors.push(
                 l.span(),
-                format!("chain `{}` must start at `base`, not `{l}`", chain.name),
+                format!("chain `{}` begins at `platform`: chains run from the base (or a link) to the platform", chain.name),
             ),
+            Some(ChainItem::Link(_)) => {}
             _ => errors.push(
                 chain.name.span(),
-                format!("chain `{}` must start at `base`", chain.name),
+                format!("chain `{}` must start at `base` (or at a declared link)", chain.name),
             ),
         }
         match items.last() {
-            Some(ChainItem::Link(l)) if l == "platform" => {}
-            Some(ChainItem::Link(l)) if self.link(l).is_none() => {}
-            Some(ChainItem::Link(l)) => errors.push(l.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, not `{l}`", chain.name)),
-            _ => errors.push(chain.name.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`", chain.name)),
+            Some(ChainItem::Link(_)) => {}
+            _ => errors.push(
+                chain.name.span(),
+                format!(
+                    "chain `{}` does not reach the moving platform: it must end at `platform`",
+                    chain.name
+                ),
+            ),
+        }
+        if let (Some(ChainItem::Link(a)), Some(ChainItem::Link(b))) = (items.first(), items.last())
+        {
+            if a == "base" && b != "platform" && self.link(b).is_some() {
+                let reaches = self
+                    .chains
+                    .iter()
+                    .any(|c| matches!(c.items.first(), Some(ChainItem::Link(f)) if f == b));
+                if !reaches {
+                    errors.push(b.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, not `{b}`", chain.name));
+                }
+            }
         }
         for (k, item) in items.iter().enumerate() {
             match item {
@@ -194,22 +211,82 @@ impl Mechanism {
         errors: &mut Errors,
     ) {
         let letter = p.kind.letter();
+        let accepts = Accepts::of(p.kind);
         match (&p.active, &p.passive) {
             (Some(_), Some(pas)) => errors.push(pas.span(), format!("pair `{letter}` is both `active` and `passive`")),
-            (None, None) if matches!(p.kind, crate::ast::PairKind::S | crate::ast::PairKind::U) => {}
+            (None, None) if accepts.centre => {}
             // A bare name instead of `active NAME` gets its own message below.
             (None, None) if !p.pivots.is_empty() => {}
             (None, None) => errors.push(
                 p.token.span(),
                 format!("pair `{letter}` in chain `{}` is neither `active NAME` nor `passive`: an active pair names its joint variable, e.g. `{letter}(active q1)`", chain.name),
             ),
-            _ => {}
+            (Some(active), None) => match accepts.variables {
+                None => errors.push(active.span(), format!("an active `{letter}` pair is not modelled: make it `passive` and drive the chain with another pair")),
+                Some(n) if p.variables.len() != n => errors.push(
+                    p.token.span(),
+                    format!("an active `{letter}` pair has {n} joint variable{}, found {}", if n == 1 { "" } else { "s" }, p.variables.len()),
+                ),
+                Some(_) => {}
+            },
+            (None, Some(pas)) => {
+                if !accepts.passive {
+                    errors.push(pas.span(), format!("a passive `{letter}` pair is not modelled: its constraint is not polynomial of degree ≤ 2 (Section 2.2); make it active"));
+                }
+            }
         }
-        let takes_pivots = matches!(p.kind, crate::ast::PairKind::S | crate::ast::PairKind::U);
-        if !takes_pivots {
+        // Arguments the pair kind does not take.
+        if let Some((a, _)) = &p.axis {
+            if accepts.axis == Need::No {
+                errors.push(a.span(), format!("pair `{letter}` takes no `axis`"));
+            }
+        } else if accepts.axis == Need::Required {
+            errors.push(p.token.span(), format!("pair `{letter}` in chain `{}` needs its axis: `axis = A -> B`, two pivots on the axis", chain.name));
+        }
+        if let Some(off) = &p.offset {
+            if accepts.offset {
+                self.check_coord(off, errors);
+            } else {
+                errors.push(
+                    off.span(),
+                    format!("`offset` belongs to a prismatic pair `P`, not `{letter}`"),
+                );
+            }
+        }
+        if let Some(lead) = &p.lead {
+            if accepts.lead == Need::No {
+                errors.push(
+                    lead.span(),
+                    format!("`lead` belongs to a helical pair `H`, not `{letter}`"),
+                );
+            } else {
+                self.check_coord(lead, errors);
+            }
+        } else if accepts.lead == Need::Required {
+            errors.push(
+                p.token.span(),
+                format!("a helical pair `{letter}` needs its `lead = ...`"),
+            );
+        }
+        if let Some((a, b)) = &p.axis {
+            for q in [a, b] {
+                if self.pivot_link(q).is_none() {
+                    errors.push(q.span(), format!("the axis of pair `{letter}` names `{q}`, which is not a declared pivot"));
+                }
+            }
+            if a == b {
+                errors.push(
+                    b.span(),
+                    format!(
+                        "the axis of pair `{letter}` is given by coincident points `{a}` and `{b}`"
+                    ),
+                );
+            }
+        }
+        if !accepts.centre {
             for extra in &p.pivots {
                 let msg = if p.passive.is_some() {
-                    format!("a passive pair has no joint variable: remove `{extra}` or write `{letter}(active {extra})`")
+                    format!("a passive pair has no joint variable: remove `{extra}` or write `{letter}(passive)`")
                 } else if p.active.is_none() {
                     format!("`{extra}` is not an argument of pair `{letter}`: an active pair names its joint variable, `{letter}(active {extra})`")
                 } else {
@@ -218,6 +295,9 @@ impl Mechanism {
                 errors.push(extra.span(), msg);
             }
             return;
+        }
+        if p.pivots.len() != 1 {
+            errors.push(p.token.span(), format!("pair `{letter}` in chain `{}` names its centre: one pivot, e.g. `{letter}(G1)`", chain.name));
         }
         // An unknown neighbour link, or a chain that stops at a pair, is reported already;
         // resolving pivots against it would only add noise.
@@ -239,33 +319,73 @@ impl Mechanism {
                 errors.push(pivot.span(), format!("pair `{letter}` in chain `{}` references unknown pivot `{pivot}`: it is on neither of the links it joins ({})", chain.name, names.join(", ")));
             }
         }
-        if let Some((a, b)) = &p.axis {
-            let link_before = before.and_then(|l| self.link(l));
-            for q in [a, b] {
-                if !link_before.is_some_and(|l| l.pivots.iter().any(|r| r.name == *q)) {
-                    errors.push(q.span(), format!("the axis of pair `{letter}` names `{q}`, which is not a pivot of the link before the pair"));
-                }
-            }
-            if a == b {
-                errors.push(
-                    b.span(),
-                    format!(
-                        "the axis of pair `{letter}` is given by coincident points `{a}` and `{b}`"
-                    ),
-                );
-            }
-        }
-        if let Some(lead) = &p.lead {
-            if p.kind != crate::ast::PairKind::H {
-                errors.push(
-                    lead.span(),
-                    format!("`lead` belongs to a helical pair `H`, not `{letter}`"),
-                );
-            }
-            self.check_coord(lead, errors);
-        }
-        if let Some(off) = &p.offset {
-            self.check_coord(off, errors);
+    }
+
+    /// The link declaring pivot `q`.
+    pub fn pivot_link(&self, q: &Ident) -> Option<&LinkDecl> {
+        self.all_links()
+            .find(|l| l.pivots.iter().any(|p| p.name == *q))
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Need {
+    No,
+    Optional,
+    Required,
+}
+
+/// What each pair kind takes: the one table every argument is checked against.
+struct Accepts {
+    /// Names its centre pivot (`S(C)`, `U(C, ...)`).
+    centre: bool,
+    axis: Need,
+    offset: bool,
+    lead: Need,
+    /// Joint variables when active; `None`: no active form is modelled.
+    variables: Option<usize>,
+    /// Whether a passive form is modelled (degree ≤ 2).
+    passive: bool,
+}
+
+impl Accepts {
+    fn of(kind: PairKind) -> Accepts {
+        let base = Accepts {
+            centre: false,
+            axis: Need::Required,
+            offset: false,
+            lead: Need::No,
+            variables: Some(1),
+            passive: true,
+        };
+        match kind {
+            PairKind::S => Accepts {
+                centre: true,
+                axis: Need::No,
+                variables: None,
+                ..base
+            },
+            PairKind::U => Accepts {
+                centre: true,
+                axis: Need::Optional,
+                variables: None,
+                ..base
+            },
+            PairKind::R => base,
+            PairKind::P => Accepts {
+                axis: Need::Optional,
+                offset: true,
+                ..base
+            },
+            PairKind::C => Accepts {
+                variables: Some(2),
+                ..base
+            },
+            PairKind::H => Accepts {
+                lead: Need::Required,
+                passive: false,
+                ..base
+            },
         }
     }
 }

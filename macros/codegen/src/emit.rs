@@ -3,7 +3,7 @@
 
 use crate::ast::Mechanism;
 use crate::expr::{Expr, Var};
-use crate::model::{Inverse, Model, Recipe};
+use crate::model::{Inverse, Model, PointRef, Recipe};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -30,12 +30,13 @@ pub fn expand(
     let equation_text: Vec<String> = model.equations.iter().map(|e| model.render(e)).collect();
     let jacobian_text: Vec<String> = jac.iter().map(|(_, _, e)| model.render(e)).collect();
     let pattern = jac.iter().map(|(r, c, _)| quote!((#r, #c)));
+    let mobility = model
+        .mobility
+        .clone()
+        .unwrap_or_else(|| crate::mobility::of(mech).describe());
     let listing = listing(model, &equation_text, &jac, &jacobian_text).replacen(
         "\nunknowns:",
-        &format!(
-            "\nmobility: {}\nunknowns:",
-            crate::mobility::of(mech).describe()
-        ),
+        &format!("\nmobility: {mobility}\nunknowns:"),
         1,
     );
     let point_names = model.points.iter().map(|p| p.name.as_str());
@@ -44,7 +45,7 @@ pub fn expand(
         .constants
         .iter()
         .enumerate()
-        .map(|(i, c)| recipe(i, &c.recipe));
+        .map(|(i, c)| recipe(model, i, &c.recipe));
 
     let residual = model.equations.iter().enumerate().map(|(i, e)| {
         let e = tokens(e);
@@ -112,16 +113,11 @@ pub fn expand(
     let home_items = home.map(|r| {
         let pose = r.pose.map(lit);
         let x0 = r.x.iter().map(|x| lit(*x));
-        quote! {
-            /// The declared `home` pose `[yaw, pitch, roll, x, y, z]`, checked at compile time:
-            /// the mechanism assembles there and ∂F/∂v is regular.
-            pub const HOME: [f64; 6] = [#(#pose),*];
-            /// The joint inputs at `HOME`, from inverse kinematics on the declared geometry.
-            pub const HOME_INPUTS: [f64; #m] = [#(#x0),*];
-
-            /// The start configuration at [`Self::HOME`] for the current geometry (inputs from
-            /// inverse kinematics).
-            pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
+        let v0 = r.v.iter().map(|x| lit(*x));
+        // Without a closed-form inverse the start is the declared configuration itself,
+        // refined by `Start::new` (which also follows a geometry changed at run time a little).
+        let start = if model.general_home_inputs.is_empty() && no_closed_form.is_none() {
+            quote! {
                 let [yaw, pitch, roll, x, y, z] = Self::HOME;
                 let v = ::linkage::unknowns_from_pose(self, &::linkage::Pose::from_euler(yaw, pitch, roll, [x, y, z]));
                 let inputs = <Self as ::linkage::Mechanism<#n, #m>>::inverse(self, &v, &Self::HOME_INPUTS).map_err(|e| match e {
@@ -129,6 +125,23 @@ pub fn expand(
                     ::linkage::InverseError::NonFinite => ::linkage::SolveError::NonFinite,
                 })?;
                 ::linkage::Start::new(self, v, inputs)
+            }
+        } else {
+            quote!(::linkage::Start::new(self, Self::HOME_V, Self::HOME_INPUTS))
+        };
+        quote! {
+            /// The declared `home` pose `[yaw, pitch, roll, x, y, z]`, checked at compile time:
+            /// the mechanism assembles there and ∂F/∂v is regular.
+            pub const HOME: [f64; 6] = [#(#pose),*];
+            /// The joint inputs at `HOME`, from inverse kinematics on the declared geometry.
+            pub const HOME_INPUTS: [f64; #m] = [#(#x0),*];
+
+            /// Every unknown at [`Self::HOME`], on the declared geometry.
+            pub const HOME_V: [f64; #n] = [#(#v0),*];
+
+            /// The start configuration at [`Self::HOME`] for the current geometry.
+            pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
+                #start
             }
         }
     });
@@ -318,6 +331,12 @@ fn listing(
     for (i, e) in equations.iter().enumerate() {
         s += &format!("F{} = {e}\n", i + 1);
     }
+    if !model.dropped.is_empty() {
+        s += "\ndependent at home, implied by the above and left out:\n";
+        for e in &model.dropped {
+            s += &format!("  {e}\n");
+        }
+    }
     s += &format!("\n∂F/∂v: {} nonzeros\n", jac.len());
     for ((r, c, _), t) in jac.iter().zip(jtext) {
         s += &format!("J({},{}) = {t}\n", r + 1, c + 1);
@@ -397,9 +416,20 @@ fn split_sign(e: &Expr) -> (bool, Expr) {
     }
 }
 
-fn point3(s: [usize; 3]) -> TokenStream {
+fn slots3(s: [usize; 3]) -> TokenStream {
     let [a, b, c] = s;
     quote!([g[#a], g[#b], g[#c]])
+}
+
+fn point3(model: &Model, p: PointRef) -> TokenStream {
+    match p {
+        PointRef::Slots(s) => slots3(s),
+        PointRef::PlatformHome(s) => {
+            let pose = model.home_pose.map(lit);
+            let s = slots3(s);
+            quote!(::linkage::__private::place([#(#pose),*], #s))
+        }
+    }
 }
 
 fn consts3(s: [usize; 3]) -> TokenStream {
@@ -407,8 +437,9 @@ fn consts3(s: [usize; 3]) -> TokenStream {
     quote!([c[#a], c[#b], c[#c]])
 }
 
-fn recipe(i: usize, r: &Recipe) -> TokenStream {
+fn recipe(model: &Model, i: usize, r: &Recipe) -> TokenStream {
     let p = quote!(::linkage::__private);
+    let point3 = |q: PointRef| point3(model, q);
     match r {
         Recipe::Slot(s) => quote!(c[#i] = g[#s];),
         Recipe::Rigid {
@@ -420,6 +451,11 @@ fn recipe(i: usize, r: &Recipe) -> TokenStream {
             let [f0, f1, f2] = frame.map(point3);
             let q = point3(*point);
             quote!(c[#i] = #p::rigid_coefficients([#f0, #f1, #f2], #q, #coplanar)?[#index];)
+        }
+        Recipe::Collinear { line, point, index } => {
+            let [l0, l1] = line.map(point3);
+            let q = point3(*point);
+            quote!(c[#i] = #p::collinear_coefficients([#l0, #l1], #q)?[#index];)
         }
         Recipe::Distance { a, b } => {
             let (a, b) = (point3(*a), point3(*b));

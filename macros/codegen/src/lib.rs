@@ -12,8 +12,10 @@ pub mod emit;
 pub mod emit_factor;
 pub mod expr;
 pub mod factor;
+pub mod general;
 pub mod mobility;
 pub mod model;
+pub mod rank;
 pub mod reference;
 pub mod rigid;
 pub mod simplify;
@@ -55,8 +57,14 @@ fn fallback_name(input: &TokenStream) -> Option<syn::Ident> {
 fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
     let mech = parse(input)?;
     let model = model::build(&mech)?;
-    let home = match mech.platform.as_ref().and_then(|p| p.home) {
+    let declared = mech.platform.as_ref().and_then(|p| p.home);
+    let home = match declared {
         Some(home) => Some(reference::check(&model, home)?),
+        // The general model is always checked at home (identity pose if none is declared).
+        None if model.mobility.is_some() => Some(reference::check(
+            &model,
+            (mech.name.span(), model.home_pose),
+        )?),
         None => None,
     };
     Ok(emit::expand(&mech, &model, home.as_ref()))

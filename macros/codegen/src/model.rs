@@ -19,6 +19,17 @@ pub struct Slot {
     pub default: f64,
 }
 
+/// Where a point's position at the home configuration comes from, in the base frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PointRef {
+    /// Three geometry slots: a base pivot, an intermediate link's pivot (declared at home), or
+    /// a platform pivot in the platform's own frame (the closed-form shapes and Eq. 16 use the
+    /// platform's own frame: rigid-body coefficients do not depend on the frame).
+    Slots([usize; 3]),
+    /// A platform pivot's platform-frame slots, placed by the declared home pose.
+    PlatformHome([usize; 3]),
+}
+
 /// How a constant is computed from the geometry slots (in the emitted `from_geometry`).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Recipe {
@@ -26,21 +37,27 @@ pub enum Recipe {
     /// Coefficient `index` of `point` in the frame: `[a, b, c, d]` with
     /// `q = a p1 + b p2 + c p3 + d (p2 − p1) × (p3 − p1)` (d = 0 in the coplanar form).
     Rigid {
-        frame: [[usize; 3]; 3],
-        point: [usize; 3],
+        frame: [PointRef; 3],
+        point: PointRef,
         index: usize,
         coplanar: bool,
     },
+    /// Coefficient `index` of `point` on the line: `q = a p1 + b p2`, `a + b = 1`.
+    Collinear {
+        line: [PointRef; 2],
+        point: PointRef,
+        index: usize,
+    },
     Distance {
-        a: [usize; 3],
-        b: [usize; 3],
+        a: PointRef,
+        b: PointRef,
     },
     /// Component `index` of `[e, o, u, w]` for a rotation of `point` about the axis `a → b`:
     /// e the unit axis, o the foot of `point` on it, u the radial arm, w = e × u.
     Axis {
-        a: [usize; 3],
-        b: [usize; 3],
-        point: [usize; 3],
+        a: PointRef,
+        b: PointRef,
+        point: PointRef,
         index: usize,
     },
 }
@@ -96,6 +113,17 @@ pub struct Model {
     pub frame: [usize; 3],
     pub coplanar: bool,
     pub inverses: Vec<Inverse>,
+    /// The platform's declared home pose (identity if none): where the general model places the
+    /// platform's pivots at home.
+    pub home_pose: [f64; 6],
+    /// Intermediate-link points solved for (after the platform's), with their home positions.
+    pub general_points: Vec<(String, PointRef)>,
+    /// Inputs of the general chains and their values at home.
+    pub general_home_inputs: Vec<(usize, f64)>,
+    /// Equations dropped as dependent at home (rendered), for the listing.
+    pub dropped: Vec<String>,
+    /// How the mobility was decided, when not by Grübler–Kutzbach.
+    pub mobility: Option<String>,
 }
 
 impl Model {
@@ -148,36 +176,73 @@ impl Model {
 pub fn build(m: &Mechanism) -> syn::Result<Model> {
     let mut b = Builder::new(m);
     b.allocate_slots();
-    let platform = m.platform.as_ref().expect("validated");
+    let Some(platform) = m.platform.as_ref() else {
+        return Err(syn::Error::new(
+            m.name.span(),
+            "mechanism has no `platform { ... }` link",
+        ));
+    };
+    b.home_pose = platform.home.map_or([0.0; 6], |(_, pose)| pose);
     let mut errors = Errors::default();
 
-    // Which platform pivots the chains reach.
+    // A named link inside a closed-form shape must belong to that chain alone; a crank an
+    // active pair places may carry other chains (it is explicit in the input either way).
+    let mut uses: HashMap<String, usize> = HashMap::new();
+    for c in &m.chains {
+        for item in &c.items {
+            if let ChainItem::Link(l) = item {
+                *uses.entry(l.to_string()).or_default() += 1;
+            }
+        }
+    }
+    let private = |l: &Ident| uses.get(&l.to_string()).copied().unwrap_or(0) <= 1;
+
+    // Which platform pivots the chains reach; which chains reduce in closed form.
     let mut used: Vec<bool> = vec![false; platform.pivots.len()];
     let mut shapes = Vec::new();
+    let mut general = Vec::new();
     for c in &m.chains {
         match chain::classify(m, c) {
-            Ok(shape) => {
+            Ok(Some(shape)) if shape.links_private(&private) => {
                 let g = shape.platform_pivot();
                 if let Some(i) = platform.pivots.iter().position(|p| p.name == *g) {
                     used[i] = true;
                 }
                 shapes.push((c, shape));
             }
+            Ok(_) => general.push(c),
             Err(e) => errors.push(e.0, e.1),
         }
     }
-    let frame = choose_frame(&b, platform);
+    let topo = match crate::general::topology(m, &general) {
+        Ok(t) => Some(t),
+        Err((span, msg)) => {
+            errors.push(span, msg);
+            None
+        }
+    };
+    if let Some(pl) = topo
+        .as_ref()
+        .and_then(|t| t.links.iter().find(|l| l.role == LinkRole::Platform))
+    {
+        for q in &pl.members {
+            if let Some(i) = platform.pivots.iter().position(|p| p.name == *q) {
+                used[i] = true;
+            }
+        }
+    }
+    let frame = choose_frame(&b, platform, &used);
     if let Err((span, msg)) = &frame {
         errors.push(*span, msg);
     }
     errors.finish()?;
-    let Ok(frame_idx) = frame else {
+    let (Ok(frame_idx), Some(topo)) = (frame, topo) else {
         return Err(syn::Error::new(
             platform.name.span(),
             "no frame for the platform",
         ));
     };
-    for f in frame_idx {
+    for f in frame_idx.into_iter().flatten() {
         used[f] = true;
     }
 
@@ -198,7 +263,18 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             b.unknowns.push(format!("{axis}_{}", p.name));
         }
     }
-    let frame = frame_idx.map(|f| point_of_pivot[&platform.pivots[f].name.to_string()]);
+    let frame = frame_idx.map(|f| f.map(|f| point_of_pivot[&platform.pivots[f].name.to_string()]));
+
+    // Inputs in chain order, whichever model treats the chain.
+    for c in &m.chains {
+        for item in &c.items {
+            if let ChainItem::Pair(p) = item {
+                for v in &p.variables {
+                    b.input(v);
+                }
+            }
+        }
+    }
 
     // Chain equations (Table I pairs, combined base to platform, simplified).
     for (c, shape) in &shapes {
@@ -207,23 +283,85 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         b.equations.extend(equations);
         b.inverses.push(inverse);
     }
+    let mut added = crate::general::Added {
+        points: Vec::new(),
+        home_inputs: Vec::new(),
+    };
+    let mut foreign = Vec::new();
+    if !general.is_empty() {
+        let platform_exprs: HashMap<String, Vec3> = point_of_pivot
+            .iter()
+            .map(|(name, &p)| (name.clone(), [0, 1, 2].map(|a| Expr::Unknown(a * k + p))))
+            .collect();
+        let explicit = explicit_pairs(m, &topo);
+        foreign = crate::general::model(&mut b, m, &topo, &explicit, &platform_exprs, &mut added)
+            .map_err(|(span, msg)| syn::Error::new(span, msg))?;
+        let inputs: Vec<usize> = general
+            .iter()
+            .flat_map(|c| c.items.iter())
+            .filter_map(|i| match i {
+                ChainItem::Pair(p) => Some(p.variables.iter()),
+                ChainItem::Link(_) => None,
+            })
+            .flatten()
+            .map(|v| b.input_index(v))
+            .collect();
+        b.inverses.push(Inverse::None { inputs });
+    }
 
     // Rigid-body equations of the platform (Eq. 3 / Eq. 16).
-    let planar = rigid::is_coplanar(&b, frame, k);
-    let coplanar = match &platform.form {
-        Some(form) if form == "general" => false,
-        Some(form) => {
-            if !planar {
-                return Err(syn::Error::new(form.span(), "`form = coplanar` but the platform pivots are not coplanar at the declared geometry"));
+    let coplanar = match frame {
+        Some(frame) => {
+            let planar = rigid::is_coplanar(&b, frame, k);
+            let coplanar = match &platform.form {
+                Some(form) if form == "general" => false,
+                Some(form) => {
+                    if !planar {
+                        return Err(syn::Error::new(form.span(), "`form = coplanar` but the platform pivots are not coplanar at the declared geometry"));
+                    }
+                    true
+                }
+                None => planar,
+            };
+            if foreign.is_empty() {
+                rigid::platform_equations(&mut b, frame, k, coplanar);
             }
-            true
+            coplanar
         }
-        None => planar,
+        None => false,
     };
-    rigid::platform_equations(&mut b, frame, k, coplanar);
+    if frame.is_none() || !foreign.is_empty() {
+        // The platform with points of other links on it (an axis point, a shared centre), or a
+        // platform of one or two points: Eq. 3 on all its members, in the base frame at home.
+        let mut members: Vec<(String, crate::general::Repr, PointRef)> = b
+            .points
+            .iter()
+            .enumerate()
+            .map(|(p, pt)| {
+                (
+                    pt.name.clone(),
+                    crate::general::Repr::Unknown([0, 1, 2].map(|a| Expr::Unknown(a * k + p))),
+                    PointRef::PlatformHome(pt.local),
+                )
+            })
+            .collect();
+        if let Some(frame) = frame {
+            // The declared (or best) frame first.
+            for (slot, f) in frame.into_iter().enumerate() {
+                members.swap(slot, f);
+            }
+        }
+        for (name, repr) in foreign {
+            let at = crate::general::point_ref(&b, m, &topo, &name)
+                .map_err(|(span, msg)| syn::Error::new(span, msg))?;
+            members.push((name, repr, at));
+        }
+        rigid::link_equations(&mut b, "platform", &members, None);
+    }
     crate::simplify::remove_duplicates(&mut b.equations);
 
-    let model = Model {
+    let frame = frame.unwrap_or([0, 0, 0]);
+    let mut model = Model {
         name: m.name.clone(),
         slots: b.slots,
         constants: b.constants,
@@ -234,9 +372,48 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         frame,
         coplanar,
         inverses: b.inverses,
+        home_pose: b.home_pose,
+        general_points: added.points,
+        general_home_inputs: added.home_inputs,
+        dropped: Vec::new(),
+        mobility: None,
     };
-    check_system(&model, m)?;
+    if general.is_empty() {
+        check_system(&model, m)?;
+    } else {
+        crate::reference::rank_at_home(&mut model, m)?;
+    }
     Ok(model)
+}
+
+/// Links an active pair attaches to the base (in any chain): explicit in that pair's inputs.
+fn explicit_pairs<'a>(
+    m: &'a Mechanism,
+    topo: &crate::general::Topology,
+) -> Vec<(&'a PairDecl, String)> {
+    let mut out: Vec<(&PairDecl, String)> = Vec::new();
+    for c in &m.chains {
+        let n = normalize(m, c);
+        for (k, p) in n.pairs.iter().enumerate() {
+            let (Some(before), Some(after)) = (n.links[k], n.links[k + 1]) else {
+                continue;
+            };
+            let moves = matches!(
+                p.kind,
+                PairKind::R | PairKind::P | PairKind::H | PairKind::C
+            );
+            if before.role == LinkRole::Base
+                && after.role == LinkRole::Intermediate
+                && p.active.is_some()
+                && moves
+                && topo.links.iter().any(|l| l.name == after.name.to_string())
+                && !out.iter().any(|(_, l)| *l == after.name.to_string())
+            {
+                out.push((*p, after.name.to_string()));
+            }
+        }
+    }
+    out
 }
 
 fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
@@ -277,7 +454,14 @@ fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
     Ok(())
 }
 
-fn choose_frame(b: &Builder, platform: &LinkDecl) -> Result<[usize; 3], (Span, String)> {
+/// The platform's three frame pivots: the declared ones, else the largest triangle; `None` for
+/// a platform of one point or of collinear points (its chains fix only its position).
+fn choose_frame(
+    b: &Builder,
+    platform: &LinkDecl,
+    used: &[bool],
+) -> Result<Option<[usize; 3]>, (Span, String)> {
+    let _ = used;
     let pts: Vec<[f64; 3]> = platform
         .pivots
         .iter()
@@ -303,7 +487,7 @@ fn choose_frame(b: &Builder, platform: &LinkDecl) -> Result<[usize; 3], (Span, S
         if area(idx[0], idx[1], idx[2]) <= tol {
             return Err((frame[0].span(), format!("the `frame` pivots `{}`, `{}`, `{}` are collinear: the platform needs three non-collinear pivots", frame[0], frame[1], frame[2])));
         }
-        return Ok([idx[0], idx[1], idx[2]]);
+        return Ok(Some([idx[0], idx[1], idx[2]]));
     }
     // Largest triangle: the best-conditioned frame.
     let n = pts.len();
@@ -320,9 +504,7 @@ fn choose_frame(b: &Builder, platform: &LinkDecl) -> Result<[usize; 3], (Span, S
             }
         }
     }
-    best.ok_or_else(|| {
-        (platform.name.span(), "fewer than three non-collinear pivots on `platform`: the moving platform needs three to be located".to_string())
-    })
+    Ok(best)
 }
 
 /// Mutable state shared by the modelling phases.
@@ -336,6 +518,7 @@ pub struct Builder<'m> {
     pub equations: Vec<Expr>,
     pub points: Vec<PlatformPoint>,
     pub inverses: Vec<Inverse>,
+    pub home_pose: [f64; 6],
 }
 
 impl<'m> Builder<'m> {
@@ -350,6 +533,7 @@ impl<'m> Builder<'m> {
             equations: Vec::new(),
             points: Vec::new(),
             inverses: Vec::new(),
+            home_pose: [0.0; 6],
         }
     }
 
@@ -461,9 +645,36 @@ impl<'m> Builder<'m> {
         self.constant(name, Recipe::Slot(slot))
     }
 
+    /// The index of joint input `name`, registered on first use.
     pub fn input(&mut self, name: &Ident) -> usize {
-        self.inputs.push(name.to_string());
+        self.input_index(name)
+    }
+
+    pub fn input_index(&mut self, name: &Ident) -> usize {
+        let name = name.to_string();
+        if let Some(i) = self.inputs.iter().position(|n| *n == name) {
+            return i;
+        }
+        self.inputs.push(name);
         self.inputs.len() - 1
+    }
+
+    /// A coordinate's value at the declared geometry.
+    pub fn coord_value(&self, c: &Coord) -> f64 {
+        match c {
+            Coord::Literal(n) => n.value,
+            Coord::Param(p) => self.slots[self.slot_of[&p.to_string()]].default,
+        }
+    }
+
+    /// A point's home position (base frame; a platform pivot's own frame for `Slots`).
+    pub fn home(&self, p: PointRef) -> [f64; 3] {
+        match p {
+            PointRef::Slots(s) => self.default_slot_point(s),
+            PointRef::PlatformHome(s) => {
+                linkage_geometry::place(self.home_pose, self.default_slot_point(s))
+            }
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 //! singularity at the reference configuration).
 
 use crate::expr::Var;
-use crate::model::{Inverse, Model, Recipe};
+use crate::model::{Inverse, Model, PointRef, Recipe};
 use linkage_geometry as geo;
 use nalgebra::DMatrix;
 use proc_macro2::Span;
@@ -21,31 +21,43 @@ fn point(g: &[f64], s: [usize; 3]) -> [f64; 3] {
     s.map(|i| g[i])
 }
 
+/// A point's home position in the base frame (or, for `PointRef::Slots` on the platform, in
+/// the platform's frame: see [`PointRef`]).
+pub fn home_point(model: &Model, g: &[f64], p: PointRef) -> [f64; 3] {
+    match p {
+        PointRef::Slots(s) => point(g, s),
+        PointRef::PlatformHome(s) => geo::place(model.home_pose, point(g, s)),
+    }
+}
+
 /// The constants at the declared geometry.
 pub fn constants(model: &Model) -> Result<Vec<f64>, String> {
     let g = model.default_slots();
+    let at = |p: PointRef| home_point(model, &g, p);
     model
         .constants
         .iter()
         .map(|c| {
             let value = match &c.recipe {
                 Recipe::Slot(s) => Ok(g[*s]),
-                Recipe::Distance { a, b } => Ok(geo::distance(point(&g, *a), point(&g, *b))),
+                Recipe::Distance { a, b } => Ok(geo::distance(at(*a), at(*b))),
                 Recipe::Rigid {
                     frame,
                     point: q,
                     index,
                     coplanar,
-                } => geo::rigid_coefficients(frame.map(|f| point(&g, f)), point(&g, *q), *coplanar)
-                    .map(|r| r[*index]),
+                } => geo::rigid_coefficients(frame.map(at), at(*q), *coplanar).map(|r| r[*index]),
+                Recipe::Collinear {
+                    line,
+                    point: q,
+                    index,
+                } => geo::collinear_coefficients(line.map(at), at(*q)).map(|r| r[*index]),
                 Recipe::Axis {
                     a,
                     b,
                     point: q,
                     index,
-                } => {
-                    geo::axis_frame(point(&g, *a), point(&g, *b), point(&g, *q)).map(|r| r[*index])
-                }
+                } => geo::axis_frame(at(*a), at(*b), at(*q)).map(|r| r[*index]),
             };
             value.map_err(|e| {
                 format!(
@@ -69,9 +81,13 @@ fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
     ]
 }
 
-pub fn check(model: &Model, (span, pose): (Span, [f64; 6])) -> syn::Result<Reference> {
-    let fail = |msg: String| syn::Error::new(span, msg);
-    let c = constants(model).map_err(fail)?;
+/// The home configuration: the platform at `pose`, intermediate points where they are declared,
+/// inputs from inverse kinematics (closed-form chains) or their home values (general chains).
+pub fn configuration(
+    model: &Model,
+    pose: [f64; 6],
+) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), String> {
+    let c = constants(model)?;
     let g = model.default_slots();
     let [yaw, pitch, roll, tx, ty, tz] = pose;
     let r = rotation(yaw, pitch, roll);
@@ -84,9 +100,19 @@ pub fn check(model: &Model, (span, pose): (Span, [f64; 6])) -> syn::Result<Refer
                 r[axis][0] * l[0] + r[axis][1] * l[1] + r[axis][2] * l[2] + [tx, ty, tz][axis];
         }
     }
+    for (i, (_, at)) in model.general_points.iter().enumerate() {
+        let q = home_point(model, &g, *at);
+        for axis in 0..3 {
+            v[3 * k + 3 * i + axis] = q[axis];
+        }
+    }
     let at = |p: usize| [v[p], v[k + p], v[2 * k + p]];
     let consts = |s: [usize; 3]| s.map(|i| c[i]);
     let mut x = vec![0.0; model.inputs.len()];
+    for &(input, value) in &model.general_home_inputs {
+        x[input] = value;
+    }
+    let general = |i: &usize| model.general_home_inputs.iter().any(|(j, _)| j == i);
     for inv in &model.inverses {
         match inv {
             Inverse::Distance {
@@ -114,10 +140,10 @@ pub fn check(model: &Model, (span, pose): (Span, [f64; 6])) -> syn::Result<Refer
                     0.0,
                 )
                 .ok_or_else(|| {
-                    fail(format!(
+                    format!(
                         "no value of `{}` reaches the `home` pose",
                         model.inputs[*input]
-                    ))
+                    )
                 })?;
             }
             Inverse::PrismaticRod {
@@ -130,32 +156,98 @@ pub fn check(model: &Model, (span, pose): (Span, [f64; 6])) -> syn::Result<Refer
                 x[*input] =
                     geo::prismatic_rod_inverse(at(*p), consts(*c0), consts(*e), c[*length], 0.0)
                         .ok_or_else(|| {
-                            fail(format!(
+                            format!(
                                 "no value of `{}` reaches the `home` pose",
                                 model.inputs[*input]
-                            ))
+                            )
                         })?;
             }
-            Inverse::None { inputs } if inputs.is_empty() => {}
             Inverse::None { inputs } => {
-                return Err(fail(format!(
-                    "`home` needs inverse kinematics in closed form, which `{}` lacks",
-                    model.inputs[inputs[0]]
-                )));
+                if let Some(i) = inputs.iter().find(|i| !general(i)) {
+                    return Err(format!(
+                        "`home` needs inverse kinematics in closed form, which `{}` lacks",
+                        model.inputs[*i]
+                    ));
+                }
             }
         }
     }
-    let scale = v.iter().fold(1.0f64, |m, a| m.max(a.abs()));
+    Ok((v, x, c))
+}
+
+/// The largest residual at a configuration, against the squared length scale of `v`.
+fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), String> {
+    let scale = v.iter().chain(x).fold(1.0f64, |m, a| m.max(a.abs()));
     for (i, f) in model.equations.iter().enumerate() {
-        let residual = f.eval(&v, &x, &c);
+        let residual = f.eval(v, x, c);
         if !(residual.abs() <= 1e-6 * scale * scale) {
-            return Err(fail(format!(
-                "the mechanism cannot be assembled at its `home` pose: F{} = {} is {residual:.3e} there",
+            return Err(format!(
+                "the mechanism cannot be assembled at its home configuration: F{} = {} is {residual:.3e} there",
                 i + 1,
                 model.render(f)
-            )));
+            ));
         }
     }
+    Ok(())
+}
+
+/// For the general model: checks that the declared configuration assembles, decides the mobility
+/// by the rank of the Jacobian there, and drops equations that depend on earlier ones.
+pub fn rank_at_home(model: &mut Model, m: &crate::ast::Mechanism) -> syn::Result<()> {
+    let span = m
+        .platform
+        .as_ref()
+        .and_then(|p| p.home.map(|(s, _)| s))
+        .unwrap_or_else(|| m.name.span());
+    let fail = |msg: String| syn::Error::new(span, msg);
+    let (v, x, c) = configuration(model, model.home_pose).map_err(fail)?;
+    assembled(model, &v, &x, &c).map_err(fail)?;
+    let (n, inputs) = (model.unknowns.len(), model.inputs.len());
+    let ranked = crate::rank::at_home(&model.equations, n, inputs, &v, &x, &c);
+    let gk = crate::mobility::of(m);
+    let rule = format!(
+        "rank of ∂F/∂(v, x) at home: M = {n} + {inputs} − {} = {} (Grübler–Kutzbach says {})",
+        n as i64 + inputs as i64 - ranked.mobility,
+        ranked.mobility,
+        gk.effective()
+    );
+    if ranked.mobility != inputs as i64 {
+        return Err(syn::Error::new(
+            m.name.span(),
+            format!(
+                "the mechanism has {inputs} active joint variable{} but mobility {} ({rule}); declare one active pair per degree of freedom",
+                if inputs == 1 { "" } else { "s" },
+                ranked.mobility,
+            ),
+        ));
+    }
+    if ranked.rank_v < n {
+        return Err(syn::Error::new(
+            m.name.span(),
+            format!(
+                "the inputs do not fix every pivot: ∂F/∂v has rank {} for {n} unknown coordinates at home (a link free to spin, or a point nothing holds)",
+                ranked.rank_v
+            ),
+        ));
+    }
+    let all = std::mem::take(&mut model.equations);
+    for (i, e) in all.into_iter().enumerate() {
+        if ranked.kept.contains(&i) {
+            model.equations.push(e);
+        } else {
+            let text = model.render(&e);
+            model.dropped.push(text);
+        }
+    }
+    model.mobility = Some(rule);
+    Ok(())
+}
+
+pub fn check(model: &Model, (span, pose): (Span, [f64; 6])) -> syn::Result<Reference> {
+    let fail = |msg: String| syn::Error::new(span, msg);
+    let (v, x, c) = configuration(model, pose).map_err(fail)?;
+    assembled(model, &v, &x, &c)
+        .map_err(|e| fail(e.replace("home configuration", "`home` pose")))?;
     let n = v.len();
     let b = DMatrix::from_fn(n, n, |i, j| {
         model.equations[i]

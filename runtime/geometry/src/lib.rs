@@ -82,6 +82,44 @@ pub fn rigid_coefficients(
     Ok([1.0 - b - c, b, c, if coplanar { 0.0 } else { d }])
 }
 
+/// Coefficients `[a, b]` with `q = a p1 + b p2` and `a + b = 1`: the collinear case of Eq. 3.
+/// `q` must lie on the line (relative tolerance 1e-9).
+pub fn collinear_coefficients(line: [[f64; 3]; 2], q: [f64; 3]) -> Result<[f64; 2], GeometryError> {
+    let [p1, p2] = line;
+    let e = sub3(p2, p1);
+    let ee = dot3(e, e);
+    let r = sub3(q, p1);
+    let scale = sqrt(ee).max(norm3(r));
+    if !(ee > 1e-24 * scale * scale) {
+        return Err(GeometryError::CollinearFrame);
+    }
+    let b = dot3(r, e) / ee;
+    let off = norm3(cross3(r, e)) / sqrt(ee);
+    if !(off <= 1e-9 * scale) {
+        return Err(GeometryError::NotCoplanar);
+    }
+    Ok([1.0 - b, b])
+}
+
+/// `R p + t` for the pose `[yaw, pitch, roll, x, y, z]`, R = Rz(yaw)·Ry(pitch)·Rx(roll): a
+/// platform pivot placed at a declared home pose.
+pub fn place(pose: [f64; 6], p: [f64; 3]) -> [f64; 3] {
+    let r = rotation(pose[0], pose[1], pose[2]);
+    [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + pose[3 + i])
+}
+
+/// Rz(yaw)·Ry(pitch)·Rx(roll) (the 3–2–1 Euler angles of Appendix B).
+pub fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
+    let (cy, sy) = (math::cos(yaw), math::sin(yaw));
+    let (cp, sp) = (math::cos(pitch), math::sin(pitch));
+    let (cr, sr) = (math::cos(roll), math::sin(roll));
+    [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]
+}
+
 /// `[e, o, u, w]` for rotating `q` about the axis `a → b`: e the unit axis, o the foot of q on
 /// the axis, u = q − o the arm and w = e × u, so that Eq. 2 gives `o + u cos θ + w sin θ`.
 pub fn axis_frame(a: [f64; 3], b: [f64; 3], q: [f64; 3]) -> Result<[f64; 12], GeometryError> {
