@@ -10,7 +10,7 @@
 //!              | "link" IDENT "{" (pivot | "length" "=" coord ","?)* "}"
 //!              | "chain" IDENT "=" item ("-" item)* ";"
 //! pivot       := IDENT "=" "[" coord "," coord "," coord "]" ","?
-//! coord       := number | IDENT            (a literal, or a parameter declared in `params`)
+//! coord       := IDENT | value         (a parameter declared in `params`, or see `value.rs`)
 //! item        := IDENT                     (a link: `base`, `platform` or a declared link)
 //!              | PAIR "(" arg ("," arg)* ")"
 //! PAIR        := "R" | "P" | "C" | "H" | "S" | "U"
@@ -20,9 +20,7 @@
 
 use proc_macro2::Span;
 use syn::parse::{Parse, ParseStream};
-use syn::{
-    bracketed, parenthesized, token, Attribute, Ident, LitFloat, LitInt, Result, Token, Visibility,
-};
+use syn::{bracketed, parenthesized, token, Attribute, Ident, Result, Token, Visibility};
 
 pub struct Mechanism {
     pub attrs: Vec<Attribute>,
@@ -166,6 +164,8 @@ impl Parse for Mechanism {
             links: Vec::new(),
             chains: Vec::new(),
         };
+        // The parameters declared so far: later values may use them.
+        let mut scope: Vec<(String, f64)> = Vec::new();
         while !input.is_empty() {
             let look = input.lookahead1();
             if look.peek(kw::params) {
@@ -175,7 +175,8 @@ impl Parse for Mechanism {
                 while !body.is_empty() {
                     let name: Ident = body.parse()?;
                     body.parse::<Token![=]>()?;
-                    let default = parse_number(&body)?;
+                    let default = crate::value::value(&body, &scope)?;
+                    scope.push((name.to_string(), default.value));
                     m.params.push(Param { name, default });
                     if !body.is_empty() {
                         body.parse::<Token![,]>()?;
@@ -183,8 +184,13 @@ impl Parse for Mechanism {
                 }
             } else if look.peek(kw::base) {
                 let kw: kw::base = input.parse()?;
-                let link =
-                    parse_link_body(input, LinkRole::Base, Ident::new("base", kw.span), None)?;
+                let link = parse_link_body(
+                    input,
+                    LinkRole::Base,
+                    Ident::new("base", kw.span),
+                    None,
+                    &scope,
+                )?;
                 if m.base.is_some() {
                     return Err(syn::Error::new(
                         kw.span,
@@ -224,10 +230,7 @@ impl Parse for Mechanism {
                             args.parse::<Token![=]>()?;
                             let list;
                             let bracket = bracketed!(list in args);
-                            let values: Vec<Number> = list
-                                .parse_terminated(parse_number, Token![,])?
-                                .into_iter()
-                                .collect();
+                            let values = values(&list, &scope)?;
                             let values: [f64; 6] = values.iter().map(|n| n.value).collect::<Vec<_>>().try_into().map_err(|_| {
                                 syn::Error::new(bracket.span.join(), "`home` is a pose `[yaw, pitch, roll, x, y, z]` (radians, base-frame units)")
                             })?;
@@ -247,6 +250,7 @@ impl Parse for Mechanism {
                     LinkRole::Platform,
                     Ident::new("platform", kw.span),
                     frame,
+                    &scope,
                 )?;
                 link.form = form;
                 link.home = home;
@@ -260,16 +264,21 @@ impl Parse for Mechanism {
             } else if look.peek(kw::link) {
                 input.parse::<kw::link>()?;
                 let name: Ident = input.parse()?;
-                m.links
-                    .push(parse_link_body(input, LinkRole::Intermediate, name, None)?);
+                m.links.push(parse_link_body(
+                    input,
+                    LinkRole::Intermediate,
+                    name,
+                    None,
+                    &scope,
+                )?);
             } else if look.peek(kw::chain) {
                 input.parse::<kw::chain>()?;
                 let name: Ident = input.parse()?;
                 input.parse::<Token![=]>()?;
-                let mut items = vec![parse_item(input)?];
+                let mut items = vec![parse_item(input, &scope)?];
                 while input.peek(Token![-]) {
                     input.parse::<Token![-]>()?;
-                    items.push(parse_item(input)?);
+                    items.push(parse_item(input, &scope)?);
                 }
                 input.parse::<Token![;]>()?;
                 m.chains.push(ChainDecl { name, items });
@@ -281,11 +290,24 @@ impl Parse for Mechanism {
     }
 }
 
+/// Comma-separated values.
+fn values(list: ParseStream, scope: &crate::value::Scope) -> Result<Vec<Number>> {
+    let mut out = Vec::new();
+    while !list.is_empty() {
+        out.push(crate::value::value(list, scope)?);
+        if !list.is_empty() {
+            list.parse::<Token![,]>()?;
+        }
+    }
+    Ok(out)
+}
+
 fn parse_link_body(
     input: ParseStream,
     role: LinkRole,
     name: Ident,
     frame: Option<Vec<Ident>>,
+    scope: &crate::value::Scope,
 ) -> Result<LinkDecl> {
     let body;
     syn::braced!(body in input);
@@ -305,16 +327,19 @@ fn parse_link_body(
             if link.length.is_some() {
                 return Err(syn::Error::new(kw.span, "`length` is given twice"));
             }
-            link.length = Some(parse_coord(&body)?);
+            link.length = Some(crate::value::coord(&body, scope)?);
         } else {
             let name: Ident = body.parse()?;
             body.parse::<Token![=]>()?;
             let list;
             let bracket = bracketed!(list in body);
-            let coords: Vec<Coord> = list
-                .parse_terminated(parse_coord, Token![,])?
-                .into_iter()
-                .collect();
+            let mut coords: Vec<Coord> = Vec::new();
+            while !list.is_empty() {
+                coords.push(crate::value::coord(&list, scope)?);
+                if !list.is_empty() {
+                    list.parse::<Token![,]>()?;
+                }
+            }
             let count = coords.len();
             let coords: [Coord; 3] = coords.try_into().map_err(|_| {
                 syn::Error::new(
@@ -331,7 +356,7 @@ fn parse_link_body(
     Ok(link)
 }
 
-fn parse_item(input: ParseStream) -> Result<ChainItem> {
+fn parse_item(input: ParseStream, scope: &crate::value::Scope) -> Result<ChainItem> {
     let name: Ident = input.parse()?;
     if !input.peek(token::Paren) {
         return Ok(ChainItem::Link(name));
@@ -391,11 +416,11 @@ fn parse_item(input: ParseStream) -> Result<ChainItem> {
         } else if args.peek(kw::offset) && args.peek2(Token![=]) {
             args.parse::<kw::offset>()?;
             args.parse::<Token![=]>()?;
-            pair.offset = Some(parse_coord(&args)?);
+            pair.offset = Some(crate::value::coord(&args, scope)?);
         } else if args.peek(kw::lead) && args.peek2(Token![=]) {
             args.parse::<kw::lead>()?;
             args.parse::<Token![=]>()?;
-            pair.lead = Some(parse_coord(&args)?);
+            pair.lead = Some(crate::value::coord(&args, scope)?);
         } else {
             pair.pivots.push(args.parse()?);
         }
@@ -404,40 +429,4 @@ fn parse_item(input: ParseStream) -> Result<ChainItem> {
         }
     }
     Ok(ChainItem::Pair(pair))
-}
-
-fn parse_coord(input: ParseStream) -> Result<Coord> {
-    if input.peek(Ident) {
-        Ok(Coord::Param(input.parse()?))
-    } else {
-        Ok(Coord::Literal(parse_number(input)?))
-    }
-}
-
-fn parse_number(input: ParseStream) -> Result<Number> {
-    let negative = if input.peek(Token![-]) {
-        input.parse::<Token![-]>()?;
-        true
-    } else {
-        false
-    };
-    let (value, span) = if input.peek(LitFloat) {
-        let lit: LitFloat = input.parse()?;
-        (lit.base10_parse::<f64>()?, lit.span())
-    } else if input.peek(LitInt) {
-        let lit: LitInt = input.parse()?;
-        (lit.base10_parse::<f64>()?, lit.span())
-    } else {
-        return Err(input.error("expected a number or a parameter name"));
-    };
-    if !value.is_finite() {
-        return Err(syn::Error::new(
-            span,
-            "a coordinate must be a finite number",
-        ));
-    }
-    Ok(Number {
-        value: if negative { -value } else { value },
-        span,
-    })
 }

@@ -266,6 +266,10 @@ pub fn model(
     // Universal joints: the axis fixed in one link stays perpendicular to the one fixed in the
     // other (a U is an S without the spin about the leg).
     for &(p, i, j) in &topo.pairs {
+        let places = explicit_pairs.iter().any(|(q, _)| std::ptr::eq(*q, p));
+        if places {
+            continue;
+        }
         match p.kind {
             PairKind::U => {
                 u_equation(b, m, topo, &repr, p, i, j)?;
@@ -283,11 +287,7 @@ pub fn model(
             }
             PairKind::S | PairKind::R => {}
             PairKind::P | PairKind::C | PairKind::H => {
-                let from_base = topo.links[i].role == LinkRole::Base
-                    && p.active.is_some()
-                    && explicit_pairs.iter().any(|(q, _)| std::ptr::eq(*q, p));
-                if !from_base {
-                    return Err(err(
+                return Err(err(
                         p.token.span(),
                         format!(
                             "a `{}` pair between two moving links (`{}` and `{}`), or a passive one, is not modelled yet: drive it from the base, or use the leg form `S(A) - P(active x) - S(G)`",
@@ -296,7 +296,6 @@ pub fn model(
                             topo.links[j].name
                         ),
                     ));
-                }
             }
         }
     }

@@ -19,6 +19,7 @@ pub mod rank;
 pub mod reference;
 pub mod rigid;
 pub mod simplify;
+pub mod value;
 
 use proc_macro2::TokenStream;
 

@@ -360,6 +360,9 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     }
     crate::simplify::remove_duplicates(&mut b.equations);
 
+    // Grübler–Kutzbach counts a platform as a body with six freedoms: right for the closed-form
+    // shapes on a located platform, wrong for a point or line platform.
+    let by_rank = !general.is_empty() || frame.is_none();
     let frame = frame.unwrap_or([0, 0, 0]);
     let mut model = Model {
         name: m.name.clone(),
@@ -378,7 +381,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         dropped: Vec::new(),
         mobility: None,
     };
-    if general.is_empty() {
+    if !by_rank {
         check_system(&model, m)?;
     } else {
         crate::reference::rank_at_home(&mut model, m)?;

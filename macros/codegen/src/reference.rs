@@ -225,7 +225,7 @@ pub fn rank_at_home(model: &mut Model, m: &crate::ast::Mechanism) -> syn::Result
         return Err(syn::Error::new(
             m.name.span(),
             format!(
-                "the inputs do not fix every pivot: ∂F/∂v has rank {} for {n} unknown coordinates at home (a link free to spin, or a point nothing holds)",
+                "∂F/∂v has rank {} for {n} unknown coordinates at home: the home configuration is singular, or the inputs leave a link free to spin or a point that nothing holds",
                 ranked.rank_v
             ),
         ));

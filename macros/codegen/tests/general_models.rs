@@ -48,3 +48,75 @@ fn delta_with_parallelograms_is_square_and_compact() {
     assert_eq!(m.equations.len(), 18);
     assert_eq!(m.inputs, ["q1", "q2", "q3"]);
 }
+
+#[test]
+fn planar_five_bar_with_a_point_output_has_two_freedoms() {
+    // Cranks 100 mm, distal links 150 mm, base joints 80 mm apart; vertical axes.
+    let m = build(quote! {
+        pub struct FiveBar;
+        base { A1 = [-40.0, 0.0, 0.0], A1z = [-40.0, 0.0, 1.0], A2 = [40.0, 0.0, 0.0], A2z = [40.0, 0.0, 1.0] }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 170.0, 0.0]) { P = [0.0, 0.0, 0.0] }
+        link crank1 { C1 = [-100.0, 80.0, 0.0], C1z = [-100.0, 80.0, 1.0] }
+        link crank2 { C2 = [100.0, 80.0, 0.0], C2z = [100.0, 80.0, 1.0] }
+        link distal1 { }
+        link distal2 { }
+        chain left = base - R(active q1, axis = A1 -> A1z) - crank1 - R(passive, axis = C1 -> C1z) - distal1 - S(P) - platform;
+        chain right = base - R(active q2, axis = A2 -> A2z) - crank2 - R(passive, axis = C2 -> C2z) - distal2 - S(P) - platform;
+    });
+    for e in &m.equations {
+        eprintln!("{}", m.render(e));
+    }
+    eprintln!("{:?} dropped {:?}", m.mobility, m.dropped);
+    assert_eq!(m.unknowns.len(), 3);
+    assert_eq!(m.equations.len(), 3);
+    assert_eq!(m.dropped.len(), 1);
+}
+
+#[test]
+fn three_prs_is_square() {
+    let m = build(quote! {
+        pub struct Prs;
+        params { leg = 150.0 }
+        base {
+            A1 = [100.0, 0.0, 0.0], B1 = [100.0, 0.0, 1.0],
+            A2 = [-50.0, 86.60254037844386, 0.0], B2 = [-50.0, 86.60254037844386, 1.0],
+            A3 = [-50.0, -86.60254037844386, 0.0], B3 = [-50.0, -86.60254037844386, 1.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 250.0]) {
+            G1 = [50.0, 0.0, 0.0], G2 = [-25.0, 43.30127018922193, 0.0], G3 = [-25.0, -43.30127018922193, 0.0],
+        }
+        link slider1 { C1 = [100.0, 0.0, 129.8915], D1 = [100.0, 1.0, 129.8915] }
+        link slider2 { C2 = [-50.0, 86.60254037844386, 129.8915], D2 = [-50.86602540378444, 86.10254037844386, 129.8915] }
+        link slider3 { C3 = [-50.0, -86.60254037844386, 129.8915], D3 = [-49.13397459621556, -87.10254037844386, 129.8915] }
+        link leg1 { } link leg2 { } link leg3 { }
+        chain c1 = base - P(active s1, axis = A1 -> B1) - slider1 - R(passive, axis = C1 -> D1) - leg1 - S(G1) - platform;
+        chain c2 = base - P(active s2, axis = A2 -> B2) - slider2 - R(passive, axis = C2 -> D2) - leg2 - S(G2) - platform;
+        chain c3 = base - P(active s3, axis = A3 -> B3) - slider3 - R(passive, axis = C3 -> D3) - leg3 - S(G3) - platform;
+    });
+    for e in &m.equations {
+        eprintln!("{}", m.render(e));
+    }
+    eprintln!("{:?} dropped {:?}", m.mobility, m.dropped);
+    assert_eq!(m.unknowns.len(), 9);
+    assert_eq!(m.equations.len(), 9);
+}
+
+#[test]
+fn coordinates_take_arithmetic_and_parameters_derive_from_others() {
+    let m = build(quote! {
+        pub struct Tripod;
+        params { r = 100.0, h = r * sqrt(3.0) / 2.0, l = 2.0 * (r - 10.0) }
+        base { A1 = [r, 0.0, 0.0], A2 = [-r / 2.0, h, 0.0], A3 = [-r / 2.0, -h, 0.0] }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 120.0]) { G = [0.0, 0.0, 0.0] }
+        chain leg1 = base - S(A1) - P(active L1) - S(G) - platform;
+        chain leg2 = base - S(A2) - P(active L2) - S(G) - platform;
+        chain leg3 = base - S(A3) - P(active L3) - S(G) - platform;
+    });
+    let slot = |name: &str| m.slots.iter().find(|s| s.name == name).unwrap().default;
+    assert_eq!(slot("h"), 100.0 * 3f64.sqrt() / 2.0);
+    assert_eq!(slot("l"), 180.0);
+    assert_eq!(slot("base.A2.x"), -50.0);
+    // A bare parameter stays linked: A1's x is the slot `r` itself.
+    assert!(!m.slots.iter().any(|s| s.name == "base.A1.x"));
+    assert_eq!(m.unknowns.len(), 3);
+}
