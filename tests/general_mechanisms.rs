@@ -27,7 +27,10 @@ fn five_bar_point(q: [f64; 2], near: [f64; 2]) -> Option<[f64; 2]> {
     // C_i at home, rotated by q_i about A_i.
     let rot = |c: [f64; 2], a: [f64; 2], t: f64| {
         let (dx, dy) = (c[0] - a[0], c[1] - a[1]);
-        [a[0] + dx * t.cos() - dy * t.sin(), a[1] + dx * t.sin() + dy * t.cos()]
+        [
+            a[0] + dx * t.cos() - dy * t.sin(),
+            a[1] + dx * t.sin() + dy * t.cos(),
+        ]
     };
     let c1 = rot([a1, s], [-40.0, 0.0], q[0]);
     let c2 = rot([-a1, s], [40.0, 0.0], q[1]);

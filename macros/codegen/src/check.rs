@@ -286,7 +286,7 @@ impl Mechanism {
         if !accepts.centre {
             for extra in &p.pivots {
                 let msg = if p.passive.is_some() {
-                    format!("a passive pair has no joint variable: remove `{extra}` or write `{letter}(passive)`")
+                    format!("a passive pair has no joint variable: remove `{extra}` or write `{letter}(active {extra})`")
                 } else if p.active.is_none() {
                     format!("`{extra}` is not an argument of pair `{letter}`: an active pair names its joint variable, `{letter}(active {extra})`")
                 } else {

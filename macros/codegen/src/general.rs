@@ -66,6 +66,15 @@ fn err(span: Span, msg: impl Into<String>) -> (Span, String) {
     (span, msg.into())
 }
 
+/// A link's name in messages: unnamed links between two pairs are `chain#k`, k counted from
+/// the chain's first link.
+fn named(link: &str) -> String {
+    match link.split_once('#') {
+        Some((chain, k)) => format!("link {k} of chain `{chain}` (unnamed)"),
+        None => format!("`{link}`"),
+    }
+}
+
 /// The declaring link of every pivot.
 pub fn declarations(m: &Mechanism) -> HashMap<String, &Ident> {
     let mut out = HashMap::new();
@@ -278,10 +287,10 @@ pub fn model(
                 return Err(err(
                     p.token.span(),
                     format!(
-                        "an active `{}` pair is modelled where it joins the base to a link; here it joins `{}` to `{}`",
+                        "an active `{}` pair is modelled where it joins the base to a declared link; here it joins {} to {}",
                         p.kind.letter(),
-                        topo.links[i].name,
-                        topo.links[j].name
+                        named(&topo.links[i].name),
+                        named(&topo.links[j].name)
                     ),
                 ));
             }
@@ -290,10 +299,10 @@ pub fn model(
                 return Err(err(
                         p.token.span(),
                         format!(
-                            "a `{}` pair between two moving links (`{}` and `{}`), or a passive one, is not modelled yet: drive it from the base, or use the leg form `S(A) - P(active x) - S(G)`",
+                            "a `{}` pair between two moving links ({} and {}), or a passive one, is not modelled yet: drive it from the base, or use the leg form `S(A) - P(active x) - S(G)`",
                             p.kind.letter(),
-                            topo.links[i].name,
-                            topo.links[j].name
+                            named(&topo.links[i].name),
+                            named(&topo.links[j].name)
                         ),
                     ));
             }

@@ -507,6 +507,9 @@ fn choose_frame(
             }
         }
     }
+    if best.is_none() && platform.pivots.len() >= 3 {
+        return Err((platform.name.span(), "the `platform` pivots are collinear: a platform needs three non-collinear pivots to be located (or declare one pivot, for a platform that is a point)".to_string()));
+    }
     Ok(best)
 }
 

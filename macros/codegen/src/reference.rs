@@ -199,7 +199,15 @@ pub fn rank_at_home(model: &mut Model, m: &crate::ast::Mechanism) -> syn::Result
         .as_ref()
         .and_then(|p| p.home.map(|(s, _)| s))
         .unwrap_or_else(|| m.name.span());
-    let fail = |msg: String| syn::Error::new(span, msg);
+    let declared = m.platform.as_ref().is_some_and(|p| p.home.is_some());
+    let fail = |msg: String| {
+        let hint = if declared {
+            ""
+        } else {
+            " (no `home` is declared on the platform, so its pivots were taken at the identity pose: declare `platform(home = [yaw, pitch, roll, x, y, z])` where the mechanism assembles)"
+        };
+        syn::Error::new(span, format!("{msg}{hint}"))
+    };
     let (v, x, c) = configuration(model, model.home_pose).map_err(fail)?;
     assembled(model, &v, &x, &c).map_err(fail)?;
     let (n, inputs) = (model.unknowns.len(), model.inputs.len());
