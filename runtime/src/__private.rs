@@ -10,8 +10,8 @@ pub fn sq(x: f64) -> f64 {
 pub use crate::math::{cos, sin};
 
 pub use linkage_geometry::{
-    axis_frame, collinear_coefficients, distance, place, prismatic_rod_inverse,
-    revolute_rod_inverse, rigid_coefficients,
+    along, axis_frame, collinear_coefficients, distance, normal_point, place,
+    prismatic_rod_inverse, revolute_rod_inverse, rigid_coefficients,
 };
 
 pub fn set_named(

@@ -3,7 +3,7 @@
 
 use crate::ast::Mechanism;
 use crate::expr::{Expr, Var};
-use crate::model::{Inverse, Model, PointRef, Recipe};
+use crate::model::{Auto, Inverse, Model, PointRef, Recipe};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -41,6 +41,7 @@ pub fn expand(
     );
     let point_names = model.points.iter().map(|p| p.name.as_str());
     let [f0, f1, f2] = model.frame;
+    let auto_points = auto_points(model);
     let recipes = model
         .constants
         .iter()
@@ -192,6 +193,7 @@ pub fn expand(
                     k += 1;
                 }
                 let g = &geometry;
+                #auto_points
                 let mut c = [0.0f64; #nc];
                 #(#recipes)*
                 Ok(Self { geometry, constants: c })
@@ -429,6 +431,35 @@ fn point3(model: &Model, p: PointRef) -> TokenStream {
             let s = slots3(s);
             quote!(::linkage::__private::place([#(#pose),*], #s))
         }
+        PointRef::Auto(i) => quote!(auto[#i]),
+    }
+}
+
+/// The added points' home positions, computed in order in `from_geometry`.
+fn auto_points(model: &Model) -> TokenStream {
+    let na = model.auto_points.len();
+    let steps = model.auto_points.iter().enumerate().map(|(i, a)| {
+        let p = |q: PointRef| point3(model, q);
+        let value = match *a {
+            Auto::Along { origin, toward } => {
+                let (o, t) = (p(origin), p(toward));
+                quote!(::linkage::__private::along(#o, #t)?)
+            }
+            Auto::Normal { origin, a, b } => {
+                let o = p(origin);
+                let [a0, a1] = a.map(p);
+                let [b0, b1] = b.map(p);
+                quote!(::linkage::__private::normal_point(#o, [#a0, #a1], [#b0, #b1])?)
+            }
+        };
+        quote!(auto[#i] = #value;)
+    });
+    if na == 0 {
+        return quote!();
+    }
+    quote! {
+        let mut auto = [[0.0f64; 3]; #na];
+        #(#steps)*
     }
 }
 
@@ -451,6 +482,10 @@ fn recipe(model: &Model, i: usize, r: &Recipe) -> TokenStream {
             let [f0, f1, f2] = frame.map(point3);
             let q = point3(*point);
             quote!(c[#i] = #p::rigid_coefficients([#f0, #f1, #f2], #q, #coplanar)?[#index];)
+        }
+        Recipe::Coordinate { point, index } => {
+            let q = point3(*point);
+            quote!(c[#i] = #q[#index];)
         }
         Recipe::Collinear { line, point, index } => {
             let [l0, l1] = line.map(point3);

@@ -28,6 +28,21 @@ pub enum PointRef {
     Slots([usize; 3]),
     /// A platform pivot's platform-frame slots, placed by the declared home pose.
     PlatformHome([usize; 3]),
+    /// A point the model adds to a link (see [`Auto`]), by index.
+    Auto(usize),
+}
+
+/// A point the general model adds to a link, derived from others at home.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Auto {
+    /// `origin + unit(toward − origin)`: the axis of a prismatic pair on its rail.
+    Along { origin: PointRef, toward: PointRef },
+    /// `origin + unit((a1 − a0) × (b1 − b0))`: a universal joint's second axis.
+    Normal {
+        origin: PointRef,
+        a: [PointRef; 2],
+        b: [PointRef; 2],
+    },
 }
 
 /// How a constant is computed from the geometry slots (in the emitted `from_geometry`).
@@ -51,6 +66,11 @@ pub enum Recipe {
     Distance {
         a: PointRef,
         b: PointRef,
+    },
+    /// Coordinate `index` of a point's home position.
+    Coordinate {
+        point: PointRef,
+        index: usize,
     },
     /// Component `index` of `[e, o, u, w]` for a rotation of `point` about the axis `a → b`:
     /// e the unit axis, o the foot of `point` on it, u the radial arm, w = e × u.
@@ -116,8 +136,13 @@ pub struct Model {
     /// The platform's declared home pose (identity if none): where the general model places the
     /// platform's pivots at home.
     pub home_pose: [f64; 6],
-    /// Intermediate-link points solved for (after the platform's), with their home positions.
-    pub general_points: Vec<(String, PointRef)>,
+    /// Intermediate-link points solved for (after the platform's): name, home position, first
+    /// index in v.
+    pub general_points: Vec<(String, PointRef, usize)>,
+    /// Scalar unknowns (passive slides), zero at home.
+    pub general_scalars: Vec<usize>,
+    /// Points added to links, in dependency order.
+    pub auto_points: Vec<Auto>,
     /// Inputs of the general chains and their values at home.
     pub general_home_inputs: Vec<(usize, f64)>,
     /// Equations dropped as dependent at home (rendered), for the listing.
@@ -214,7 +239,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             Err(e) => errors.push(e.0, e.1),
         }
     }
-    let topo = match crate::general::topology(m, &general) {
+    let topo = match crate::general::topology(&mut b, m, &general) {
         Ok(t) => Some(t),
         Err((span, msg)) => {
             errors.push(span, msg);
@@ -285,6 +310,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     }
     let mut added = crate::general::Added {
         points: Vec::new(),
+        scalars: Vec::new(),
         home_inputs: Vec::new(),
     };
     let mut foreign = Vec::new();
@@ -352,8 +378,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             }
         }
         for (name, repr) in foreign {
-            let at = crate::general::point_ref(&b, m, &topo, &name)
-                .map_err(|(span, msg)| syn::Error::new(span, msg))?;
+            let at = topo.home[&name];
             members.push((name, repr, at));
         }
         rigid::link_equations(&mut b, "platform", &members, None);
@@ -377,6 +402,8 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         inverses: b.inverses,
         home_pose: b.home_pose,
         general_points: added.points,
+        general_scalars: added.scalars,
+        auto_points: b.auto_points,
         general_home_inputs: added.home_inputs,
         dropped: Vec::new(),
         mobility: None,
@@ -387,6 +414,18 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         crate::reference::rank_at_home(&mut model, m)?;
     }
     Ok(model)
+}
+
+/// An added point's home position from those it derives from (NaN when degenerate: the
+/// generator reports degenerate axes before it evaluates).
+pub fn auto_point(a: &Auto, home: &dyn Fn(PointRef) -> [f64; 3]) -> [f64; 3] {
+    let r = match *a {
+        Auto::Along { origin, toward } => linkage_geometry::along(home(origin), home(toward)),
+        Auto::Normal { origin, a, b } => {
+            linkage_geometry::normal_point(home(origin), a.map(home), b.map(home))
+        }
+    };
+    r.unwrap_or([f64::NAN; 3])
 }
 
 /// Links an active pair attaches to the base (in any chain): explicit in that pair's inputs.
@@ -409,8 +448,9 @@ fn explicit_pairs<'a>(
                 && after.role == LinkRole::Intermediate
                 && p.active.is_some()
                 && moves
-                && topo.links.iter().any(|l| l.name == after.name.to_string())
-                && !out.iter().any(|(_, l)| *l == after.name.to_string())
+                && p.axis.is_some()
+                && topo.links.iter().any(|l| after.name == l.name)
+                && !out.iter().any(|(_, l)| after.name == l)
             {
                 out.push((*p, after.name.to_string()));
             }
@@ -525,6 +565,7 @@ pub struct Builder<'m> {
     pub points: Vec<PlatformPoint>,
     pub inverses: Vec<Inverse>,
     pub home_pose: [f64; 6],
+    pub auto_points: Vec<Auto>,
 }
 
 impl<'m> Builder<'m> {
@@ -540,6 +581,7 @@ impl<'m> Builder<'m> {
             points: Vec::new(),
             inverses: Vec::new(),
             home_pose: [0.0; 6],
+            auto_points: Vec::new(),
         }
     }
 
@@ -680,7 +722,17 @@ impl<'m> Builder<'m> {
             PointRef::PlatformHome(s) => {
                 linkage_geometry::place(self.home_pose, self.default_slot_point(s))
             }
+            PointRef::Auto(i) => auto_point(&self.auto_points[i], &|p| self.home(p)),
         }
+    }
+
+    /// Adds a point to a link's home geometry.
+    pub fn auto_point(&mut self, a: Auto) -> PointRef {
+        if let Some(i) = self.auto_points.iter().position(|b| *b == a) {
+            return PointRef::Auto(i);
+        }
+        self.auto_points.push(a);
+        PointRef::Auto(self.auto_points.len() - 1)
     }
 }
 

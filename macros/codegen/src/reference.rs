@@ -27,6 +27,9 @@ pub fn home_point(model: &Model, g: &[f64], p: PointRef) -> [f64; 3] {
     match p {
         PointRef::Slots(s) => point(g, s),
         PointRef::PlatformHome(s) => geo::place(model.home_pose, point(g, s)),
+        PointRef::Auto(i) => {
+            crate::model::auto_point(&model.auto_points[i], &|p| home_point(model, g, p))
+        }
     }
 }
 
@@ -41,6 +44,7 @@ pub fn constants(model: &Model) -> Result<Vec<f64>, String> {
             let value = match &c.recipe {
                 Recipe::Slot(s) => Ok(g[*s]),
                 Recipe::Distance { a, b } => Ok(geo::distance(at(*a), at(*b))),
+                Recipe::Coordinate { point: q, index } => Ok(at(*q)[*index]),
                 Recipe::Rigid {
                     frame,
                     point: q,
@@ -81,12 +85,15 @@ fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
     ]
 }
 
+/// Unknowns, inputs and constants at a configuration.
+pub type Configuration = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// The home configuration: the platform at `pose`, intermediate points where they are declared,
 /// inputs from inverse kinematics (closed-form chains) or their home values (general chains).
 pub fn configuration(
     model: &Model,
     pose: [f64; 6],
-) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), String> {
+) -> Result<Configuration, String> {
     let c = constants(model)?;
     let g = model.default_slots();
     let [yaw, pitch, roll, tx, ty, tz] = pose;
@@ -100,11 +107,9 @@ pub fn configuration(
                 r[axis][0] * l[0] + r[axis][1] * l[1] + r[axis][2] * l[2] + [tx, ty, tz][axis];
         }
     }
-    for (i, (_, at)) in model.general_points.iter().enumerate() {
+    for (_, at, first) in &model.general_points {
         let q = home_point(model, &g, *at);
-        for axis in 0..3 {
-            v[3 * k + 3 * i + axis] = q[axis];
-        }
+        v[*first..*first + 3].copy_from_slice(&q);
     }
     let at = |p: usize| [v[p], v[k + p], v[2 * k + p]];
     let consts = |s: [usize; 3]| s.map(|i| c[i]);

@@ -120,3 +120,58 @@ fn coordinates_take_arithmetic_and_parameters_derive_from_others() {
     assert!(!m.slots.iter().any(|s| s.name == "base.A1.x"));
     assert_eq!(m.unknowns.len(), 3);
 }
+
+#[test]
+fn planar_three_rpr_with_true_r_p_r_legs() {
+    // Base triangle of circumradius 200, platform of 60; vertical axes; platform 10 mm up so
+    // that the legs are not degenerate (all in one horizontal plane).
+    let m = build(quote! {
+        pub struct Rpr;
+        base {
+            A1 = [200.0, 0.0, 0.0], A1z = [200.0, 0.0, 1.0],
+            A2 = [-100.0, 173.20508075688772, 0.0], A2z = [-100.0, 173.20508075688772, 1.0],
+            A3 = [-100.0, -173.20508075688772, 0.0], A3z = [-100.0, -173.20508075688772, 1.0],
+        }
+        platform(home = [0.3, 0.0, 0.0, 10.0, 5.0, 0.0]) {
+            G1 = [60.0, 0.0, 0.0], G1z = [60.0, 0.0, 1.0],
+            G2 = [-30.0, 51.96152422706632, 0.0], G2z = [-30.0, 51.96152422706632, 1.0],
+            G3 = [-30.0, -51.96152422706632, 0.0], G3z = [-30.0, -51.96152422706632, 1.0],
+        }
+        chain leg1 = base - R(passive, axis = A1 -> A1z) - P(active L1) - R(passive, axis = G1 -> G1z) - platform;
+        chain leg2 = base - R(passive, axis = A2 -> A2z) - P(active L2) - R(passive, axis = G2 -> G2z) - platform;
+        chain leg3 = base - R(passive, axis = A3 -> A3z) - P(active L3) - R(passive, axis = G3 -> G3z) - platform;
+    });
+    for e in &m.equations {
+        eprintln!("{}", m.render(e));
+    }
+    eprintln!("{:?} dropped {}", m.mobility, m.dropped.len());
+    assert_eq!(m.inputs, ["L1", "L2", "L3"]);
+    assert_eq!(m.unknowns.len(), m.equations.len());
+}
+
+#[test]
+fn translational_three_upu() {
+    // Tsai's 3-UPU: at each leg the base U's first axis and the platform U's last axis are
+    // parallel (tangent to the circles), so the intermediate axes are parallel too.
+    let m = build(quote! {
+        pub struct Upu;
+        base {
+            A1 = [150.0, 0.0, 0.0], A1a = [150.0, 1.0, 0.0],
+            A2 = [-75.0, 129.9038105676658, 0.0], A2a = [-75.86602540378444, 129.4038105676658, 0.0],
+            A3 = [-75.0, -129.9038105676658, 0.0], A3a = [-74.13397459621556, -130.4038105676658, 0.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 200.0]) {
+            G1 = [60.0, 0.0, 0.0], G1a = [60.0, 1.0, 0.0],
+            G2 = [-30.0, 51.96152422706632, 0.0], G2a = [-30.86602540378444, 51.46152422706632, 0.0],
+            G3 = [-30.0, -51.96152422706632, 0.0], G3a = [-29.13397459621556, -52.46152422706632, 0.0],
+        }
+        chain leg1 = base - U(A1, axis = A1 -> A1a) - P(active L1) - U(G1, axis = G1 -> G1a) - platform;
+        chain leg2 = base - U(A2, axis = A2 -> A2a) - P(active L2) - U(G2, axis = G2 -> G2a) - platform;
+        chain leg3 = base - U(A3, axis = A3 -> A3a) - P(active L3) - U(G3, axis = G3 -> G3a) - platform;
+    });
+    for e in &m.equations {
+        eprintln!("{}", m.render(e));
+    }
+    eprintln!("{:?} dropped {}", m.mobility, m.dropped.len());
+    assert_eq!(m.unknowns.len(), m.equations.len());
+}

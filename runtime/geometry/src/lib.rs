@@ -101,6 +101,33 @@ pub fn collinear_coefficients(line: [[f64; 3]; 2], q: [f64; 3]) -> Result<[f64; 
     Ok([1.0 - b, b])
 }
 
+/// `origin + unit(toward − origin)`: a point one length unit along a direction, for the axis of a
+/// prismatic pair on a moving link.
+pub fn along(origin: [f64; 3], toward: [f64; 3]) -> Result<[f64; 3], GeometryError> {
+    let d = sub3(toward, origin);
+    let len = norm3(d);
+    if !(len > 1e-12 * norm3(origin).max(norm3(toward)).max(1.0)) {
+        return Err(GeometryError::DegenerateAxis);
+    }
+    Ok([0, 1, 2].map(|k| origin[k] + d[k] / len))
+}
+
+/// `origin + unit((a1 − a0) × (b1 − b0))`: a point one length unit along the common normal of
+/// two directions, for the second axis of a universal joint.
+pub fn normal_point(
+    origin: [f64; 3],
+    a: [[f64; 3]; 2],
+    b: [[f64; 3]; 2],
+) -> Result<[f64; 3], GeometryError> {
+    let (da, db) = (sub3(a[1], a[0]), sub3(b[1], b[0]));
+    let n = cross3(da, db);
+    let len = norm3(n);
+    if !(len > 1e-9 * norm3(da) * norm3(db)) || !len.is_finite() {
+        return Err(GeometryError::DegenerateAxis);
+    }
+    Ok([0, 1, 2].map(|k| origin[k] + n[k] / len))
+}
+
 /// `R p + t` for the pose `[yaw, pitch, roll, x, y, z]`, R = Rz(yaw)·Ry(pitch)·Rx(roll): a
 /// platform pivot placed at a declared home pose.
 pub fn place(pose: [f64; 6], p: [f64; 3]) -> [f64; 3] {

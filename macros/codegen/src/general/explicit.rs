@@ -1,0 +1,116 @@
+//! Links placed by an active pair from the base (Table I, active column): every point of the
+//! link after the pair is explicit in the pair's inputs — `C − B = R(C0 − B) + x e`, written
+//! `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry — so it is not solved
+//! for.
+
+use super::err;
+use crate::ast::{PairDecl, PairKind};
+use crate::expr::{self, Expr, Vec3};
+use crate::model::{Builder, PointRef, Recipe};
+use proc_macro2::Span;
+
+/// Point `q` (home position `at`) of a link placed by `pair` from the base, in closed form.
+pub fn placed(
+    b: &mut Builder,
+    pair: &PairDecl,
+    inputs: &[usize],
+    q: &str,
+    at: PointRef,
+) -> Result<Vec3, (Span, String)> {
+    let (ax_a, ax_b) = pair.axis.as_ref().ok_or_else(|| {
+        err(
+            pair.token.span(),
+            format!(
+                "the `{}` pair needs its axis: `axis = A -> B`",
+                pair.kind.letter()
+            ),
+        )
+    })?;
+    let a = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
+    let bb = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
+    let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
+        [0, 1, 2].map(|k3| {
+            let name = format!("{prefix}{}_{q}", ["x", "y", "z"][k3]);
+            b.constant(
+                name,
+                Recipe::Axis {
+                    a,
+                    b: bb,
+                    point: at,
+                    index: index + k3,
+                },
+            )
+        })
+    };
+    let home: Vec3 = match at {
+        PointRef::Slots(s) => {
+            let names = [0, 1, 2].map(|k| format!("{}_{q}", ["x", "y", "z"][k]));
+            let [s0, s1, s2] = s;
+            let [n0, n1, n2] = names;
+            [
+                b.constant(n0, Recipe::Slot(s0)),
+                b.constant(n1, Recipe::Slot(s1)),
+                b.constant(n2, Recipe::Slot(s2)),
+            ]
+        }
+        PointRef::Auto(_) => [0, 1, 2].map(|index| {
+            b.constant(
+                format!("{}_{q}", ["x", "y", "z"][index]),
+                Recipe::Coordinate { point: at, index },
+            )
+        }),
+        PointRef::PlatformHome(_) => {
+            return Err(err(
+                pair.token.span(),
+                format!("platform pivot `{q}` cannot belong to a link the inputs place"),
+            ))
+        }
+    };
+    Ok(match pair.kind {
+        PairKind::P => {
+            let e = part(b, 0, "e");
+            let mut slide = Expr::Input(inputs[0]);
+            if let Some(o) = &pair.offset {
+                let o =
+                    b.scalar_constant(&format!("{}.offset", pair.token), o, format!("offset_{q}"));
+                slide = Expr::minus(slide, o);
+            }
+            expr::vadd(&home, &expr::vscale(&slide, &e))
+        }
+        kind => {
+            let o = part(b, 3, "o");
+            let u = part(b, 6, "u");
+            let w = part(b, 9, "w");
+            let th = Expr::Input(inputs[0]);
+            let cos = Expr::Cos(Box::new(th.clone()));
+            let sin = Expr::Sin(Box::new(th.clone()));
+            let mut t = expr::vadd(
+                &o,
+                &expr::vadd(&expr::vscale(&cos, &u), &expr::vscale(&sin, &w)),
+            );
+            if kind == PairKind::H || kind == PairKind::C {
+                let e = part(b, 0, "e");
+                let rise = if kind == PairKind::H {
+                    let lead = pair.lead.as_ref().ok_or_else(|| {
+                        err(pair.token.span(), "a helical pair needs its `lead = ...`")
+                    })?;
+                    let lead = b.scalar_constant(
+                        &format!("{}.lead.{q}", pair.token),
+                        lead,
+                        format!("lead_{q}"),
+                    );
+                    Expr::Product(vec![
+                        Expr::Num(1.0 / (2.0 * std::f64::consts::PI)),
+                        lead,
+                        th,
+                    ])
+                    .simplify()
+                } else {
+                    Expr::Input(inputs[1])
+                };
+                t = expr::vadd(&t, &expr::vscale(&rise, &e));
+            }
+            t
+        }
+    })
+}
