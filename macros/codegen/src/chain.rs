@@ -161,9 +161,9 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
     // with at least one S reduces to a distance.
     let ends_ok = |a: &PairDecl, b: &PairDecl| !(a.kind == PairKind::U && b.kind == PairKind::U);
     let base_axis = |p: &PairDecl| {
-        p.axis.as_ref().is_none_or(|(a, b)| {
-            on_link(m, "base", a) && on_link(m, "base", b)
-        })
+        p.axis
+            .as_ref()
+            .is_none_or(|(a, b)| on_link(m, "base", a) && on_link(m, "base", b))
     };
     let platform_center = |p: &'a PairDecl| -> Result<&'a Ident, Fail> {
         let g = center(p, c).map_err(Some)?;

@@ -90,10 +90,7 @@ pub type Configuration = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// The home configuration: the platform at `pose`, intermediate points where they are declared,
 /// inputs from inverse kinematics (closed-form chains) or their home values (general chains).
-pub fn configuration(
-    model: &Model,
-    pose: [f64; 6],
-) -> Result<Configuration, String> {
+pub fn configuration(model: &Model, pose: [f64; 6]) -> Result<Configuration, String> {
     let c = constants(model)?;
     let g = model.default_slots();
     let [yaw, pitch, roll, tx, ty, tz] = pose;
