@@ -78,6 +78,18 @@ fn five_bar_forward_kinematics_matches_circle_intersection() {
             &sol.v[..2]
         );
         assert!(sol.v[2].abs() < 1e-9, "the output stays in its plane");
+        // Each crank has turned by its input about its vertical axis.
+        for (link, angle) in [("crank1", q[0]), ("crank2", q[1])] {
+            let i = FiveBar::LINKS.iter().position(|l| *l == link).unwrap();
+            let pose = fb
+                .link_pose(i, &sol.v, &q)
+                .expect("a crank has three points");
+            assert!(
+                (pose.euler()[0] - angle).abs() < 1e-9,
+                "{link}: {:?}",
+                pose.euler()
+            );
+        }
         assert!(det_b(&fb, &sol.v, &q) * start.det > 0.0);
     }
     assert!(solved >= 50, "{solved} of 60 solved");
@@ -137,6 +149,9 @@ fn planar_rpr_forward_kinematics_against_inverse() {
         let sol = arc_length(&rpr, &start, &legs, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "{pose:?}");
         let got = linkage::pose_from_unknowns(&rpr, &sol.v).unwrap();
+        let platform = rpr.link_pose(0, &sol.v, &legs).unwrap();
+        assert_eq!(PlanarRpr::LINKS[0], "platform");
+        assert!(linkage_tests::max_diff(&platform.translation, &got.translation) < 1e-9);
         let [yaw, pitch, roll] = got.euler();
         assert!((yaw - pose[0]).abs() < 1e-8, "{yaw} vs {}", pose[0]);
         assert!(pitch.abs() < 1e-9 && roll.abs() < 1e-9, "stays planar");

@@ -43,6 +43,42 @@ impl Pose {
         [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i])
     }
 
+    /// The rigid motion that takes three non-collinear points from `from` to `to` (exactly for
+    /// the first point, the direction to the second and the plane of the third; the best fit
+    /// when the points have moved other than rigidly). `None` if either triple is collinear or
+    /// not finite.
+    ///
+    /// ```
+    /// use linkage::Pose;
+    /// let from = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    /// let motion = Pose::from_euler(0.4, 0.0, 0.0, [5.0, 0.0, 1.0]);
+    /// let to = from.map(|p| motion.apply(p));
+    /// let back = Pose::between(from, to).unwrap();
+    /// assert!((back.euler()[0] - 0.4).abs() < 1e-12 && (back.translation[0] - 5.0).abs() < 1e-12);
+    /// ```
+    pub fn between(from: [[f64; 3]; 3], to: [[f64; 3]; 3]) -> Option<Pose> {
+        let world = triad(to)?;
+        let local = triad(from)?;
+        // R = W Lᵀ with W, L holding the triads as columns.
+        let mut r = [[0.0; 3]; 3];
+        for (i, row) in r.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = (0..3).map(|c| world[c][i] * local[c][j]).sum();
+            }
+        }
+        let l0 = from[0];
+        let rl = [0, 1, 2].map(|i| r[i][0] * l0[0] + r[i][1] * l0[1] + r[i][2] * l0[2]);
+        let pose = Pose {
+            rotation: r,
+            translation: sub3(to[0], rl),
+        };
+        pose.translation
+            .iter()
+            .chain(r.iter().flatten())
+            .all(|x| x.is_finite())
+            .then_some(pose)
+    }
+
     /// `det R`: +1 for a proper rotation, −1 for a mirror image.
     pub fn handedness(&self) -> f64 {
         let r = &self.rotation;
@@ -101,27 +137,7 @@ pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Option<Pose> {
     let k = S::POINTS.len();
     let f = S::FRAME;
-    let world = triad(f.map(|i| point(v, k, i)))?;
-    let local = triad(f.map(|i| sys.point_local(i)))?;
-    // R = W Lᵀ with W, L holding the triads as columns.
-    let mut r = [[0.0; 3]; 3];
-    for (i, row) in r.iter_mut().enumerate() {
-        for (j, x) in row.iter_mut().enumerate() {
-            *x = (0..3).map(|c| world[c][i] * local[c][j]).sum();
-        }
-    }
-    let w0 = point(v, k, f[0]);
-    let l0 = sys.point_local(f[0]);
-    let rl = [0, 1, 2].map(|i| r[i][0] * l0[0] + r[i][1] * l0[1] + r[i][2] * l0[2]);
-    let pose = Pose {
-        rotation: r,
-        translation: sub3(w0, rl),
-    };
-    pose.translation
-        .iter()
-        .chain(r.iter().flatten())
-        .all(|x| x.is_finite())
-        .then_some(pose)
+    Pose::between(f.map(|i| sys.point_local(i)), f.map(|i| point(v, k, i)))
 }
 
 /// The unknowns v of the platform at `pose` (Eq. A1).

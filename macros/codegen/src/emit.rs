@@ -3,7 +3,7 @@
 
 use crate::ast::Mechanism;
 use crate::expr::{Expr, Var};
-use crate::model::{Auto, Inverse, Model, PointRef, Recipe};
+use crate::model::{Auto, HomeOf, Inverse, Model, PointRef, Recipe};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -146,6 +146,22 @@ pub fn expand(
             }
         }
     });
+    let link_names = model.links.iter().map(|l| l.name.as_str());
+    let nl = model.links.len();
+    let link_arms = model.links.iter().enumerate().map(|(i, l)| match &l.frame {
+        None => quote!(#i => ::core::option::Option::None,),
+        Some(frame) => {
+            let now = frame.iter().map(|(e, _)| {
+                let [a, b, c] = e.each_ref().map(tokens);
+                quote!([#a, #b, #c])
+            });
+            let from = frame.iter().map(|(_, h)| match h {
+                HomeOf::Point(p) => point3(model, *p),
+                HomeOf::Constants([a, b, c]) => quote!([c[#a], c[#b], c[#c]]),
+            });
+            quote!(#i => ::linkage::Pose::between([#(#from),*], [#(#now),*]),)
+        }
+    });
     let plan = crate::factor::plan(n, &jac);
     let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, &jac, m);
     let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
@@ -218,6 +234,24 @@ pub fn expand(
             }
 
             #home_items
+
+            /// The moving links [`Self::link_pose`] reports on: the platform, then the named
+            /// links between it and the base.
+            pub const LINKS: [&'static str; #nl] = [#(#link_names),*];
+
+            /// The pose of moving link `link` (an index into [`Self::LINKS`]) at `(v, x)`: the
+            /// rigid motion from its declared coordinates (the platform's own frame; the base
+            /// frame at home for the other links) to where it is. `None` for a rod, whose spin
+            /// about its axis is not modelled, or an index out of range.
+            #[allow(unused_variables)]
+            pub fn link_pose(&self, link: usize, v: &[f64; #n], x: &[f64; #m]) -> ::core::option::Option<::linkage::Pose> {
+                let c = &self.constants;
+                let g = &self.geometry;
+                match link {
+                    #(#link_arms)*
+                    _ => ::core::option::Option::None,
+                }
+            }
 
             /// Moves pivot `pivot` of link `link` (its own frame); the mechanism is unchanged on error.
             pub fn set_pivot(&mut self, link: &str, pivot: &str, p: [f64; 3]) -> ::core::result::Result<(), ::linkage::GeometryError> {

@@ -32,6 +32,21 @@ pub enum PointRef {
     Auto(usize),
 }
 
+/// Where a link's frame point was in the link's declared coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HomeOf {
+    Point(PointRef),
+    /// Constants holding an added point's home coordinates.
+    Constants([usize; 3]),
+}
+
+/// A moving link and three of its points (where they are, where they were declared): its pose
+/// is the motion between the two. `None` for a link whose points are collinear (a rod).
+pub struct LinkFrame {
+    pub name: String,
+    pub frame: Option<[(Vec3, HomeOf); 3]>,
+}
+
 /// A point the general model adds to a link, derived from others at home.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Auto {
@@ -149,6 +164,9 @@ pub struct Model {
     pub dropped: Vec<String>,
     /// How the mobility was decided, when not by Grübler–Kutzbach.
     pub mobility: Option<String>,
+    /// The moving links whose pose `link_pose` reports: the platform (when located), then the
+    /// named intermediate links of the general model.
+    pub links: Vec<LinkFrame>,
 }
 
 impl Model {
@@ -312,6 +330,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         points: Vec::new(),
         scalars: Vec::new(),
         home_inputs: Vec::new(),
+        links: Vec::new(),
     };
     let mut foreign = Vec::new();
     if !general.is_empty() {
@@ -388,6 +407,19 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     // Grübler–Kutzbach counts a platform as a body with six freedoms: right for the closed-form
     // shapes on a located platform, wrong for a point or line platform.
     let by_rank = !general.is_empty() || frame.is_none();
+    let mut links = Vec::new();
+    if let Some(f) = frame {
+        links.push(LinkFrame {
+            name: "platform".to_string(),
+            frame: Some(f.map(|p| {
+                (
+                    [0, 1, 2].map(|a| Expr::Unknown(a * k + p)),
+                    HomeOf::Point(PointRef::Slots(b.points[p].local)),
+                )
+            })),
+        });
+    }
+    links.append(&mut added.links);
     let frame = frame.unwrap_or([0, 0, 0]);
     let mut model = Model {
         name: m.name.clone(),
@@ -407,6 +439,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         general_home_inputs: added.home_inputs,
         dropped: Vec::new(),
         mobility: None,
+        links,
     };
     if !by_rank {
         check_system(&model, m)?;

@@ -195,3 +195,17 @@ pub fn link_equations(
         push(b, eq);
     }
 }
+
+/// Three non-collinear points among `points` (home positions): the first, the farthest from it,
+/// and the one spanning the largest triangle with them. `None` if all are collinear.
+pub fn frame_of(points: &[[f64; 3]]) -> Option<[usize; 3]> {
+    let p: Vec<Vector3<f64>> = points.iter().map(|q| Vector3::from(*q)).collect();
+    let f1 = (1..p.len()).max_by(|&i, &j| (p[i] - p[0]).norm().total_cmp(&(p[j] - p[0]).norm()))?;
+    let scale = (p[f1] - p[0]).norm();
+    let area = |k: usize| (p[f1] - p[0]).cross(&(p[k] - p[0])).norm();
+    let f2 = (1..p.len())
+        .filter(|&k| k != f1)
+        .max_by(|&i, &j| area(i).total_cmp(&area(j)))
+        .filter(|&k| area(k) > 1e-9 * scale * scale)?;
+    Some([0, f1, f2])
+}

@@ -218,6 +218,8 @@ pub struct Added {
     pub scalars: Vec<usize>,
     /// Home value of each input the general chains declare.
     pub home_inputs: Vec<(usize, f64)>,
+    /// Every named moving link and three of its points, for its pose.
+    pub links: Vec<crate::model::LinkFrame>,
 }
 
 /// Builds the equations of the general chains into `b`. `platform` gives the platform's points
@@ -309,6 +311,36 @@ pub fn model(
             .as_ref()
             .map(|c| b.scalar_constant(&format!("{}.length", l.name), c, format!("l_{}", l.name)));
         crate::rigid::link_equations(b, &l.name, &members, length);
+    }
+    // Three points of every named moving link locate it.
+    for l in &topo.links {
+        if l.role != LinkRole::Intermediate || l.name.contains('#') {
+            continue;
+        }
+        let homes: Vec<[f64; 3]> = l.members.iter().map(|q| b.home(topo.home[q])).collect();
+        let frame = crate::rigid::frame_of(&homes).map(|f| {
+            f.map(|i| {
+                let q = &l.members[i];
+                let home = match topo.home[q] {
+                    PointRef::Auto(_) => crate::model::HomeOf::Constants([0, 1, 2].map(|index| {
+                        let c = b.constant(
+                            format!("h{}_{q}", ["x", "y", "z"][index]),
+                            crate::model::Recipe::Coordinate {
+                                point: topo.home[q],
+                                index,
+                            },
+                        );
+                        crate::model::Builder::constant_index(&c)
+                    })),
+                    at => crate::model::HomeOf::Point(at),
+                };
+                (repr[q].expr().clone(), home)
+            })
+        });
+        added.links.push(crate::model::LinkFrame {
+            name: l.name.clone(),
+            frame,
+        });
     }
     // The pairs' own equations.
     for (k, joint) in topo.joints.iter().enumerate() {
