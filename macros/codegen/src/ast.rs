@@ -6,7 +6,7 @@
 //!              | "base" "{" pivot* "}"
 //!              | "platform" ("(" option ("," option)* ")")? "{" pivot* "}"
 //! option      := "frame" "=" "[" IDENT "," IDENT "," IDENT "]" | "form" "=" ("coplanar" | "general")
-//!              | "home" "=" "[" number × 6 "]"      (yaw, pitch, roll, x, y, z)
+//!              | "home" "=" home                      (see `home.rs`)
 //!              | "link" IDENT "{" (pivot | "length" "=" coord ","?)* "}"
 //!              | "chain" IDENT "=" item ("-" item)* ";"
 //! pivot       := IDENT "=" "[" coord "," coord "," coord "]" ","?
@@ -228,13 +228,7 @@ impl Parse for Mechanism {
                         } else if args.peek(kw::home) {
                             let kw: kw::home = args.parse()?;
                             args.parse::<Token![=]>()?;
-                            let list;
-                            let bracket = bracketed!(list in args);
-                            let values = values(&list, &scope)?;
-                            let values: [f64; 6] = values.iter().map(|n| n.value).collect::<Vec<_>>().try_into().map_err(|_| {
-                                syn::Error::new(bracket.span.join(), "`home` is a pose `[yaw, pitch, roll, x, y, z]` (radians, base-frame units)")
-                            })?;
-                            home = Some((kw.span, values));
+                            home = Some((kw.span, crate::home::parse(&args, &scope)?));
                         } else {
                             return Err(args.error(
                                 "expected `frame = [A, B, C]`, `form = coplanar | general` or `home = [yaw, pitch, roll, x, y, z]`",
@@ -288,18 +282,6 @@ impl Parse for Mechanism {
         }
         Ok(m)
     }
-}
-
-/// Comma-separated values.
-fn values(list: ParseStream, scope: &crate::value::Scope) -> Result<Vec<Number>> {
-    let mut out = Vec::new();
-    while !list.is_empty() {
-        out.push(crate::value::value(list, scope)?);
-        if !list.is_empty() {
-            list.parse::<Token![,]>()?;
-        }
-    }
-    Ok(out)
 }
 
 fn parse_link_body(

@@ -13,6 +13,7 @@ pub mod emit_factor;
 pub mod expr;
 pub mod factor;
 pub mod general;
+pub mod home;
 pub mod mobility;
 pub mod model;
 pub mod rank;

@@ -175,3 +175,41 @@ fn translational_three_upu() {
     eprintln!("{:?} dropped {}", m.mobility, m.dropped.len());
     assert_eq!(m.unknowns.len(), m.equations.len());
 }
+
+#[test]
+fn home_as_matrix_and_quaternion_agree_with_euler_angles() {
+    let (yaw, pitch, roll) = (0.3f64, -0.2f64, 0.1f64);
+    let r = linkage_geometry::rotation(yaw, pitch, roll);
+    let [r0, r1, r2] = r.map(|row| {
+        let [a, b, c] = row;
+        quote!([#a, #b, #c])
+    });
+    // The quaternion of the same rotation (Shepperd's method is not needed here: w is large).
+    let w = (1.0 + r[0][0] + r[1][1] + r[2][2]).sqrt() / 2.0;
+    let (x, y, z) = (
+        (r[2][1] - r[1][2]) / (4.0 * w),
+        (r[0][2] - r[2][0]) / (4.0 * w),
+        (r[1][0] - r[0][1]) / (4.0 * w),
+    );
+    let declare = |home: proc_macro2::TokenStream| {
+        build(quote! {
+            pub struct Tripod;
+            base { A1 = [100.0, 0.0, 0.0], A2 = [-50.0, 86.6, 0.0], A3 = [-50.0, -86.6, 0.0] }
+            platform(home = #home) { G = [0.0, 0.0, 0.0], H = [10.0, 0.0, 0.0] }
+            chain leg1 = base - S(A1) - P(active L1) - S(G) - platform;
+            chain leg2 = base - S(A2) - P(active L2) - S(G) - platform;
+            chain leg3 = base - S(A3) - P(active L3) - S(G) - platform;
+        })
+        .home_pose
+    };
+    let euler = declare(quote!([#yaw, #pitch, #roll, 1.0, 2.0, 120.0]));
+    let matrix = declare(quote!(rotation([#r0, #r1, #r2], [1.0, 2.0, 120.0])));
+    let quaternion = declare(quote!(quaternion([#w, #x, #y, #z], [1.0, 2.0, 120.0])));
+    for (a, b) in euler
+        .iter()
+        .zip(&matrix)
+        .chain(euler.iter().zip(&quaternion))
+    {
+        assert!((a - b).abs() < 1e-12, "{euler:?} {matrix:?} {quaternion:?}");
+    }
+}
