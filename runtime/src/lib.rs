@@ -8,7 +8,7 @@ extern crate std;
 // Lets the generated code's `::linkage::` paths resolve inside this crate's own tests.
 extern crate self as linkage;
 
-/// Declares a spatial parallel mechanism and generates its constraint system at compile time.
+/// Declares a mechanism of lower pairs and generates its constraint system at compile time.
 ///
 /// # Grammar
 ///
@@ -16,24 +16,27 @@ extern crate self as linkage;
 /// mechanism! {
 ///     /// docs
 ///     pub struct Name;
-///     params { name = 1.5, ... }                        // optional geometry parameters
+///     params { r = 100.0, h = r * sqrt(3.0) / 2.0 }     // optional; arithmetic allowed
 ///     base { A1 = [x, y, z], ... }                      // base pivots, base frame
 ///     platform(frame = [P1, P2, P3], home = [yaw, pitch, roll, x, y, z]) { P1 = [x, y, z], ... }
 ///     link crank1 { C1 = [x, y, z] }                    // pivots at the home configuration, base frame
 ///     link rod1 { length = 150.0 }                      // a binary link between two point joints
 ///     chain leg1 = base - S(A1) - P(active L1) - S(P1) - platform;
 ///     chain arm1 = base - R(active q1, axis = A1 -> B1) - crank1 - S(C1) - rod1 - S(P1) - platform;
-///     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(P2) - platform;
+///     chain arm1b = crank1 - S(C2) - rod2 - S(P2) - platform;   // a chain may start at a link
+///     chain leg3 = base - U(A3, axis = A3 -> B3) - P(active L3) - U(P3, axis = P3 -> Q3) - platform;
 /// }
 /// ```
 ///
-/// A coordinate is a number or a name declared in `params`. Pairs: `R`, `P`, `C`, `H` (with
-/// `lead = ...`), `S`, `U`; each `active NAME` (its joint variable) or `passive`; `S` and `U`
-/// name their centre pivot. `frame` chooses the three platform pivots that locate it
+/// Pairs: `R`, `P`, `C`, `H` (with `lead = ...`), `S`, `U`; each `active NAME` (its joint
+/// variables) or `passive`; `S` and `U` name their centre pivot, `R`, `C`, `H` (and `P`, `U`
+/// optionally) an axis `A -> B`. `frame` chooses the three platform pivots that locate it
 /// (default: the largest triangle); `form = coplanar | general` the rigid-body form (default:
-/// from the geometry); `home` a reference pose, checked at compile time (the mechanism must
-/// assemble there, ∂F/∂v must be regular) and offered as `home_start()`. `offset = ...` on a
-/// `P` pair adds a constant to the leg length. The generated type implements [`Mechanism`].
+/// from the geometry); `home` the platform's pose at the home configuration (also as
+/// `rotation(...)` or `quaternion(...)`), checked at compile time (the mechanism must assemble
+/// there, ∂F/∂v must be regular) and offered as `home_start()`. The README's grammar section
+/// gives each pair's arguments and the zero and sense of its input. The generated type
+/// implements [`Mechanism`].
 pub use linkage_macros::mechanism;
 
 mod arc_length;
