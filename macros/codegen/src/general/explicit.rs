@@ -16,6 +16,7 @@ pub fn placed(
     inputs: &[usize],
     q: &str,
     at: PointRef,
+    homes: &std::collections::HashMap<String, PointRef>,
 ) -> Result<Vec3, (Span, String)> {
     let (ax_a, ax_b) = pair.axis.as_ref().ok_or_else(|| {
         err(
@@ -26,8 +27,9 @@ pub fn placed(
             ),
         )
     })?;
-    let a = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
-    let bb = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
+    let (Some(&a), Some(&bb)) = (homes.get(&ax_a.to_string()), homes.get(&ax_b.to_string())) else {
+        return Err(err(ax_a.span(), "the axis of this pair names an undeclared pivot"));
+    };
     let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
         [0, 1, 2].map(|k3| {
             let name = format!("{prefix}{}_{q}", ["x", "y", "z"][k3]);

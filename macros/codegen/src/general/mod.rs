@@ -263,7 +263,7 @@ pub fn model(
             if matches!(repr.get(&q), Some(Repr::Known(_))) {
                 continue;
             }
-            let e = explicit::placed(b, pair, &inputs, &q, topo.home[&q])?;
+            let e = explicit::placed(b, pair, &inputs, &q, topo.home[&q], &topo.home)?;
             match repr.get(&q) {
                 Some(Repr::Unknown(u)) => coincide.push(crate::expr::vsub(u, &e)),
                 _ => {
