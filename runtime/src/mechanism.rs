@@ -32,6 +32,12 @@ pub trait Mechanism<const N: usize, const M: usize> {
     /// The nonzeros of `B = ∂F/∂v` in [`Self::PATTERN`] order. `values` must hold at least
     /// [`Self::NNZ`] entries; a shorter slice is left untouched.
     fn jacobian(&self, v: &[f64; N], x: &[f64; M], values: &mut [f64]);
+    /// `F(v, x)` in any [`Scalar`](crate::Scalar) arithmetic: over [`Interval`](crate::Interval)s
+    /// it encloses F over a box (the constants are the `f64` ones [`Self::residual`] uses).
+    fn residual_in<T: crate::Scalar>(&self, v: &[T; N], x: &[T; M], f: &mut [T; N]);
+    /// The nonzeros of `B = ∂F/∂v` in [`Self::PATTERN`] order, in any scalar arithmetic.
+    /// `values` must hold at least [`Self::NNZ`] entries; a shorter slice is left untouched.
+    fn jacobian_in<T: crate::Scalar>(&self, v: &[T; N], x: &[T; M], values: &mut [T]);
     /// `B = ∂F/∂v` as a dense matrix.
     fn jacobian_dense(&self, v: &[f64; N], x: &[f64; M], b: &mut [[f64; N]; N]);
     /// Storage for [`Self::factor`].

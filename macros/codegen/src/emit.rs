@@ -56,6 +56,14 @@ pub fn expand(
         let e = tokens(e);
         quote!(values[#k] = #e;)
     });
+    let residual_in = model.equations.iter().enumerate().map(|(i, e)| {
+        let e = tokens_in(e);
+        quote!(f[#i] = #e;)
+    });
+    let jacobian_in = jac.iter().enumerate().map(|(k, (_, _, e))| {
+        let e = tokens_in(e);
+        quote!(values[#k] = #e;)
+    });
     let jacobian_dense = jac.iter().map(|(r, c, e)| {
         let e = tokens(e);
         quote!(b[#r][#c] = #e;)
@@ -298,6 +306,24 @@ pub fn expand(
             }
 
             #[inline]
+            #allow
+            fn residual_in<T: ::linkage::Scalar>(&self, v: &[T; #n], x: &[T; #m], f: &mut [T; #n]) {
+                let c = &self.constants;
+                #(#residual_in)*
+            }
+
+            #[inline]
+            #[allow(unused_variables)]
+            fn jacobian_in<T: ::linkage::Scalar>(&self, v: &[T; #n], x: &[T; #m], values: &mut [T]) {
+                let c = &self.constants;
+                let values: &mut [T; #nnz] = match values.get_mut(..#nnz).and_then(|s| s.try_into().ok()) {
+                    Some(s) => s,
+                    None => return,
+                };
+                #(#jacobian_in)*
+            }
+
+            #[inline]
             #[allow(unused_variables)]
             fn jacobian_dense(&self, v: &[f64; #n], x: &[f64; #m], b: &mut [[f64; #n]; #n]) {
                 let c = &self.constants;
@@ -390,17 +416,52 @@ pub fn lit(x: f64) -> TokenStream {
 }
 
 pub fn tokens(e: &Expr) -> TokenStream {
+    emit_expr(e, Arithmetic::F64)
+}
+
+/// [`tokens`] for the generic scalar `T` of `residual_in` and `jacobian_in`: numbers and
+/// constants enter through `T::from_f64`.
+pub fn tokens_in(e: &Expr) -> TokenStream {
+    emit_expr(e, Arithmetic::Generic)
+}
+
+/// The number type an expression is emitted for.
+#[derive(Clone, Copy, PartialEq)]
+enum Arithmetic {
+    F64,
+    Generic,
+}
+
+fn emit_expr(e: &Expr, a: Arithmetic) -> TokenStream {
+    let generic = a == Arithmetic::Generic;
+    let call = |f: &str, e: &Expr| {
+        let e = emit_expr(e, a);
+        let f = format_ident!("{f}");
+        if generic {
+            quote!(::linkage::Scalar::#f(#e))
+        } else {
+            quote!(::linkage::__private::#f(#e))
+        }
+    };
     match e {
-        Expr::Num(n) => lit(*n),
+        Expr::Num(n) => {
+            let n = lit(*n);
+            if generic {
+                quote!(T::from_f64(#n))
+            } else {
+                n
+            }
+        }
         Expr::Unknown(i) => quote!(v[#i]),
         Expr::Input(i) => quote!(x[#i]),
+        Expr::Constant(i) if generic => quote!(T::from_f64(c[#i])),
         Expr::Constant(i) => quote!(c[#i]),
         Expr::Sum(ts) => {
             // Negative terms become subtractions: `a - b` rather than `a + (-1.0 * b)`.
             let mut out = TokenStream::new();
             for (k, t) in ts.iter().enumerate() {
                 let (negative, magnitude) = split_sign(t);
-                let m = tokens(&magnitude);
+                let m = emit_expr(&magnitude, a);
                 out.extend(match (k, negative) {
                     (0, false) => quote!(#m),
                     (0, true) => quote!(-#m),
@@ -413,26 +474,17 @@ pub fn tokens(e: &Expr) -> TokenStream {
         Expr::Product(fs) => {
             let (negative, magnitude) = split_sign(e);
             if negative {
-                let m = tokens(&magnitude);
+                let m = emit_expr(&magnitude, a);
                 return quote!((-#m));
             }
-            let mut it = fs.iter().map(tokens);
-            let first = it.next().unwrap_or_else(|| quote!(1.0f64));
+            let mut it = fs.iter().map(|f| emit_expr(f, a));
+            let first = it.next().unwrap_or_else(|| emit_expr(&Expr::Num(1.0), a));
             let rest = it.map(|f| quote!(* #f));
             quote!((#first #(#rest)*))
         }
-        Expr::Square(e) => {
-            let e = tokens(e);
-            quote!(::linkage::__private::sq(#e))
-        }
-        Expr::Sin(e) => {
-            let e = tokens(e);
-            quote!(::linkage::__private::sin(#e))
-        }
-        Expr::Cos(e) => {
-            let e = tokens(e);
-            quote!(::linkage::__private::cos(#e))
-        }
+        Expr::Square(e) => call("sq", e),
+        Expr::Sin(e) => call("sin", e),
+        Expr::Cos(e) => call("cos", e),
     }
 }
 

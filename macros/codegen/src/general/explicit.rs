@@ -28,7 +28,10 @@ pub fn placed(
         )
     })?;
     let (Some(&a), Some(&bb)) = (homes.get(&ax_a.to_string()), homes.get(&ax_b.to_string())) else {
-        return Err(err(ax_a.span(), "the axis of this pair names an undeclared pivot"));
+        return Err(err(
+            ax_a.span(),
+            "the axis of this pair names an undeclared pivot",
+        ));
     };
     let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
         [0, 1, 2].map(|k3| {
