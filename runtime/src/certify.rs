@@ -63,14 +63,27 @@ fn approximate_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
     c: &[f64; N],
     x: &[f64; M],
 ) -> Option<[[f64; N]; N]> {
-    let mut b = [[0.0; N]; N];
-    sys.jacobian_dense(c, x, &mut b);
-    let piv = factor_dense(&mut b)?;
     let mut y = [[0.0; N]; N];
+    // The generated factorisation when it is well conditioned, else dense LU: Y needs only
+    // to be a good approximation, the test itself is rigorous.
+    let mut fac = sys.new_factor();
+    let generated = sys
+        .factor(c, x, &mut fac)
+        .is_some_and(|info| info.pivot_ratio > 1e-10);
+    let mut b = [[0.0; N]; N];
+    let piv = if generated {
+        None
+    } else {
+        sys.jacobian_dense(c, x, &mut b);
+        Some(factor_dense(&mut b)?)
+    };
     for j in 0..N {
         let mut e = [0.0; N];
         e[j] = 1.0;
-        solve_dense(&b, &piv, &mut e);
+        match &piv {
+            None => sys.solve(&fac, &mut e),
+            Some(piv) => solve_dense(&b, piv, &mut e),
+        }
         for i in 0..N {
             y[i][j] = e[i];
         }
@@ -83,7 +96,7 @@ fn times<const N: usize>(y: &[[f64; N]; N], a: &[Interval; N]) -> [Interval; N] 
     core::array::from_fn(|i| {
         let mut s = Interval::point(0.0);
         for j in 0..N {
-            s = s + Interval::point(y[i][j]) * a[j];
+            s = s + a[j].scale(y[i][j]);
         }
         s
     })
@@ -99,24 +112,43 @@ fn krawczyk<S: Mechanism<N, M>, const N: usize, const M: usize>(
     p: &[Interval; M],
 ) -> Option<[Interval; N]> {
     let xs: [Interval; N] = core::array::from_fn(|i| Interval::around(c[i], r[i]));
-    // B over the box, sparse; then I − Y B column by column through the pattern.
+    // B over the box, sparse.
     let mut values = [Interval::point(0.0); 512];
     let values = values.get_mut(..S::NNZ)?;
     sys.jacobian_in(&xs, p, values);
-    let mut ymb = [[Interval::point(0.0); N]; N];
+    // |I − Y B(X)| entrywise, in midpoint-radius form with plain floating point and a bound on
+    // its rounding (Rump's products): with B = mid ± rad, the entry is within
+    // |δ − Σ Y mid| + Σ |Y| rad of 0, and computing those sums of at most N + 1 terms in
+    // floating point errs by at most γ_{N+1} (Σ |Y| |mid| + 1 + Σ |Y| rad), γ_n = n u / (1 − n u).
+    let mut centre = [[0.0f64; N]; N];
+    let mut size = [[0.0f64; N]; N];
+    let mut spread_of = [[0.0f64; N]; N];
     for (k, &(row, col)) in S::PATTERN.iter().enumerate() {
-        let b = values[k];
+        let (mid, rad) = (values[k].mid(), values[k].radius());
+        if !(mid.is_finite() && rad.is_finite()) {
+            return None;
+        }
         for i in 0..N {
-            ymb[i][col] = ymb[i][col] + Interval::point(y[i][row]) * b;
+            let yv = y[i][row];
+            centre[i][col] += yv * mid;
+            size[i][col] += yv.abs() * mid.abs();
+            spread_of[i][col] += yv.abs() * rad;
         }
     }
+    let u = f64::EPSILON / 2.0;
+    let n1 = (N + 1) as f64;
+    let gamma = (n1 * u / (1.0 - n1 * u)).next_up();
     let mut k = [Interval::point(0.0); N];
     for i in 0..N {
         // Σ_j |(I − Y B)_ij| r_j, rounded up.
         let mut spread = 0.0f64;
         for j in 0..N {
-            let identity = Interval::point(if i == j { 1.0 } else { 0.0 });
-            let m = (identity - ymb[i][j]).mag();
+            let delta = if i == j { 1.0 } else { 0.0 };
+            let bound = (delta - centre[i][j]).abs()
+                + spread_of[i][j]
+                + gamma * (size[i][j] + 1.0 + spread_of[i][j]);
+            // Three more roundings above: widen by a few units.
+            let m = (bound * (1.0 + 4.0 * u)).next_up();
             spread = (spread + (m * r[j]).next_up()).next_up();
         }
         if !spread.is_finite() {
@@ -134,8 +166,68 @@ fn krawczyk<S: Mechanism<N, M>, const N: usize, const M: usize>(
     Some(k)
 }
 
-/// Searches box sizes around `c` for the Krawczyk test with inputs `p`: the first box that
-/// passes gives the enclosure, the largest one the uniqueness radius.
+/// The radii for which the Krawczyk test should pass, predicted in floating point.
+///
+/// B is linear in v (the system is of degree ≤ 2), so over the box c ± r the radius of B is
+/// `W_p + r W_v` (W_p from the inputs' widths, W_v from a unit box), and row i of the test
+/// reads `|d_i| + E_i r + G_i r² < r` with `E = row sums of |I − Y mid B| + |Y| W_p` and
+/// `G = row sums of |Y| W_v`: a quadratic in r whose roots bracket the radii that pass. The
+/// prediction only chooses the boxes; the interval test decides.
+fn predicted_radii<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    y: &[[f64; N]; N],
+    d: &[Interval; N],
+    c: &[f64; N],
+    p: &[Interval; M],
+) -> Option<(f64, f64)> {
+    let mut at_c = [Interval::point(0.0); 512];
+    let at_c = at_c.get_mut(..S::NNZ)?;
+    let cs: [Interval; N] = core::array::from_fn(|i| Interval::point(c[i]));
+    sys.jacobian_in(&cs, p, at_c);
+    let mut unit = [Interval::point(0.0); 512];
+    let unit = unit.get_mut(..S::NNZ)?;
+    let xs: [Interval; N] = core::array::from_fn(|i| Interval::around(c[i], 1.0));
+    sys.jacobian_in(&xs, p, unit);
+    // E and G row by row, through the pattern.
+    let mut ymb = [[0.0f64; N]; N];
+    let mut e = [0.0f64; N];
+    let mut g = [0.0f64; N];
+    for (k, &(row, col)) in S::PATTERN.iter().enumerate() {
+        let (mid, wp) = (at_c[k].mid(), at_c[k].radius());
+        let wv = (unit[k].radius() - wp).max(0.0);
+        for i in 0..N {
+            ymb[i][col] += y[i][row] * mid;
+            e[i] += y[i][row].abs() * wp;
+            g[i] += y[i][row].abs() * wv;
+        }
+    }
+    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+    for i in 0..N {
+        for j in 0..N {
+            e[i] += ((if i == j { 1.0 } else { 0.0 }) - ymb[i][j]).abs();
+        }
+        let (a, b, cc) = (g[i], 1.0 - e[i], d[i].mag());
+        if !(b > 0.0) {
+            return None;
+        }
+        if a <= 0.0 {
+            lo = lo.max(cc / b);
+            continue;
+        }
+        let disc = b * b - 4.0 * a * cc;
+        if !(disc > 0.0) {
+            return None;
+        }
+        let root = disc.sqrt();
+        lo = lo.max((b - root) / (2.0 * a));
+        hi = hi.min((b + root) / (2.0 * a));
+    }
+    (lo < hi && hi.is_finite()).then_some((lo, hi))
+}
+
+/// The Krawczyk test on a few boxes around `c` with inputs `p`: a small one, just outside the
+/// Newton step, for a tight enclosure of the root; a large one, near the largest predicted to
+/// pass, for the radius of uniqueness (halved until it passes).
 fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     c: &[f64; N],
@@ -144,7 +236,7 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
     at_least: &[f64; N],
 ) -> Result<Certificate<N>, CertifyError> {
     if S::NNZ > 512 {
-        // The interval Jacobian lives on the stack; larger systems are not certified.
+        // The interval Jacobians live on the stack; larger systems are not certified.
         return Err(CertifyError::NotContracting);
     }
     let y = approximate_inverse(sys, c, x_mid).ok_or(CertifyError::Singular)?;
@@ -156,47 +248,45 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     let d = times(&y, &f);
     let scale = c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-    let step = d.iter().fold(0.0f64, |m, v| m.max(v.mag()));
-    // Start just outside the Newton step (and what must be covered), then grow.
-    let mut r: [f64; N] =
-        core::array::from_fn(|i| (2.0 * step).max(1e-13 * scale).max(at_least[i] * 1.25));
-    let mut found: Option<Certificate<N>> = None;
-    // A few sizes to find a first box, then growth until the test fails (the largest box that
-    // passes is the radius of uniqueness), at most 4⁴⁰ times the first.
-    for attempt in 0..40 {
-        if found.is_none() && attempt >= 6 {
+    let cover = at_least.iter().fold(0.0f64, |m, v| m.max(*v));
+    let (lo, hi) = predicted_radii(sys, &y, &d, c, p).ok_or(CertifyError::NotContracting)?;
+    let small = (2.0 * lo).max(1e-13 * scale).max(1.25 * cover);
+    let box_of = |r: f64| -> [f64; N] { core::array::from_fn(|_| r) };
+    let mut tight = None;
+    for k in 0..4 {
+        let r = small * libm::pow(4.0, k as f64);
+        if let Some(e) = krawczyk(sys, &y, &d, c, &box_of(r), p) {
+            tight = Some((e, r));
             break;
         }
-        match krawczyk(sys, &y, &d, c, &r, p) {
-            Some(k) => {
-                let unique_in: [Interval; N] =
-                    core::array::from_fn(|i| Interval::around(c[i], r[i]));
-                let radius = r.iter().fold(f64::INFINITY, |m, v| m.min(*v));
-                found = Some(match found {
-                    None => {
-                        let error_bound = (0..N).fold(0.0f64, |m, i| {
-                            m.max((k[i].hi - c[i]).max(c[i] - k[i].lo).next_up())
-                        });
-                        Certificate {
-                            unique_in,
-                            enclosure: k,
-                            radius,
-                            error_bound,
-                        }
-                    }
-                    Some(first) => Certificate {
-                        unique_in,
-                        radius,
-                        ..first
-                    },
-                });
-            }
-            None if found.is_some() => break,
-            None => {}
-        }
-        r.iter_mut().for_each(|v| *v *= 4.0);
     }
-    found.ok_or(CertifyError::NotContracting)
+    let (enclosure, r_small) = tight.ok_or(CertifyError::NotContracting)?;
+    let error_bound = (0..N).fold(0.0f64, |m, i| {
+        m.max(
+            (enclosure[i].hi - c[i])
+                .max(c[i] - enclosure[i].lo)
+                .next_up(),
+        )
+    });
+    // The largest box: start at half the predicted limit and halve while it fails.
+    let mut radius = r_small;
+    let mut r = 0.5 * hi;
+    for _ in 0..6 {
+        if r <= r_small {
+            break;
+        }
+        if krawczyk(sys, &y, &d, c, &box_of(r), p).is_some() {
+            radius = r;
+            break;
+        }
+        r *= 0.25;
+    }
+    Ok(Certificate {
+        unique_in: core::array::from_fn(|i| Interval::around(c[i], radius)),
+        enclosure,
+        radius,
+        error_bound,
+    })
 }
 
 /// Proves that F(·, x) has exactly one root near `v`, and bounds its distance from `v`.

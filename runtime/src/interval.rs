@@ -41,14 +41,27 @@ impl Interval {
         0.5 * self.lo + 0.5 * self.hi
     }
 
-    /// Half the width, rounded up.
+    /// A radius about [`Interval::mid`], rounded up: `[mid − radius, mid + radius]` contains
+    /// the interval even though the midpoint itself is rounded.
     pub fn radius(&self) -> f64 {
-        (0.5 * (self.hi - self.lo)).next_up()
+        let m = self.mid();
+        (self.hi - m).max(m - self.lo).next_up()
     }
 
     /// The largest |x| for x in the interval.
     pub fn mag(&self) -> f64 {
         self.lo.abs().max(self.hi.abs())
+    }
+
+    /// `y · self` for a point `y`: two products instead of four.
+    #[inline]
+    pub fn scale(self, y: f64) -> Self {
+        let (a, b) = (y * self.lo, y * self.hi);
+        if y >= 0.0 {
+            Interval::new(a.next_down(), b.next_up())
+        } else {
+            Interval::new(b.next_down(), a.next_up())
+        }
     }
 
     /// Whether `other` lies in the interior of `self`.
@@ -159,5 +172,9 @@ mod tests {
         let s = Interval::point(0.1) + Interval::point(0.2);
         assert!(s.contains(0.1 + 0.2) && s.lo < s.hi);
         assert_eq!(Interval::new(-1.0, 2.0).sq().lo, 0.0);
+        // Midpoint and radius cover the interval when the midpoint is not representable.
+        let narrow = Interval::new(100.0, 100.0f64.next_up());
+        let (m, r) = (narrow.mid(), narrow.radius());
+        assert!(m - r <= narrow.lo && narrow.hi <= m + r);
     }
 }

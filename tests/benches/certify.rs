@@ -1,0 +1,34 @@
+//! criterion benches of the Krawczyk certificates on the Stewart platform of Table III: one
+//! solution, and one 1 kHz tracking step. `cargo bench -p linkage-tests --bench certify`.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use linkage::{arc_length, certify, certify_step, Options, Start};
+use linkage_examples::stewart::{home_start, Stewart};
+
+fn certificates(c: &mut Criterion) {
+    let s = Stewart::new();
+    let start = home_start(&s).unwrap();
+    let target = [175.0, 168.0, 172.0, 165.0, 171.0, 169.0];
+    let sol = arc_length(&s, &start, &target, &Options::TIGHT).unwrap();
+    // A 1 kHz sample: legs moving at about 20 mm/s.
+    let next: [f64; 6] = std::array::from_fn(|j| target[j] + 0.02 * (1.0 + j as f64) / 6.0);
+    let from = Start::new(&s, sol.v, target).unwrap();
+    let step = arc_length(&s, &from, &next, &Options::TIGHT).unwrap();
+    let mut g = c.benchmark_group("stewart");
+    g.bench_function("certify", |b| {
+        b.iter(|| certify(&s, black_box(&sol.v), black_box(&target)))
+    });
+    g.bench_function("certify_step_1khz", |b| {
+        b.iter(|| {
+            certify_step(
+                &s,
+                (black_box(&sol.v), &target),
+                (black_box(&step.v), &next),
+            )
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, certificates);
+criterion_main!(benches);
