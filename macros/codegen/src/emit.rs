@@ -1,8 +1,8 @@
 //! Emission: the model as plain, allocation-free, `no_std` Rust implementing
 //! `::linkage::Mechanism`. Only absolute paths are named, so the user's imports never matter.
 
-use crate::ast::Mechanism;
 use crate::expr::{Expr, Var};
+use crate::front::ast::Mechanism;
 use crate::model::{Auto, HomeOf, Inverse, Model, PointRef, Recipe};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -10,7 +10,7 @@ use quote::{format_ident, quote};
 pub fn expand(
     mech: &Mechanism,
     model: &Model,
-    home: Option<&crate::reference::Reference>,
+    home: Option<&crate::model::reference::Reference>,
 ) -> TokenStream {
     let name = &mech.name;
     let vis = &mech.vis;
@@ -33,7 +33,7 @@ pub fn expand(
     let mobility = model
         .mobility
         .clone()
-        .unwrap_or_else(|| crate::mobility::of(mech).describe());
+        .unwrap_or_else(|| crate::model::mobility::of(mech).describe());
     let listing = listing(model, &equation_text, &jac, &jacobian_text).replacen(
         "\nunknowns:",
         &format!("\nmobility: {mobility}\nunknowns:"),

@@ -1,26 +1,19 @@
 //! The code generator behind `linkage::mechanism!`: an ordinary library (tokens in, tokens out)
 //! so that every phase is testable without rustc.
 //!
-//! Pipeline: [`ast`] parses the DSL keeping spans, [`check`] validates names and collects every
-//! error, [`mod@model`] and [`chain`]/[`rigid`] build the constraint system of Gao & Wu (2015) as
-//! symbolic [`expr`]essions, and [`emit`] writes the Rust.
+//! Pipeline, one folder or file per phase, arrows one way:
+//! [`front`] (parse, check) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form
+//! shapes, the general model) → [`simplify`] (duplicates, rank at home) → [`expr`] (the symbolic
+//! IR every phase shares) → [`factor`] (the elimination plan for ∂F/∂v) → [`emit`] and
+//! [`emit_factor`] (the Rust).
 
-pub mod ast;
-pub mod chain;
-pub mod check;
 pub mod emit;
 pub mod emit_factor;
 pub mod expr;
 pub mod factor;
-pub mod general;
-pub mod home;
-pub mod mobility;
+pub mod front;
 pub mod model;
-pub mod rank;
-pub mod reference;
-pub mod rigid;
 pub mod simplify;
-pub mod value;
 
 use proc_macro2::TokenStream;
 
@@ -61,9 +54,9 @@ fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
     let model = model::build(&mech)?;
     let declared = mech.platform.as_ref().and_then(|p| p.home);
     let home = match declared {
-        Some(home) => Some(reference::check(&model, home)?),
+        Some(home) => Some(model::reference::check(&model, home)?),
         // The general model is always checked at home (identity pose if none is declared).
-        None if model.mobility.is_some() => Some(reference::check(
+        None if model.mobility.is_some() => Some(model::reference::check(
             &model,
             (mech.name.span(), model.home_pose),
         )?),
@@ -73,8 +66,8 @@ fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
 }
 
 /// Parses and validates a declaration.
-pub fn parse(input: TokenStream) -> syn::Result<ast::Mechanism> {
-    let mech: ast::Mechanism = syn::parse2(input)?;
+pub fn parse(input: TokenStream) -> syn::Result<front::ast::Mechanism> {
+    let mech: front::ast::Mechanism = syn::parse2(input)?;
     mech.validate()?;
     Ok(mech)
 }

@@ -1,7 +1,7 @@
 //! Name-level validation of a declaration. Never builds tokens; collects every mistake so the
 //! user sees them all in one build.
 
-use crate::ast::{ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
+use crate::front::ast::{ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
 use std::collections::HashMap;
 use syn::Ident;
 
@@ -123,7 +123,7 @@ impl Mechanism {
         }
     }
 
-    fn check_chain(&self, chain: &crate::ast::ChainDecl, errors: &mut Errors) {
+    fn check_chain(&self, chain: &crate::front::ast::ChainDecl, errors: &mut Errors) {
         let items = &chain.items;
         // A chain begins at the base or at any declared link (e.g. the second rod of a
         // parallelogram on a crank) and ends at a link.
@@ -203,7 +203,7 @@ impl Mechanism {
 
     fn check_pair(
         &self,
-        chain: &crate::ast::ChainDecl,
+        chain: &crate::front::ast::ChainDecl,
         p: &PairDecl,
         before: Option<&Ident>,
         after: Option<&Ident>,

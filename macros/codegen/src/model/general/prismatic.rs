@@ -10,8 +10,8 @@
 //! active slide is `s = x − x_home`, a passive one an unknown: degree 2 either way.
 
 use super::{err, named, Added, Repr, Topology};
-use crate::ast::PairKind;
 use crate::expr::{self, Expr};
+use crate::front::ast::PairKind;
 use crate::model::{Auto, Builder, PointRef, Recipe};
 use nalgebra::Vector3;
 use proc_macro2::Span;
@@ -34,10 +34,10 @@ fn axis_ends(topo: &Topology, k: usize) -> Result<(String, String), (Span, Strin
 /// Whether the pair is a link placed from the base in closed form instead (see `explicit`).
 fn from_base(topo: &Topology, k: usize) -> bool {
     let j = &topo.joints[k];
-    topo.links[j.before].role == crate::ast::LinkRole::Base
+    topo.links[j.before].role == crate::front::ast::LinkRole::Base
         && j.pair.active.is_some()
         && j.pair.axis.is_some()
-        && topo.links[j.after].role == crate::ast::LinkRole::Intermediate
+        && topo.links[j.after].role == crate::front::ast::LinkRole::Intermediate
 }
 
 pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), (Span, String)> {

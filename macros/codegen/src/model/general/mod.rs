@@ -1,4 +1,4 @@
-//! General modelling (Section 2.2) of the chains that no closed-form elimination in [`crate::chain`]
+//! General modelling (Section 2.2) of the chains that no closed-form elimination in [`crate::model::shapes`]
 //! reduces: every pivot of a moving link is a point, every lower pair contributes its Table I
 //! constraint on points, and every rigid moving link adds Eq. 3 on its points.
 //!
@@ -16,14 +16,14 @@
 //! A link's Eq. 3 then ties its points together. Equations that hold whatever the unknowns
 //! (between base points, or between points placed by the inputs) are dropped; the rest are
 //! checked at the home configuration, where the rank of the Jacobian decides the mobility and
-//! which equations are implied by the others (see [`crate::rank`]).
+//! which equations are implied by the others (see [`crate::simplify::rank`]).
 
 pub mod explicit;
 pub mod prismatic;
 pub mod universal;
 
-use crate::ast::{ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
 use crate::expr::{Expr, Vec3};
+use crate::front::ast::{ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
 use crate::model::{normalize, Builder, PointRef};
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -113,7 +113,7 @@ fn centre(p: &PairDecl) -> Option<&Ident> {
 pub fn topology<'a>(
     b: &mut Builder,
     m: &'a Mechanism,
-    general: &[&'a crate::ast::ChainDecl],
+    general: &[&'a crate::front::ast::ChainDecl],
 ) -> Result<Topology<'a>, (Span, String)> {
     let mut topo = Topology {
         links: Vec::new(),
@@ -310,7 +310,7 @@ pub fn model(
             .length
             .as_ref()
             .map(|c| b.scalar_constant(&format!("{}.length", l.name), c, format!("l_{}", l.name)));
-        crate::rigid::link_equations(b, &l.name, &members, length);
+        crate::model::rigid::link_equations(b, &l.name, &members, length);
     }
     // Three points of every named moving link locate it.
     for l in &topo.links {
@@ -318,7 +318,7 @@ pub fn model(
             continue;
         }
         let homes: Vec<[f64; 3]> = l.members.iter().map(|q| b.home(topo.home[q])).collect();
-        let frame = crate::rigid::frame_of(&homes).map(|f| {
+        let frame = crate::model::rigid::frame_of(&homes).map(|f| {
             f.map(|i| {
                 let q = &l.members[i];
                 let home = match topo.home[q] {

@@ -175,7 +175,7 @@ impl Parse for Mechanism {
                 while !body.is_empty() {
                     let name: Ident = body.parse()?;
                     body.parse::<Token![=]>()?;
-                    let default = crate::value::value(&body, &scope)?;
+                    let default = crate::front::value::value(&body, &scope)?;
                     scope.push((name.to_string(), default.value));
                     m.params.push(Param { name, default });
                     if !body.is_empty() {
@@ -228,7 +228,7 @@ impl Parse for Mechanism {
                         } else if args.peek(kw::home) {
                             let kw: kw::home = args.parse()?;
                             args.parse::<Token![=]>()?;
-                            home = Some((kw.span, crate::home::parse(&args, &scope)?));
+                            home = Some((kw.span, crate::front::home::parse(&args, &scope)?));
                         } else {
                             return Err(args.error(
                                 "expected `frame = [A, B, C]`, `form = coplanar | general` or `home = [yaw, pitch, roll, x, y, z]`",
@@ -289,7 +289,7 @@ fn parse_link_body(
     role: LinkRole,
     name: Ident,
     frame: Option<Vec<Ident>>,
-    scope: &crate::value::Scope,
+    scope: &crate::front::value::Scope,
 ) -> Result<LinkDecl> {
     let body;
     syn::braced!(body in input);
@@ -309,7 +309,7 @@ fn parse_link_body(
             if link.length.is_some() {
                 return Err(syn::Error::new(kw.span, "`length` is given twice"));
             }
-            link.length = Some(crate::value::coord(&body, scope)?);
+            link.length = Some(crate::front::value::coord(&body, scope)?);
         } else {
             let name: Ident = body.parse()?;
             body.parse::<Token![=]>()?;
@@ -317,7 +317,7 @@ fn parse_link_body(
             let bracket = bracketed!(list in body);
             let mut coords: Vec<Coord> = Vec::new();
             while !list.is_empty() {
-                coords.push(crate::value::coord(&list, scope)?);
+                coords.push(crate::front::value::coord(&list, scope)?);
                 if !list.is_empty() {
                     list.parse::<Token![,]>()?;
                 }
@@ -338,7 +338,7 @@ fn parse_link_body(
     Ok(link)
 }
 
-fn parse_item(input: ParseStream, scope: &crate::value::Scope) -> Result<ChainItem> {
+fn parse_item(input: ParseStream, scope: &crate::front::value::Scope) -> Result<ChainItem> {
     let name: Ident = input.parse()?;
     if !input.peek(token::Paren) {
         return Ok(ChainItem::Link(name));
@@ -398,11 +398,11 @@ fn parse_item(input: ParseStream, scope: &crate::value::Scope) -> Result<ChainIt
         } else if args.peek(kw::offset) && args.peek2(Token![=]) {
             args.parse::<kw::offset>()?;
             args.parse::<Token![=]>()?;
-            pair.offset = Some(crate::value::coord(&args, scope)?);
+            pair.offset = Some(crate::front::value::coord(&args, scope)?);
         } else if args.peek(kw::lead) && args.peek2(Token![=]) {
             args.parse::<kw::lead>()?;
             args.parse::<Token![=]>()?;
-            pair.lead = Some(crate::value::coord(&args, scope)?);
+            pair.lead = Some(crate::front::value::coord(&args, scope)?);
         } else {
             pair.pivots.push(args.parse()?);
         }

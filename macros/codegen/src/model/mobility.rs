@@ -2,7 +2,7 @@
 //! freedoms it counts but no input can drive: the spin of a leg or rod about the line through
 //! its two spherical joints.
 
-use crate::ast::{Mechanism, PairDecl, PairKind};
+use crate::front::ast::{Mechanism, PairDecl, PairKind};
 use crate::model::{normalize, Normalized};
 
 pub struct Mobility {

@@ -14,8 +14,8 @@
 //! For the active pair at the base, C(x) follows Table I: `C − B = R(C0 − B) + x e` with R of
 //! Eq. 2, written `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry.
 
-use crate::ast::{ChainDecl, ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
 use crate::expr::{self, Expr, Vec3};
+use crate::front::ast::{ChainDecl, ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
 use crate::model::{is_point_joint, normalize, role, Builder, Inverse, PointRef, Recipe};
 use proc_macro2::Span;
 use syn::Ident;

@@ -7,8 +7,8 @@
 //! home = quaternion([w, x, y, z], [x, y, z])
 //! ```
 
-use crate::ast::Number;
-use crate::value::{value, Scope};
+use crate::front::ast::Number;
+use crate::front::value::{value, Scope};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
 use syn::{bracketed, parenthesized, Ident, Result, Token};

@@ -4,8 +4,8 @@
 //! for.
 
 use super::err;
-use crate::ast::{PairDecl, PairKind};
 use crate::expr::{self, Expr, Vec3};
+use crate::front::ast::{PairDecl, PairKind};
 use crate::model::{Builder, PointRef, Recipe};
 use proc_macro2::Span;
 

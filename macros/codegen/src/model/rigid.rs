@@ -89,7 +89,7 @@ pub fn platform_equations(b: &mut Builder, frame: [usize; 3], k: usize, coplanar
 pub fn link_equations(
     b: &mut Builder,
     link: &str,
-    members: &[(String, crate::general::Repr, PointRef)],
+    members: &[(String, crate::model::general::Repr, PointRef)],
     length: Option<Expr>,
 ) {
     let n = members.len();

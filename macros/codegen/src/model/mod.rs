@@ -5,12 +5,19 @@
 //! the E_j of Eq. 17–18, axis frames). Unknowns are the base-frame coordinates of the moving
 //! platform's pivots, coordinate-major as in Eq. 19: `[x_P1 … x_Pk, y_P1 … y_Pk, z_P1 … z_Pk]`.
 
-use crate::ast::{ChainDecl, ChainItem, Coord, LinkDecl, LinkRole, Mechanism, PairDecl, PairKind};
-use crate::chain::{self, ChainModel};
-use crate::check::Errors;
+pub mod general;
+pub mod mobility;
+pub mod reference;
+pub mod rigid;
+pub mod shapes;
+
 use crate::expr::{Expr, Names, Vec3};
-use crate::rigid;
+use crate::front::ast::{
+    ChainDecl, ChainItem, Coord, LinkDecl, LinkRole, Mechanism, PairDecl, PairKind,
+};
+use crate::front::check::Errors;
 use proc_macro2::Span;
+use shapes::ChainModel;
 use std::collections::HashMap;
 use syn::Ident;
 
@@ -245,7 +252,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     let mut shapes = Vec::new();
     let mut general = Vec::new();
     for c in &m.chains {
-        match chain::classify(m, c) {
+        match shapes::classify(m, c) {
             Ok(Some(shape)) if shape.links_private(&private) => {
                 let g = shape.platform_pivot();
                 if let Some(i) = platform.pivots.iter().position(|p| p.name == *g) {
@@ -257,7 +264,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             Err(e) => errors.push(e.0, e.1),
         }
     }
-    let topo = match crate::general::topology(&mut b, m, &general) {
+    let topo = match crate::model::general::topology(&mut b, m, &general) {
         Ok(t) => Some(t),
         Err((span, msg)) => {
             errors.push(span, msg);
@@ -322,11 +329,11 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     // Chain equations (Table I pairs, combined base to platform, simplified).
     for (c, shape) in &shapes {
         let p = point_of_pivot[&shape.platform_pivot().to_string()];
-        let ChainModel { equations, inverse } = chain::model(&mut b, c, shape, p, k);
+        let ChainModel { equations, inverse } = shapes::model(&mut b, c, shape, p, k);
         b.equations.extend(equations);
         b.inverses.push(inverse);
     }
-    let mut added = crate::general::Added {
+    let mut added = crate::model::general::Added {
         points: Vec::new(),
         scalars: Vec::new(),
         home_inputs: Vec::new(),
@@ -339,8 +346,9 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             .map(|(name, &p)| (name.clone(), [0, 1, 2].map(|a| Expr::Unknown(a * k + p))))
             .collect();
         let explicit = explicit_pairs(m, &topo);
-        foreign = crate::general::model(&mut b, m, &topo, &explicit, &platform_exprs, &mut added)
-            .map_err(|(span, msg)| syn::Error::new(span, msg))?;
+        foreign =
+            crate::model::general::model(&mut b, m, &topo, &explicit, &platform_exprs, &mut added)
+                .map_err(|(span, msg)| syn::Error::new(span, msg))?;
         let inputs: Vec<usize> = general
             .iter()
             .flat_map(|c| c.items.iter())
@@ -378,14 +386,16 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     if frame.is_none() || !foreign.is_empty() {
         // The platform with points of other links on it (an axis point, a shared centre), or a
         // platform of one or two points: Eq. 3 on all its members, in the base frame at home.
-        let mut members: Vec<(String, crate::general::Repr, PointRef)> = b
+        let mut members: Vec<(String, crate::model::general::Repr, PointRef)> = b
             .points
             .iter()
             .enumerate()
             .map(|(p, pt)| {
                 (
                     pt.name.clone(),
-                    crate::general::Repr::Unknown([0, 1, 2].map(|a| Expr::Unknown(a * k + p))),
+                    crate::model::general::Repr::Unknown(
+                        [0, 1, 2].map(|a| Expr::Unknown(a * k + p)),
+                    ),
                     PointRef::PlatformHome(pt.local),
                 )
             })
@@ -402,7 +412,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         }
         rigid::link_equations(&mut b, "platform", &members, None);
     }
-    crate::simplify::remove_duplicates(&mut b.equations);
+    crate::simplify::duplicates::remove_duplicates(&mut b.equations);
 
     // Grübler–Kutzbach counts a platform as a body with six freedoms: right for the closed-form
     // shapes on a located platform, wrong for a point or line platform.
@@ -444,7 +454,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     if !by_rank {
         check_system(&model, m)?;
     } else {
-        crate::reference::rank_at_home(&mut model, m)?;
+        crate::model::reference::rank_at_home(&mut model, m)?;
     }
     Ok(model)
 }
@@ -464,7 +474,7 @@ pub fn auto_point(a: &Auto, home: &dyn Fn(PointRef) -> [f64; 3]) -> [f64; 3] {
 /// Links an active pair attaches to the base (in any chain): explicit in that pair's inputs.
 fn explicit_pairs<'a>(
     m: &'a Mechanism,
-    topo: &crate::general::Topology,
+    topo: &crate::model::general::Topology,
 ) -> Vec<(&'a PairDecl, String)> {
     let mut out: Vec<(&PairDecl, String)> = Vec::new();
     for c in &m.chains {
@@ -493,7 +503,7 @@ fn explicit_pairs<'a>(
 }
 
 fn check_system(model: &Model, m: &Mechanism) -> syn::Result<()> {
-    let mobility = crate::mobility::of(m);
+    let mobility = crate::model::mobility::of(m);
     let inputs = model.inputs.len() as i64;
     if mobility.effective() != inputs {
         return Err(syn::Error::new(

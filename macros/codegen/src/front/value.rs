@@ -11,7 +11,7 @@
 //! moves the coordinate); any other expression is evaluated where it is declared, with the
 //! parameters' declared values.
 
-use crate::ast::{Coord, Number};
+use crate::front::ast::{Coord, Number};
 use syn::parse::ParseStream;
 use syn::{parenthesized, token, Ident, LitFloat, LitInt, Result, Token};
 

@@ -195,7 +195,7 @@ fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), Strin
 
 /// For the general model: checks that the declared configuration assembles, decides the mobility
 /// by the rank of the Jacobian there, and drops equations that depend on earlier ones.
-pub fn rank_at_home(model: &mut Model, m: &crate::ast::Mechanism) -> syn::Result<()> {
+pub fn rank_at_home(model: &mut Model, m: &crate::front::ast::Mechanism) -> syn::Result<()> {
     let span = m
         .platform
         .as_ref()
@@ -213,8 +213,8 @@ pub fn rank_at_home(model: &mut Model, m: &crate::ast::Mechanism) -> syn::Result
     let (v, x, c) = configuration(model, model.home_pose).map_err(fail)?;
     assembled(model, &v, &x, &c).map_err(fail)?;
     let (n, inputs) = (model.unknowns.len(), model.inputs.len());
-    let ranked = crate::rank::at_home(&model.equations, n, inputs, &v, &x, &c);
-    let gk = crate::mobility::of(m);
+    let ranked = crate::simplify::rank::at_home(&model.equations, n, inputs, &v, &x, &c);
+    let gk = crate::model::mobility::of(m);
     let rule = format!(
         "rank of ∂F/∂(v, x) at home: M = {n} + {inputs} − {} = {} (Grübler–Kutzbach says {})",
         n as i64 + inputs as i64 - ranked.mobility,
