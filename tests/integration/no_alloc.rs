@@ -3,23 +3,37 @@
 use linkage::{arc_length, newton_homotopy, newton_raphson, Options, Tracker};
 use linkage_examples::stewart::{home_start, Stewart};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
+/// Counts the calling thread's allocations only: the other tests of this binary run on other
+/// threads at the same time and allocate as they please.
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    // `const` initialisation: reading the counter never allocates itself.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() {
+    // `try_with`: during thread teardown the slot may be gone; such allocations are not ours.
+    let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
+}
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
 
 // SAFETY: forwards to the system allocator unchanged; only counts calls.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -37,7 +51,7 @@ fn solves_and_tracking_do_not_allocate() {
         [f64::NAN; 6],
     ];
     let mut tracker = Tracker::new(s.clone(), start, Options::TIGHT);
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = allocations();
     let mut checksum = 0.0;
     for x in &targets {
         let solves = [
@@ -55,7 +69,7 @@ fn solves_and_tracking_do_not_allocate() {
             checksum += sample.v[0];
         }
     }
-    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    let after = allocations();
     assert!(checksum.is_finite());
     assert_eq!(after - before, 0, "heap allocations during solves");
 }

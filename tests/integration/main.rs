@@ -1,0 +1,16 @@
+//! Every integration test in one binary: one link instead of one per file, which is most of
+//! what a clean `cargo test` used to spend. Each file is a module named for what it checks.
+
+mod case_study;
+mod certify;
+mod compile_fail;
+mod front_end_robustness;
+mod general_mechanisms;
+mod generated_systems;
+mod jacobians;
+mod no_alloc;
+mod other_mechanisms;
+mod properties;
+mod solvers;
+mod stewart_cli;
+mod tracking;
