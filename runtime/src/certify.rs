@@ -218,7 +218,7 @@ fn predicted_radii<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if !(disc > 0.0) {
             return None;
         }
-        let root = disc.sqrt();
+        let root = crate::math::sqrt(disc);
         lo = lo.max((b - root) / (2.0 * a));
         hi = hi.min((b + root) / (2.0 * a));
     }

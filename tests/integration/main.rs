@@ -3,7 +3,6 @@
 
 mod case_study;
 mod certify;
-mod compile_fail;
 mod front_end_robustness;
 mod general_mechanisms;
 mod generated_systems;
