@@ -109,6 +109,8 @@ pub enum SamplingError {
         found: usize,
         wanted: usize,
         tries: usize,
+        /// What the points need, for the message.
+        hint: &'static str,
     },
 }
 
@@ -121,11 +123,11 @@ impl std::fmt::Display for SamplingError {
                 found,
                 wanted,
                 tries,
+                hint,
             } => write!(
                 f,
                 "gave up after {tries} random draws with {found} of {wanted} {what} found: \
-                 the sampled box (rotation, translation) cannot produce them \
-                 (a near-singular point needs a singularity within `reach` times the box)"
+                 the sampled box (rotation, translation) cannot produce them ({hint})"
             ),
         }
     }
@@ -137,6 +139,7 @@ impl std::error::Error for SamplingError {}
 /// per success so far (plus one).
 struct Search {
     what: &'static str,
+    hint: &'static str,
     wanted: usize,
     per_point: usize,
     count: usize,
@@ -144,9 +147,10 @@ struct Search {
 }
 
 impl Search {
-    fn new(what: &'static str, wanted: usize, protocol: &Protocol) -> Self {
+    fn new(what: &'static str, hint: &'static str, wanted: usize, protocol: &Protocol) -> Self {
         Search {
             what,
+            hint,
             wanted,
             per_point: protocol.max_tries_per_point,
             count: 0,
@@ -165,6 +169,7 @@ impl Search {
                 found: self.count,
                 wanted: self.wanted,
                 tries: self.tries,
+                hint: self.hint,
             });
         }
         self.tries += 1;
@@ -289,6 +294,7 @@ impl Sampler {
         let mut sum = 0.0;
         let mut search = Search::new(
             "poses with a nonsingular path from home",
+            "a pose counts when det B keeps its sign along the way and every leg stays above `min_leg`",
             self.protocol.mean_samples,
             &self.protocol,
         );
@@ -310,7 +316,12 @@ impl Sampler {
         let mean = self.mean_det(&mut rng)?;
         let threshold = self.protocol.near_fraction * mean;
         let mut normal = Vec::new();
-        let mut search = Search::new("normal points", self.protocol.normal, &self.protocol);
+        let mut search = Search::new(
+            "normal points",
+            "a normal point has |det B| of at least `near_fraction` of the mean",
+            self.protocol.normal,
+            &self.protocol,
+        );
         while search.more()? {
             let u = self.random_offset(&mut rng);
             if self.nonsingular(&u, 1.0) && self.det_at(&u, 1.0).abs() >= threshold {
@@ -323,6 +334,7 @@ impl Sampler {
         let mut near = Vec::new();
         let mut search = Search::new(
             "near-singular points",
+            "a near-singular point needs a singularity within `reach` times the box",
             self.protocol.near_singular,
             &self.protocol,
         );
