@@ -3,8 +3,8 @@
 
 use crate::Method;
 use linkage::{Options, Start, Tracker};
-use linkage_examples::cli::legs_csv;
-use linkage_examples::cli::stream::print;
+use linkage_examples::cli::legs_csv::LegRows;
+use linkage_examples::cli::stream::{open_input, print};
 use linkage_examples::stewart::{home_start, Stewart};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -16,18 +16,21 @@ pub fn run(
     json: bool,
     dense: bool,
 ) -> Result<(), String> {
-    // The rows are replayed pass after pass, so they are held in memory (48 bytes each).
-    let all = legs_csv::read(input)?;
-    let rows: Vec<[f64; 6]> = all.iter().filter_map(|r| r.ok()).collect();
-    if rows.is_empty() {
-        return Err(format!("{}: no valid rows", input.display()));
+    // The rows are replayed pass after pass, so the valid ones are held in memory (48 bytes
+    // each); the others are counted and said.
+    let name = input.display();
+    let (mut rows, mut skipped) = (Vec::<[f64; 6]>::new(), 0usize);
+    for row in LegRows::new(open_input(input)?).map_err(|e| format!("{name}: {e}"))? {
+        match row.map_err(|e| format!("{name}: {e}"))? {
+            Ok(x) => rows.push(x),
+            Err(_) => skipped += 1,
+        }
     }
-    if rows.len() < all.len() {
-        eprintln!(
-            "bench: {} of {} rows skipped (not six finite numbers)",
-            all.len() - rows.len(),
-            all.len()
-        );
+    if rows.is_empty() {
+        return Err(format!("{name}: no valid rows"));
+    }
+    if skipped > 0 {
+        eprintln!("bench: {skipped} rows skipped (not six finite numbers)");
     }
     let sys = Stewart::new();
     let start = home_start(&sys).map_err(|e| e.to_string())?;
