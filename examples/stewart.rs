@@ -2,12 +2,14 @@
 //!
 //! ```text
 //! cargo run --release --example stewart -- equations [--json]
-//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] --input legs.csv [--output out.csv]
+//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] --input legs.csv|- [--output out.csv]
 //! cargo run --release --example stewart -- table-v [--seed S] [--json]
 //! cargo run --release --example stewart -- map --out DIR
 //! cargo run --release --example stewart -- errors --out DIR
 //! ```
 
+#[path = "stewart_cli/args.rs"]
+mod args;
 #[path = "stewart_cli/bench.rs"]
 mod bench;
 #[path = "stewart_cli/equations.rs"]
@@ -57,11 +59,11 @@ enum Command {
         /// One JSON object: {"methods": {"PH": {...}, "NH": {...}, "NR": {...}}, ...}.
         #[arg(long)]
         json: bool,
-        /// Half-width of the sampled box in yaw, pitch and roll (rad).
-        #[arg(long, default_value_t = 0.35)]
+        /// Half-width of the sampled box in yaw, pitch and roll (rad, at most π).
+        #[arg(long, default_value_t = 0.35, allow_hyphen_values = true, value_parser = args::angle)]
         rotation: f64,
         /// Half-width of the sampled box in x and y (mm); z uses 0.8 of it.
-        #[arg(long, default_value_t = 50.0)]
+        #[arg(long, default_value_t = 50.0, allow_hyphen_values = true, value_parser = args::positive)]
         translation: f64,
         /// Also write the test points (legs, true pose and pivots) to this CSV.
         #[arg(long)]
@@ -71,9 +73,9 @@ enum Command {
     Trajectory {
         #[arg(long)]
         out: PathBuf,
-        #[arg(long, default_value_t = 2.0)]
+        #[arg(long, default_value_t = 2.0, allow_hyphen_values = true, value_parser = args::positive)]
         seconds: f64,
-        #[arg(long, default_value_t = 1000.0)]
+        #[arg(long, default_value_t = 1000.0, allow_hyphen_values = true, value_parser = args::positive)]
         rate: f64,
     },
     /// Draw Fig. 6 (det B over L2 × L4 for L6 = 190…250 mm) and a Fig. 5-style view, as PNG.
@@ -118,15 +120,22 @@ pub struct SolveArgs {
     /// Solve each row from the previous row's solution instead of from the start.
     #[arg(long)]
     track: bool,
-    /// CSV with a header containing L1…L6 (mm); other columns are ignored.
+    /// CSV with a header containing L1…L6 (mm) once each; other columns are ignored. `-` reads
+    /// standard input. Rows are solved and written one at a time, as they arrive.
     #[arg(long)]
     input: PathBuf,
     /// Where to write the result CSV (default: standard output).
     #[arg(long)]
     output: Option<PathBuf>,
-    /// Convergence tolerance on the Newton correction, mm.
-    #[arg(long, default_value_t = 1e-10)]
+    /// Convergence tolerance on the Newton correction, mm (above 0, at most 1).
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true, value_parser = args::tolerance)]
     tolerance: f64,
+    /// Continuation steps allowed per row (accepted plus rejected).
+    #[arg(long, default_value_t = linkage::Options::TIGHT.max_steps, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..))]
+    max_steps: u32,
+    /// Newton iterations allowed for the final correction (and for NR altogether).
+    #[arg(long, default_value_t = linkage::Options::TIGHT.max_iterations, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..))]
+    max_iterations: u32,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -136,8 +145,23 @@ pub enum Method {
     Nr,
 }
 
+impl Command {
+    /// Whether the command's results go to standard output.
+    fn prints_results(&self) -> bool {
+        match self {
+            Command::Equations { .. } | Command::TableV { .. } | Command::Bench { .. } => true,
+            Command::Solve(args) => args.output.is_none(),
+            Command::Trajectory { .. } | Command::Map { .. } | Command::Errors { .. } => false,
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if cli.command.prints_results() && linkage_examples::cli::stream::stdout_was_closed() {
+        eprintln!("error: standard output is closed: the results would be lost (redirect it to a file, or to /dev/null on purpose)");
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Command::Equations { json } => equations::run(json),
         Command::Solve(args) => solve::run(&args),

@@ -17,12 +17,24 @@ pub fn straight_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     steps: usize,
 ) -> ([f64; N], usize) {
-    let mut v = start.v;
-    let mut prev = start.det;
+    straight_segment_from(sys, (&start.v, &start.x), start.det, target, steps)
+}
+
+/// [`straight_segment`] from any point `(v, x)` of the branch whose det B has the sign of
+/// `det` (such as the corners of a detour, which may lie too near a fold to be a [`Start`]).
+pub fn straight_segment_from<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    (v0, x0): (&[f64; N], &[f64; M]),
+    det: f64,
+    target: &[f64; M],
+    steps: usize,
+) -> ([f64; N], usize) {
+    let mut v = *v0;
+    let mut prev = det;
     let mut flips = 0;
     for k in 1..=steps {
         let l = k as f64 / steps as f64;
-        let x: [f64; M] = std::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
+        let x: [f64; M] = std::array::from_fn(|j| x0[j] + l * (target[j] - x0[j]));
         for _ in 0..if k == steps { 30 } else { 6 } {
             let mut f = [0.0; N];
             sys.residual(&v, &x, &mut f);

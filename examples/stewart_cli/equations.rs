@@ -1,12 +1,12 @@
 //! `stewart equations`: the generated Eq. 19 and Table A1.
 
 use linkage::Mechanism;
+use linkage_examples::cli::stream::print;
 use linkage_examples::stewart::Stewart;
 
 pub fn run(json: bool) -> Result<(), String> {
     if !json {
-        print!("{}", Stewart::LISTING);
-        return Ok(());
+        return print(Stewart::LISTING);
     }
     let jacobian: Vec<serde_json::Value> = Stewart::PATTERN
         .iter()
@@ -19,6 +19,5 @@ pub fn run(json: bool) -> Result<(), String> {
         "equations": Stewart::EQUATIONS,
         "jacobian": jacobian,
     });
-    println!("{out}");
-    Ok(())
+    print(&format!("{out}\n"))
 }

@@ -16,7 +16,8 @@ pub fn run(out: &Path, seed: u64) -> Result<(), String> {
             ..Protocol::default()
         },
         |stage| eprintln!("errors: {stage}…"),
-    );
+    )
+    .map_err(|e| format!("test points: {e}"))?;
     let file = out.join("fig7_relative_errors.png");
     let root = BitMapBackend::new(&file, (720, 800)).into_drawing_area();
     let (plots, legend) = root.split_vertically(780);

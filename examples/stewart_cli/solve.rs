@@ -1,20 +1,27 @@
-//! `stewart solve`: forward kinematics for a CSV of leg lengths.
+//! `stewart solve`: forward kinematics for a CSV of leg lengths, streamed row by row.
 
 use crate::{Method, SolveArgs};
 use linkage::{Mechanism, Options, Pose, Start, Tracker};
 use linkage_examples::cli::geometry;
-use linkage_examples::cli::legs_csv::{self, Output};
+use linkage_examples::cli::legs_csv::{LegRows, Row};
+use linkage_examples::cli::results_csv::{self, Record, Via};
+use linkage_examples::cli::stream::{open_input, FlushBeforeRead, SharedSink};
 use linkage_examples::stewart::{
     find_start, platform_is_coplanar, SixSix, Stewart, StewartGeneral, HOME_LEGS,
 };
 
+/// Legs longer than this many times the mechanism's size are `invalid_input`: there double
+/// precision leaves no room for a useful tolerance, and further on the equations overflow
+/// (a 1e308 leg is not a singularity).
+const MAX_LEG_OVER_SIZE: f64 = 1e6;
+
+/// The status of a row the solver called converged with an error estimate above the
+/// tolerance (near a singularity rounding can forbid the tolerance): not `ok`.
+const TOLERANCE_NOT_MET: &str = "tolerance_not_met";
+
 pub fn run(args: &SolveArgs) -> Result<(), String> {
-    if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
-        return Err("--tolerance must be a positive number".into());
-    }
-    let rows = legs_csv::read(&args.input)?;
     match &args.geometry {
-        None => solve_all(Stewart::new(), HOME_LEGS, None, args, &rows),
+        None => solve_stream(Stewart::new(), HOME_LEGS, None, args),
         Some(path) => {
             let g = geometry::load(path)?;
             let pose = g
@@ -24,128 +31,228 @@ pub fn run(args: &SolveArgs) -> Result<(), String> {
             if platform_is_coplanar(&g.platform) {
                 let sys = Stewart::with_joints(&g.base, &g.platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                solve_all(sys, g.legs, pose, args, &rows)
+                solve_stream(sys, g.legs, pose, args)
             } else {
                 let sys = StewartGeneral::with_joints(&g.base, &g.platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                solve_all(sys, g.legs, pose, args, &rows)
+                solve_stream(sys, g.legs, pose, args)
             }
         }
     }
 }
 
-fn solve_all<S: SixSix>(
+/// Reads a row, solves it, writes its result, and only then reads the next: constant memory,
+/// and each result reaches a pipe before the next row is waited for.
+fn solve_stream<S: SixSix>(
     sys: S,
     legs: [f64; 6],
     pose: Option<Pose>,
     args: &SolveArgs,
-    rows: &[legs_csv::Row],
 ) -> Result<(), String> {
     let start = find_start(&sys, legs, pose).map_err(|e| format!("start configuration: {e}"))?;
-    let options = Options {
-        tolerance: args.tolerance,
-        ..Options::TIGHT
-    };
-    let method = match args.method {
-        Method::Ph => linkage::Method::ArcLength,
-        Method::Nh => linkage::Method::NewtonHomotopy,
-        Method::Nr => linkage::Method::NewtonRaphson,
-    };
-    let mut out = Output::new(args.output.as_deref())?;
-    let mut tracker = Tracker::new(sys.clone(), start, options);
-    let mut current: Start<18, 6> = start;
-    for (i, row) in rows.iter().enumerate() {
-        let n = i + 1;
-        let x = match row {
-            Ok(x) => x,
-            Err(word) => {
-                out.row(n, word, None, None, None)?;
-                continue;
-            }
+    let mut solver = RowSolver::new(sys, start, args);
+    let sink = SharedSink::new(args.output.as_deref());
+    let input = FlushBeforeRead::new(open_input(&args.input)?, sink.clone());
+    let name = args.input.display();
+    let mut rows = LegRows::new(input)
+        .map_err(|e| sink.check().err().unwrap_or_else(|| format!("{name}: {e}")))?;
+    sink.write_line(&results_csv::header())?;
+    let mut line = String::new();
+    let mut n = 0u64;
+    loop {
+        let row = match rows.next_row() {
+            Ok(Some(row)) => row,
+            Ok(None) => break,
+            // A failed flush surfaces as a failed read: report the output's error then.
+            Err(e) => return Err(sink.check().err().unwrap_or_else(|| format!("{name}: {e}"))),
         };
-        if args.track && matches!(args.method, Method::Ph) {
-            match tracker.update(x) {
-                Ok(sample) => write_ok(
-                    &mut out,
-                    &sys,
-                    n,
-                    &sample.v,
-                    x,
-                    None,
-                    sample.newton_iterations,
-                )?,
-                Err(linkage::TrackError::Input(e)) => out.row(n, e.word(), None, None, None)?,
-                Err(linkage::TrackError::Lost(status)) => {
-                    out.row(n, status.word(), None, None, None)?
-                }
-            }
-            continue;
-        }
-        // PH goes around a fold when it can (`arc_length_detour`); NH and NR as the paper has them.
-        let result = match method {
-            linkage::Method::ArcLength => {
-                linkage::arc_length_detour(&sys, &current, x, &options).map(|d| d.solution)
-            }
-            _ => method.solve(&sys, &current, x, &options),
-        };
-        match result {
-            Err(e) => out.row(n, e.word(), None, None, None)?,
-            Ok(sol) if sol.is_ok() => {
-                let steps = match args.method {
-                    Method::Nr => sol.newton_iterations,
-                    _ => sol.steps_accepted + sol.steps_rejected,
-                };
-                write_ok(
-                    &mut out,
-                    &sys,
-                    n,
-                    &sol.v,
-                    x,
-                    Some(sol.error_estimate),
-                    steps,
-                )?;
-                if args.track {
-                    current = Start {
-                        v: sol.v,
-                        x: *x,
-                        det: start.det,
-                    };
-                }
-            }
-            Ok(sol) => out.row(
-                n,
-                sol.status.word(),
-                None,
-                Some(sol.error_estimate),
-                Some(sol.steps_accepted + sol.steps_rejected),
-            )?,
-        }
+        n += 1;
+        line.clear();
+        solver.solve(n, row).write_to(&mut line);
+        sink.write_line(&line)?;
     }
-    out.finish()
+    sink.flush()
 }
 
-fn write_ok<S: Mechanism<18, 6>>(
-    out: &mut Output,
-    sys: &S,
-    n: usize,
-    v: &[f64; 18],
-    x: &[f64; 6],
-    error: Option<f64>,
-    steps: u32,
-) -> Result<(), String> {
-    let error = error.unwrap_or_else(|| linkage::error_estimate(sys, v, x));
-    match linkage::pose_from_unknowns(sys, v) {
-        Some(p) => {
-            let [yaw, pitch, roll] = p.euler();
-            let t = p.translation;
-            out.row(
-                n,
-                "ok",
-                Some((&[yaw, pitch, roll, t[0], t[1], t[2]], v)),
-                Some(error),
-                Some(steps),
-            )
+/// Solves one row after another, from the start or (`--track`) from the last solved row.
+struct RowSolver<S: SixSix> {
+    sys: S,
+    start: Start<18, 6>,
+    /// Where NH and NR start from: the start, or with `--track` the last row solved ok.
+    current: Start<18, 6>,
+    tracker: Tracker<S, 18, 6>,
+    options: Options,
+    method: Method,
+    track: bool,
+    max_leg: f64,
+}
+
+impl<S: SixSix> RowSolver<S> {
+    fn new(sys: S, start: Start<18, 6>, args: &SolveArgs) -> Self {
+        let options = Options {
+            tolerance: args.tolerance,
+            max_steps: args.max_steps,
+            max_iterations: args.max_iterations,
+            ..Options::TIGHT
+        };
+        let size = mechanism_size(&sys);
+        RowSolver {
+            tracker: Tracker::new(sys.clone(), start, options),
+            sys,
+            start,
+            current: start,
+            options,
+            method: args.method,
+            track: args.track,
+            max_leg: MAX_LEG_OVER_SIZE * size,
         }
-        None => out.row(n, "degenerate_pose", None, None, None),
     }
+
+    fn solve(&mut self, n: u64, row: Row) -> Record<'static> {
+        let x = match row {
+            Ok(x) => x,
+            Err(word) => return Record::status_only(n, word),
+        };
+        if x.iter().any(|l| *l > self.max_leg) {
+            return Record::status_only(n, "invalid_input");
+        }
+        if self.track && matches!(self.method, Method::Ph) {
+            return self.track_ph(n, &x);
+        }
+        // PH goes around a fold when it can (`arc_length_detour`); NH and NR as the paper has
+        // them.
+        let (result, via) = match self.method {
+            Method::Ph => {
+                match linkage::arc_length_detour(&self.sys, &self.current, &x, &self.options) {
+                    Ok(d) => (
+                        Ok(d.solution),
+                        if d.via.is_some() {
+                            Via::Detour
+                        } else {
+                            Via::Direct
+                        },
+                    ),
+                    Err(e) => (Err(e), Via::Direct),
+                }
+            }
+            Method::Nh => (
+                linkage::newton_homotopy(&self.sys, &self.current, &x, &self.options),
+                Via::Direct,
+            ),
+            Method::Nr => (
+                linkage::newton_raphson(&self.sys, &self.current, &x, &self.options),
+                Via::Direct,
+            ),
+        };
+        let sol = match result {
+            Ok(sol) => sol,
+            Err(e) => return Record::status_only(n, e.word()),
+        };
+        let steps = match self.method {
+            Method::Nr => sol.newton_iterations,
+            _ => sol.steps_accepted + sol.steps_rejected,
+        };
+        // Ratios are against the start's det B, also when tracking from another row.
+        let min_det_ratio = sol.min_det_ratio * (self.current.det / self.start.det).abs();
+        let record = Record {
+            row: n,
+            status: sol.status.word(),
+            solution: None,
+            error_estimate: Some(sol.error_estimate),
+            steps: Some(steps),
+            min_det_ratio: Some(min_det_ratio),
+            via: Some(via),
+        };
+        if !sol.is_ok() {
+            return record;
+        }
+        let record = with_pose(&self.sys, record, &sol.v, self.options.tolerance);
+        if self.track && record.solution.is_some() {
+            // A checked start: a row that cannot be one (non-finite, singular) is not taken
+            // up, and the next row starts from the last one that can.
+            if let Ok(next) = Start::new(&self.sys, sol.v, x) {
+                self.current = next;
+            }
+        }
+        record
+    }
+
+    /// `--track` with PH: the trajectory tracker, which keeps its last good state when a
+    /// sample is refused.
+    fn track_ph(&mut self, n: u64, x: &[f64; 6]) -> Record<'static> {
+        // The tracker moves on with every sample it accepts; a row this program then refuses
+        // (below) must not move it.
+        let before = self.tracker.clone();
+        match self.tracker.update(x) {
+            Ok(sample) => {
+                let record = Record {
+                    row: n,
+                    status: "ok",
+                    solution: None,
+                    error_estimate: Some(linkage::error_estimate(&self.sys, &sample.v, x)),
+                    steps: Some(sample.newton_iterations),
+                    // The tracker reports |det B| / |det B0| at the sample itself.
+                    min_det_ratio: Some(sample.proximity),
+                    via: Some(if sample.fell_back {
+                        Via::Fallback
+                    } else {
+                        Via::Direct
+                    }),
+                };
+                let record = with_pose(&self.sys, record, &sample.v, self.options.tolerance);
+                if record.solution.is_none() {
+                    self.tracker = before;
+                }
+                record
+            }
+            Err(linkage::TrackError::Input(e)) => Record::status_only(n, e.word()),
+            Err(linkage::TrackError::Lost(status)) => Record::status_only(n, status.word()),
+        }
+    }
+}
+
+/// An `ok` record with its pose, or the reason it is not ok after all: never `ok` with a
+/// non-finite value or with the error estimate above the tolerance asked for.
+fn with_pose<'a, S: Mechanism<18, 6>>(
+    sys: &S,
+    record: Record<'a>,
+    v: &[f64; 18],
+    tolerance: f64,
+) -> Record<'a> {
+    let finite = |a: &[f64]| a.iter().all(|c| c.is_finite());
+    let error = record.error_estimate.unwrap_or(f64::NAN);
+    if !finite(v) || !error.is_finite() {
+        return Record {
+            status: "non_finite",
+            ..record
+        };
+    }
+    if error > tolerance {
+        return Record {
+            status: TOLERANCE_NOT_MET,
+            ..record
+        };
+    }
+    let pose = linkage::pose_from_unknowns(sys, v).map(|p| {
+        let [yaw, pitch, roll] = p.euler();
+        let t = p.translation;
+        [yaw, pitch, roll, t[0], t[1], t[2]]
+    });
+    match pose {
+        Some(pose) if finite(&pose) => Record {
+            solution: Some((pose, *v)),
+            ..record
+        },
+        _ => Record {
+            status: "degenerate_pose",
+            ..record
+        },
+    }
+}
+
+/// The largest joint coordinate (base or platform), at least 1: the scale of the mechanism.
+fn mechanism_size<S: SixSix>(sys: &S) -> f64 {
+    let base = sys.base_joints().into_iter().flatten();
+    let platform = (0..6).flat_map(|p| sys.point_local(p));
+    base.chain(platform).fold(1.0f64, |m, c| m.max(c.abs()))
 }

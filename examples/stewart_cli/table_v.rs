@@ -2,6 +2,8 @@
 
 use linkage_examples::case_study::sampling::Protocol;
 use linkage_examples::case_study::table_v::{self, summarize, Report};
+use linkage_examples::cli::stream::print;
+use std::fmt::Write;
 
 pub fn run(
     seed: u64,
@@ -10,9 +12,6 @@ pub fn run(
     json: bool,
     export: Option<&std::path::Path>,
 ) -> Result<(), String> {
-    if !(rotation > 0.0 && rotation.is_finite() && translation > 0.0 && translation.is_finite()) {
-        return Err("--rotation and --translation must be positive".into());
-    }
     let protocol = Protocol {
         seed,
         rotation,
@@ -20,31 +19,36 @@ pub fn run(
         heave: 0.8 * translation,
         ..Protocol::default()
     };
-    let report = table_v::run(protocol, |stage| eprintln!("table-v: {stage}…"));
+    let report = table_v::run(protocol, |stage| eprintln!("table-v: {stage}…"))
+        .map_err(|e| format!("test points: {e}"))?;
     if let Some(path) = export {
         write_points(&report, path)?;
     }
     if json {
-        println!("{}", table_v::to_json(&report));
+        print(&format!("{}\n", table_v::to_json(&report)))
     } else {
-        print_table(&report);
+        print(&table(&report))
     }
-    Ok(())
 }
 
-fn print_table(r: &Report) {
+fn table(r: &Report) -> String {
+    let mut out = String::new();
+    // Writing to a String cannot fail.
+    macro_rules! line {
+        ($($t:tt)*) => { let _ = writeln!(out, $($t)*); };
+    }
     let n = r.normal.len();
     for (label, pick) in [
         ("paper settings (accuracy 0.0005, ≤ 150 iterations)", 0),
         ("tight tolerance (1e-10 mm)", 1),
     ] {
-        println!(
+        line!(
             "\nTable V, {label}: {} normal and {} near-singular points, seed {}",
             n,
             r.near.len(),
             r.protocol.seed
         );
-        println!("{:<58}{:>14}{:>14}{:>14}", "", "PH", "NH", "NR");
+        line!("{:<58}{:>14}{:>14}{:>14}", "", "PH", "NH", "NR");
         let s: Vec<table_v::Summary> = r
             .outcomes
             .iter()
@@ -53,46 +57,47 @@ fn print_table(r: &Report) {
                 summarize(&o[..n], &o[n..])
             })
             .collect();
-        let line = |name: &str, f: &dyn Fn(&table_v::Summary) -> String| {
-            println!("{name:<58}{:>14}{:>14}{:>14}", f(&s[0]), f(&s[1]), f(&s[2]));
+        let mut row = |name: &str, f: &dyn Fn(&table_v::Summary) -> String| {
+            line!("{name:<58}{:>14}{:>14}{:>14}", f(&s[0]), f(&s[1]), f(&s[2]));
         };
-        line("near-singular points with relative error < 0.1 %", &|s| {
+        row("near-singular points with relative error < 0.1 %", &|s| {
             format!("{:.0} %", 100.0 * s.near_singular_ok_ratio)
         });
-        line("average relative error, normal points", &|s| {
+        row("average relative error, normal points", &|s| {
             format!("{:.2e}", s.normal_mean_rel_error)
         });
-        line("average time per point (s)", &|s| {
+        row("average time per point (s)", &|s| {
             format!("{:.2e}", s.mean_time_s)
         });
-        line("labelled ok but another branch (wrong)", &|s| {
+        row("labelled ok but another branch (wrong)", &|s| {
             s.wrong_branch.to_string()
         });
-        line(
+        row(
             "ok, off truth, same branch by a nonsingular path (*)",
             &|s| s.path_dependent.to_string(),
         );
-        line("ended with a fold (typed outcome)", &|s| {
+        row("ended with a fold (typed outcome)", &|s| {
             s.fold_reported.to_string()
         });
-        line("ended otherwise not ok", &|s| s.other_failures.to_string());
-        line("normal points not solved", &|s| {
+        row("ended otherwise not ok", &|s| s.other_failures.to_string());
+        row("normal points not solved", &|s| {
             s.normal_failures.to_string()
         });
     }
-    println!(
+    line!(
         "\nnear-singular points whose straight joint-space segment leaves the valid joint space: {} of {}",
         r.segment_leaves_vjs,
         r.near.len()
     );
     let d = &r.detours;
-    println!(
+    line!(
         "PH with detours around folds: {} of {} reached ({} at the true pivots, {} a second solution on the start's branch confirmed by continuation, {} wrong)",
         d.reached, d.folds, d.at_truth, d.path_dependent, d.wrong_branch
     );
-    println!("(*) the straight joint-space segment reaches it with no sign change of det B (checked by fine continuation),");
-    println!("    while the pose path reaches the true pose: two solutions on the start's branch (see README, Errata)");
-    println!("paper (Table V): PH 100 % / 0.026 % / 3.203 s; NH 61 % / 0.024 % / 2.286 s; NR 10 % / 0.036 % / 0.208 s");
+    line!("(*) the straight joint-space segment reaches it with no sign change of det B (checked by fine continuation),");
+    line!("    while the pose path reaches the true pose: two solutions on the start's branch (see README, Errata)");
+    line!("paper (Table V): PH 100 % / 0.026 % / 3.203 s; NH 61 % / 0.024 % / 2.286 s; NR 10 % / 0.036 % / 0.208 s");
+    out
 }
 
 /// The test points: kind, legs, true pose (Appendix B) and pivots (Eq. 19's order).

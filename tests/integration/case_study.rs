@@ -17,7 +17,7 @@ fn small() -> Protocol {
 #[test]
 fn test_points_follow_the_protocol() {
     let sampler = Sampler::new(small());
-    let (mean, normal, near) = sampler.sample();
+    let (mean, normal, near) = sampler.sample().unwrap();
     assert!(mean > 0.0);
     assert_eq!((normal.len(), near.len()), (12, 12));
     for p in &normal {
@@ -27,13 +27,13 @@ fn test_points_follow_the_protocol() {
         assert!(p.det < 1e-3 * mean && p.det > 0.0 && p.near_singular);
     }
     // Same seed, same points.
-    let (_, again, _) = Sampler::new(small()).sample();
+    let (_, again, _) = Sampler::new(small()).sample().unwrap();
     assert_eq!(normal[3].x, again[3].x);
 }
 
 #[test]
 fn arc_length_never_returns_another_branch_labelled_ok() {
-    let report = run(small(), |_| {});
+    let report = run(small(), |_| {}).unwrap();
     let n = report.normal.len();
     let json = to_json(&report);
     for name in ["PH", "NH", "NR"] {

@@ -3,6 +3,7 @@
 
 mod case_study;
 mod certify;
+mod cli_regressions;
 mod front_end_robustness;
 mod general_mechanisms;
 mod generated_systems;

@@ -78,6 +78,19 @@ fn leg_csv_rows_carry_their_own_status() {
     assert!(legs_csv::read(&path)
         .unwrap_err()
         .contains("no column `L1`"));
+    // A repeated column is ambiguous: an error, not the first one silently.
+    let twice = legs_csv::read_from(&b"L1,L2,L3,L4,L5,L6,L2\n1,2,3,4,5,6,7\n"[..]);
+    assert!(twice.unwrap_err().contains("`L2` twice (columns 2 and 7)"));
+    // Bytes that are not UTF-8: harmless in an ignored column, the row's own status in a leg.
+    let bytes = b"x,L1,L2,L3,L4,L5,L6\n\xff,1,2,3,4,5,6\n0,1,\xff,3,4,5,6\n0,1,2,3,4,5,6\n";
+    assert_eq!(
+        legs_csv::read_from(&bytes[..]).unwrap(),
+        [
+            Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+            Err("invalid_number"),
+            Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])
+        ]
+    );
     assert!(legs_csv::read(&dir.join("missing.csv")).is_err());
 }
 

@@ -112,10 +112,11 @@ pub fn explore(
             progress(done as f64 / total as f64);
         }
         let from = map.index(i, j, k);
-        let here = Start {
-            v: solved[from].expect("queued cells are solved"),
-            x: x_of(&map, i, j, k),
-            det: start.det,
+        let v = solved[from].expect("queued cells are solved");
+        // A checked start; a cell too near a fold to be one seeds no neighbours (they may
+        // still be reached from another side).
+        let Ok(here) = Start::new(sys, v, x_of(&map, i, j, k)) else {
+            continue;
         };
         let neighbours = [
             (i.wrapping_sub(1), j, k),

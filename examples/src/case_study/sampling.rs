@@ -13,6 +13,10 @@
 //!   rays u: the first sign change of det B along the ray (at up to `reach` times the box), then
 //!   bisection back towards home to a point whose |det B| is below the threshold — so the path
 //!   from home stays nonsingular by construction.
+//! - Every search is capped: it gives up, with a [`SamplingError`], once it has drawn
+//!   `max_tries_per_point` random offsets per point found (plus one), that is when fewer
+//!   than 1 in `max_tries_per_point` draws succeed. Extreme boxes (say ±1e-9) never meet a
+//!   singularity, and the search must end with a message rather than spin forever.
 //! - A seeded SplitMix64 generator makes every run with the same seed identical.
 
 use crate::stewart::{home_start, legs_for_pose, Stewart};
@@ -31,6 +35,8 @@ pub struct Protocol {
     pub mean_samples: usize,
     pub near_fraction: f64,
     pub reach: f64,
+    /// Random draws allowed per point found (see the module's protocol).
+    pub max_tries_per_point: usize,
 }
 
 impl Default for Protocol {
@@ -47,7 +53,131 @@ impl Default for Protocol {
             mean_samples: 5000,
             near_fraction: 1e-3,
             reach: 4.0,
+            max_tries_per_point: 200,
         }
+    }
+}
+
+impl Protocol {
+    /// Every size finite and positive, every count positive, angles within ±π.
+    pub fn validate(&self) -> Result<(), SamplingError> {
+        let sizes = [
+            ("rotation", self.rotation),
+            ("translation", self.translation),
+            ("heave", self.heave),
+            ("min_leg", self.min_leg),
+            ("near_fraction", self.near_fraction),
+            ("reach", self.reach),
+        ];
+        for (name, x) in sizes {
+            if !(x.is_finite() && x > 0.0) {
+                return Err(SamplingError::Invalid(format!(
+                    "{name} must be a finite positive number, not {x}"
+                )));
+            }
+        }
+        if self.rotation > std::f64::consts::PI {
+            return Err(SamplingError::Invalid(format!(
+                "rotation must be at most π rad (a box of ±{} rad covers some angles twice)",
+                self.rotation
+            )));
+        }
+        let counts = [
+            ("normal", self.normal),
+            ("near_singular", self.near_singular),
+            ("checks", self.checks),
+            ("mean_samples", self.mean_samples),
+            ("max_tries_per_point", self.max_tries_per_point),
+        ];
+        for (name, n) in counts {
+            if n == 0 {
+                return Err(SamplingError::Invalid(format!("{name} must be at least 1")));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Why the protocol could not produce its test points.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SamplingError {
+    /// A protocol value is out of range.
+    Invalid(String),
+    /// Random draws came up empty too often: `found` of `wanted` after `tries` draws.
+    GaveUp {
+        what: &'static str,
+        found: usize,
+        wanted: usize,
+        tries: usize,
+        /// What the points need, for the message.
+        hint: &'static str,
+    },
+}
+
+impl std::fmt::Display for SamplingError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SamplingError::Invalid(why) => write!(f, "invalid protocol: {why}"),
+            SamplingError::GaveUp {
+                what,
+                found,
+                wanted,
+                tries,
+                hint,
+            } => write!(
+                f,
+                "gave up after {tries} random draws with {found} of {wanted} {what} found: \
+                 the sampled box (rotation, translation) cannot produce them ({hint})"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SamplingError {}
+
+/// A capped rejection-sampling loop: `wanted` successes, at most `max_tries_per_point` draws
+/// per success so far (plus one).
+struct Search {
+    what: &'static str,
+    hint: &'static str,
+    wanted: usize,
+    per_point: usize,
+    count: usize,
+    tries: usize,
+}
+
+impl Search {
+    fn new(what: &'static str, hint: &'static str, wanted: usize, protocol: &Protocol) -> Self {
+        Search {
+            what,
+            hint,
+            wanted,
+            per_point: protocol.max_tries_per_point,
+            count: 0,
+            tries: 0,
+        }
+    }
+
+    /// Whether to draw again: `Ok(false)` when done, an error when the draws keep failing.
+    fn more(&mut self) -> Result<bool, SamplingError> {
+        if self.count >= self.wanted {
+            return Ok(false);
+        }
+        if self.tries >= self.per_point.saturating_mul(self.count + 1) {
+            return Err(SamplingError::GaveUp {
+                what: self.what,
+                found: self.count,
+                wanted: self.wanted,
+                tries: self.tries,
+                hint: self.hint,
+            });
+        }
+        self.tries += 1;
+        Ok(true)
+    }
+
+    fn found(&mut self) {
+        self.count += 1;
     }
 }
 
@@ -160,40 +290,65 @@ impl Sampler {
     }
 
     /// Mean |det B| over uniform samples whose pose path is nonsingular.
-    pub fn mean_det(&self, rng: &mut Rng) -> f64 {
-        let (mut sum, mut n) = (0.0, 0usize);
-        let mut tries = 0;
-        while n < self.protocol.mean_samples && tries < 50 * self.protocol.mean_samples {
-            tries += 1;
+    pub fn mean_det(&self, rng: &mut Rng) -> Result<f64, SamplingError> {
+        let mut sum = 0.0;
+        let mut search = Search::new(
+            "poses with a nonsingular path from home",
+            "a pose counts when det B keeps its sign along the way and every leg stays above `min_leg`",
+            self.protocol.mean_samples,
+            &self.protocol,
+        );
+        while search.more()? {
             let u = self.random_offset(rng);
             if self.nonsingular(&u, 1.0) {
                 sum += self.det_at(&u, 1.0).abs();
-                n += 1;
+                search.found();
             }
         }
-        sum / n.max(1) as f64
+        Ok(sum / search.count as f64)
     }
 
-    /// `(mean |det B|, normal points, near-singular points)`.
-    pub fn sample(&self) -> (f64, Vec<TestPoint>, Vec<TestPoint>) {
+    /// `(mean |det B|, normal points, near-singular points)`, or why the protocol cannot
+    /// produce them.
+    pub fn sample(&self) -> Result<(f64, Vec<TestPoint>, Vec<TestPoint>), SamplingError> {
+        self.protocol.validate()?;
         let mut rng = Rng::new(self.protocol.seed);
-        let mean = self.mean_det(&mut rng);
+        let mean = self.mean_det(&mut rng)?;
         let threshold = self.protocol.near_fraction * mean;
         let mut normal = Vec::new();
-        while normal.len() < self.protocol.normal {
+        let mut search = Search::new(
+            "normal points",
+            "a normal point has |det B| of at least `near_fraction` of the mean",
+            self.protocol.normal,
+            &self.protocol,
+        );
+        while search.more()? {
             let u = self.random_offset(&mut rng);
             if self.nonsingular(&u, 1.0) && self.det_at(&u, 1.0).abs() >= threshold {
-                normal.extend(self.point(&u, 1.0, false));
+                if let Some(p) = self.point(&u, 1.0, false) {
+                    normal.push(p);
+                    search.found();
+                }
             }
         }
         let mut near = Vec::new();
-        while near.len() < self.protocol.near_singular {
+        let mut search = Search::new(
+            "near-singular points",
+            "a near-singular point needs a singularity within `reach` times the box",
+            self.protocol.near_singular,
+            &self.protocol,
+        );
+        while search.more()? {
             let u = self.random_offset(&mut rng);
-            if let Some(t) = self.near_singular_along(&u, threshold) {
-                near.extend(self.point(&u, t, true));
+            if let Some(p) = self
+                .near_singular_along(&u, threshold)
+                .and_then(|t| self.point(&u, t, true))
+            {
+                near.push(p);
+                search.found();
             }
         }
-        (mean, normal, near)
+        Ok((mean, normal, near))
     }
 
     /// The largest t before the first singularity along `u` with |det B| below `threshold`.

@@ -1,8 +1,8 @@
 //! Table V: every test point solved by PH, NH and NR from the initial configuration, at the
 //! paper's settings and at a tight tolerance, compared with the true pivots.
 
-use super::sampling::{Protocol, Sampler, TestPoint};
-use super::straight_segment;
+use super::sampling::{Protocol, Sampler, SamplingError, TestPoint};
+use super::{straight_segment, straight_segment_from};
 use linkage::{Method, Options, Status};
 use std::time::Instant;
 
@@ -157,10 +157,13 @@ pub const METHODS: [(&str, Method); 3] = [
     ("NR", Method::NewtonRaphson),
 ];
 
-pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Report {
+/// Samples the test points and solves them; an error when the protocol cannot produce its
+/// points (see [`Sampler::sample`]).
+pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Result<Report, SamplingError> {
+    protocol.validate()?;
     let sampler = Sampler::new(protocol);
     progress("sampling test points");
-    let (mean_det, normal, near) = sampler.sample();
+    let (mean_det, normal, near) = sampler.sample()?;
     progress("checking the straight joint-space segments");
     let points: Vec<&TestPoint> = normal.iter().chain(&near).collect();
     let segments: Vec<([f64; 18], usize)> = points
@@ -188,7 +191,7 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Report {
     }
     progress("detours around folds");
     let detours = detour_all(&sampler, &points, &outcomes[0].2);
-    Report {
+    Ok(Report {
         protocol,
         mean_det,
         normal,
@@ -196,24 +199,21 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Report {
         segment_leaves_vjs,
         outcomes,
         detours,
-    }
+    })
 }
 
 /// Fine continuation along start → corners…: no sign change of det B, and it ends at `v`.
 fn polyline_confirms(sampler: &Sampler, corners: &[[f64; 6]], v: &[f64; 18]) -> bool {
-    let mut here = sampler.start;
+    let (mut here, mut at) = (sampler.start.v, sampler.start.x);
     for corner in corners {
-        let (next, flips) = straight_segment(&sampler.sys, &here, corner, 4000);
+        let (next, flips) =
+            straight_segment_from(&sampler.sys, (&here, &at), sampler.start.det, corner, 4000);
         if flips > 0 {
             return false;
         }
-        here = linkage::Start {
-            v: next,
-            x: *corner,
-            det: sampler.start.det,
-        };
+        (here, at) = (next, *corner);
     }
-    rel_error(&here.v, v) < 1e-6
+    rel_error(&here, v) < 1e-6
 }
 
 fn detour_all(sampler: &Sampler, points: &[&TestPoint], ph: &[Outcome]) -> Detours {
