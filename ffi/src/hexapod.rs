@@ -36,12 +36,15 @@ pub struct LinkageReport {
 }
 
 /// The rigid-body form the geometry needs: the coplanar one is the paper's Eq. 19.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 enum Model {
     Coplanar(Stewart),
     General(StewartGeneral),
 }
 
+// Unboxed on purpose: the handle is one fixed-size block in caller storage, never allocated.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 enum Tracking {
     Coplanar(Tracker<Stewart, 18, 6>),
@@ -327,7 +330,7 @@ pub(crate) mod tests {
             let t = k as f64 / 400.0;
             let want = LinkagePose {
                 x: 2.0 * t,
-                y: -1.0 * t,
+                y: -t,
                 z: 20.0 + 3.0 * t,
                 a: 8.0 * t,
                 b: -6.0 * t,
