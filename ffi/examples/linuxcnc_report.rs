@@ -58,24 +58,44 @@ impl Stats {
 
 fn geometry(file: &str) -> Result<LinkageGeometry, String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{file}: {e}"))?;
-    let mut g = LinkageGeometry { base: [[f64::NAN; 3]; 6], platform: [[f64::NAN; 3]; 6] };
+    let mut g = LinkageGeometry {
+        base: [[f64::NAN; 3]; 6],
+        platform: [[f64::NAN; 3]; 6],
+    };
     for line in text.lines().filter(|l| l.starts_with("setp ")) {
         let mut words = line.split_whitespace().skip(1);
-        let (Some(name), Some(value)) = (words.next(), words.next()) else { continue };
+        let (Some(name), Some(value)) = (words.next(), words.next()) else {
+            continue;
+        };
         let parts: Vec<&str> = name.split('.').collect();
-        let value: f64 = value.parse().map_err(|_| format!("{file}: bad value in `{line}`"))?;
+        let value: f64 = value
+            .parse()
+            .map_err(|_| format!("{file}: bad value in `{line}`"))?;
         if let [_, link, i, axis] = parts[..] {
-            let i: usize = i.parse().map_err(|_| format!("{file}: bad index in `{line}`"))?;
-            let k = "xyz".find(axis).ok_or(format!("{file}: bad axis in `{line}`"))?;
+            let i: usize = i
+                .parse()
+                .map_err(|_| format!("{file}: bad index in `{line}`"))?;
+            let k = "xyz"
+                .find(axis)
+                .ok_or(format!("{file}: bad axis in `{line}`"))?;
             let target = match link {
                 "base" => &mut g.base,
                 "platform" => &mut g.platform,
                 _ => continue,
             };
-            *target.get_mut(i).ok_or(format!("{file}: bad index in `{line}`"))?.get_mut(k).unwrap() = value;
+            *target
+                .get_mut(i)
+                .ok_or(format!("{file}: bad index in `{line}`"))?
+                .get_mut(k)
+                .unwrap() = value;
         }
     }
-    if g.base.iter().chain(&g.platform).flatten().any(|v| v.is_nan()) {
+    if g.base
+        .iter()
+        .chain(&g.platform)
+        .flatten()
+        .any(|v| v.is_nan())
+    {
         return Err(format!("{file}: not every joint centre is set"));
     }
     Ok(g)
@@ -88,12 +108,22 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
     }
     let mut out = Vec::new();
     for (n, line) in text.lines().enumerate().skip(1) {
-        let v: Vec<f64> = line.split(',').map(|w| w.parse::<f64>()).collect::<Result<_, _>>()
+        let v: Vec<f64> = line
+            .split(',')
+            .map(|w| w.parse::<f64>())
+            .collect::<Result<_, _>>()
             .map_err(|_| format!("{file}:{}: not a sample", n + 1))?;
         if v.len() != 21 {
             return Err(format!("{file}:{}: {} fields, not 21", n + 1, v.len()));
         }
-        let pose = |i: usize| LinkagePose { x: v[i], y: v[i + 1], z: v[i + 2], a: v[i + 3], b: v[i + 4], c: v[i + 5] };
+        let pose = |i: usize| LinkagePose {
+            x: v[i],
+            y: v[i + 1],
+            z: v[i + 2],
+            a: v[i + 3],
+            b: v[i + 4],
+            c: v[i + 5],
+        };
         out.push(Sample {
             step: v[0] as usize,
             joints: std::array::from_fn(|j| v[2 + j]),
@@ -115,14 +145,20 @@ fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> boo
             st.failed += 1;
         }
         let error = hex.inverse(&s.pose).map_or(f64::INFINITY, |legs| {
-            (0..6).map(|i| (legs[i] - s.joints[i]).abs()).fold(0.0, f64::max)
+            (0..6)
+                .map(|i| (legs[i] - s.joints[i]).abs())
+                .fold(0.0, f64::max)
         });
         st.max_leg_error = st.max_leg_error.max(error);
         let mut bad = !s.fail && !(error <= LEG_TOLERANCE);
         if coordinated(s.step) {
             let (p, q) = (&s.pose, &s.command);
-            let lag = [p.x - q.x, p.y - q.y, p.z - q.z].iter().fold(0.0f64, |m, d| m.max(d.abs()));
-            let turn = [p.a - q.a, p.b - q.b, p.c - q.c].iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            let lag = [p.x - q.x, p.y - q.y, p.z - q.z]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
+            let turn = [p.a - q.a, p.b - q.b, p.c - q.c]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
             st.max_lag = st.max_lag.max(lag);
             st.max_lag_angle = st.max_lag_angle.max(turn);
             bad |= !(lag <= LAG_LINEAR && turn <= LAG_ANGULAR);
@@ -135,14 +171,20 @@ fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> boo
 fn cell(s: &Stats) -> String {
     format!(
         "{:>6} {:>6} {:>6} {:>9.1e} {:>7.3}",
-        s.samples, s.failed, s.bad, s.max_leg_error, s.max_lag.max(s.max_lag_angle)
+        s.samples,
+        s.failed,
+        s.bad,
+        s.max_leg_error,
+        s.max_lag.max(s.max_lag_angle)
     )
 }
 
 fn run() -> Result<bool, String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.len() < 5 || (args.len() - 1) % 4 != 0 {
-        return Err("usage: linuxcnc_report GEOMETRY.hal (NAME PATH OURS.csv GENHEX.csv)...".into());
+    if args.len() < 5 || args.len() % 4 != 1 {
+        return Err(
+            "usage: linuxcnc_report GEOMETRY.hal (NAME PATH OURS.csv GENHEX.csv)...".into(),
+        );
     }
     let hex = Hexapod::new(&geometry(&args[0])?).map_err(|c| format!("geometry: status {c}"))?;
     let (mut ours_all, mut theirs_all) = (Stats::default(), Stats::default());
@@ -150,22 +192,35 @@ fn run() -> Result<bool, String> {
     let mut problems = Vec::new();
     println!("columns per module: samples, fwd-kins-fail samples, wrong or off-path samples,");
     println!("max |IK(pose) - joints| (in), max |pose - command| in coordinated moves (in or deg)");
-    for chunk in args[1..].chunks(4) {
-        let [name, path, ours, theirs] = chunk else { unreachable!() };
+    for chunk in args[1..].chunks_exact(4) {
+        let [name, path, ours, theirs] = chunk else {
+            continue;
+        };
         let commands: Vec<String> = std::fs::read_to_string(path)
             .map_err(|e| format!("{path}: {e}"))?
             .lines()
             .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
             .map(str::to_string)
             .collect();
-        let coordinated = |step: usize| step > 0 && commands.get(step - 1).is_some_and(|c| c.starts_with("mdi"));
+        let coordinated =
+            |step: usize| step > 0 && commands.get(step - 1).is_some_and(|c| c.starts_with("mdi"));
         let a = measure(&hex, &samples(ours)?, &coordinated);
         let b = measure(&hex, &samples(theirs)?, &coordinated);
         println!("\npath {name} ({path})");
-        println!("{:<32} | {:^38} | {:^38}", "step", "linkagehexkins", "genhexkins");
+        println!(
+            "{:<32} | {:^38} | {:^38}",
+            "step", "linkagehexkins", "genhexkins"
+        );
         for step in 0..=commands.len() {
-            let label = if step == 0 { "home".to_string() } else { commands[step - 1].clone() };
-            let (sa, sb) = (a.get(step).copied().unwrap_or_default(), b.get(step).copied().unwrap_or_default());
+            let label = if step == 0 {
+                "home".to_string()
+            } else {
+                commands[step - 1].clone()
+            };
+            let (sa, sb) = (
+                a.get(step).copied().unwrap_or_default(),
+                b.get(step).copied().unwrap_or_default(),
+            );
             println!("{:<32} | {} | {}", label, cell(&sa), cell(&sb));
             if step > 0 && sa.samples < MIN_SAMPLES {
                 problems.push(format!("{name} step {step}: only {} samples", sa.samples));
