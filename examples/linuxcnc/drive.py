@@ -53,8 +53,9 @@ def errors():
         print("linuxcnc error:", msg[1], flush=True)
 
 
-out.write("step,t,j0,j1,j2,j3,j4,j5,x,y,z,a,b,c,cx,cy,cz,ca,cb,cc,fail\n")
+out.write("step,t,j0,j1,j2,j3,j4,j5,x,y,z,a,b,c,cx,cy,cz,ca,cb,cc,fail,proximity\n")
 t0 = time.time()
+has_proximity = any(p["NAME"] == kins + ".proximity" for p in hal.get_info_pins())
 
 
 def sample(step):
@@ -63,8 +64,10 @@ def sample(step):
     p = s.actual_position[:6]
     q = s.position[:6]
     f = int(bool(hal.get_value(kins + ".fwd-kins-fail")))
-    out.write("%d,%.4f,%s,%s,%s,%d\n" % (step, time.time() - t0, ",".join("%.12g" % v for v in j),
-              ",".join("%.12g" % v for v in p), ",".join("%.12g" % v for v in q), f))
+    # linkagehexkins' singularity proximity pin (genhexkins has none).
+    prox = hal.get_value(kins + ".proximity") if has_proximity else float("nan")
+    out.write("%d,%.4f,%s,%s,%s,%d,%.6g\n" % (step, time.time() - t0, ",".join("%.12g" % v for v in j),
+              ",".join("%.12g" % v for v in p), ",".join("%.12g" % v for v in q), f, prox))
 
 
 def run_until_done(step, done, seconds):

@@ -31,9 +31,11 @@ struct Sample {
     pose: LinkagePose,
     command: LinkagePose,
     fail: bool,
+    /// linkagehexkins' proximity pin (NaN for genhexkins).
+    proximity: f64,
 }
 
-#[derive(Default, Clone, Copy)]
+#[derive(Clone, Copy)]
 struct Stats {
     samples: usize,
     failed: usize,
@@ -43,6 +45,22 @@ struct Stats {
     max_leg_error: f64,
     max_lag: f64,
     max_lag_angle: f64,
+    /// The smallest proximity pin value seen (NaN if none).
+    min_proximity: f64,
+}
+
+impl Default for Stats {
+    fn default() -> Self {
+        Stats {
+            samples: 0,
+            failed: 0,
+            bad: 0,
+            max_leg_error: 0.0,
+            max_lag: 0.0,
+            max_lag_angle: 0.0,
+            min_proximity: f64::NAN,
+        }
+    }
 }
 
 impl Stats {
@@ -53,6 +71,7 @@ impl Stats {
         self.max_leg_error = self.max_leg_error.max(o.max_leg_error);
         self.max_lag = self.max_lag.max(o.max_lag);
         self.max_lag_angle = self.max_lag_angle.max(o.max_lag_angle);
+        self.min_proximity = self.min_proximity.min(o.min_proximity);
     }
 }
 
@@ -113,8 +132,8 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
             .map(|w| w.parse::<f64>())
             .collect::<Result<_, _>>()
             .map_err(|_| format!("{file}:{}: not a sample", n + 1))?;
-        if v.len() != 21 {
-            return Err(format!("{file}:{}: {} fields, not 21", n + 1, v.len()));
+        if v.len() != 22 {
+            return Err(format!("{file}:{}: {} fields, not 22", n + 1, v.len()));
         }
         let pose = |i: usize| LinkagePose {
             x: v[i],
@@ -130,6 +149,7 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
             pose: pose(8),
             command: pose(14),
             fail: v[20] != 0.0,
+            proximity: v[21],
         });
     }
     Ok(out)
@@ -141,6 +161,7 @@ fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> boo
     for s in samples {
         let st = &mut stats[s.step];
         st.samples += 1;
+        st.min_proximity = st.min_proximity.min(s.proximity);
         if s.fail {
             st.failed += 1;
         }
@@ -191,7 +212,12 @@ fn run() -> Result<bool, String> {
     let mut ok = true;
     let mut problems = Vec::new();
     println!("columns per module: samples, fwd-kins-fail samples, wrong or off-path samples,");
-    println!("max |IK(pose) - joints| (in), max |pose - command| in coordinated moves (in or deg)");
+    println!(
+        "max |IK(pose) - joints| (in), max |pose - command| in coordinated moves (in or deg),"
+    );
+    println!(
+        "and for linkagehexkins the smallest value of its proximity pin, |det B| / |det B at home|"
+    );
     for chunk in args[1..].chunks_exact(4) {
         let [name, path, ours, theirs] = chunk else {
             continue;
@@ -208,7 +234,7 @@ fn run() -> Result<bool, String> {
         let b = measure(&hex, &samples(theirs)?, &coordinated);
         println!("\npath {name} ({path})");
         println!(
-            "{:<32} | {:^38} | {:^38}",
+            "{:<34} | {:^47} | {:^38}",
             "step", "linkagehexkins", "genhexkins"
         );
         for step in 0..=commands.len() {
@@ -221,13 +247,22 @@ fn run() -> Result<bool, String> {
                 a.get(step).copied().unwrap_or_default(),
                 b.get(step).copied().unwrap_or_default(),
             );
-            println!("{:<32} | {} | {}", label, cell(&sa), cell(&sb));
+            println!(
+                "{:<34} | {} {:>8.1e} | {}",
+                label,
+                cell(&sa),
+                sa.min_proximity,
+                cell(&sb)
+            );
             if step > 0 && sa.samples < MIN_SAMPLES {
                 problems.push(format!("{name} step {step}: only {} samples", sa.samples));
             }
             ours_all.add(&sa);
             theirs_all.add(&sb);
         }
+    }
+    if !(ours_all.min_proximity > 0.0) {
+        problems.push("the proximity pin was not read or not positive".to_string());
     }
     if ours_all.failed > 0 {
         problems.push(format!("{} samples with fwd-kins-fail", ours_all.failed));
@@ -243,10 +278,10 @@ fn run() -> Result<bool, String> {
         println!("\nlinkagehexkins failed: {}", problems.join("; "));
     }
     println!(
-        "\nlinuxcnc: {} — linkagehexkins: {} samples, {} failed, {} wrong or off-path, max |IK(pose) - joints| {:.1e} in; \
+        "\nlinuxcnc: {} — linkagehexkins: {} samples, {} failed, {} wrong or off-path, max |IK(pose) - joints| {:.1e} in, proximity down to {:.1e}; \
          genhexkins: {} samples, {} failed, {} wrong or off-path, feedback up to {:.3} off the command",
         if ok { "ok" } else { "FAILED" },
-        ours_all.samples, ours_all.failed, ours_all.bad, ours_all.max_leg_error,
+        ours_all.samples, ours_all.failed, ours_all.bad, ours_all.max_leg_error, ours_all.min_proximity,
         theirs_all.samples, theirs_all.failed, theirs_all.bad,
         theirs_all.max_lag.max(theirs_all.max_lag_angle),
     );
