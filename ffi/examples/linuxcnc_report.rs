@@ -94,8 +94,9 @@ fn geometry(file: &str) -> Result<LinkageGeometry, String> {
             let i: usize = i
                 .parse()
                 .map_err(|_| format!("{file}: bad index in `{line}`"))?;
-            let k = "xyz"
-                .find(axis)
+            let k = ["x", "y", "z"]
+                .iter()
+                .position(|a| *a == axis)
                 .ok_or(format!("{file}: bad axis in `{line}`"))?;
             let target = match link {
                 "base" => &mut g.base,
