@@ -1,0 +1,302 @@
+//! Checks what LinuxCNC reported while test.sh drove the simulated hexapod, and prints the
+//! linkagehexkins and genhexkins runs of each path side by side.
+//!
+//! ```text
+//! linuxcnc_report GEOMETRY.hal PATH_NAME PATH_FILE OURS.csv GENHEX.csv [PATH_NAME PATH_FILE OURS.csv GENHEX.csv]...
+//! ```
+//!
+//! Every sample holds the joint feedback and the Cartesian feedback LinuxCNC's motion
+//! controller computed from it with the module's kinematicsForward. The check runs our
+//! inverse kinematics (linkage's) on that pose: it must give back the joints. In coordinated
+//! moves the pose must also follow the commanded one (to a few servo cycles of lag). The
+//! linkagehexkins runs must pass every check; the genhexkins runs are measured the same way
+//! and reported. Ends with one line starting `linuxcnc:`; exits 1 if a check failed.
+
+use std::process::ExitCode;
+
+use linkage_ffi::{Hexapod, LinkageGeometry, LinkagePose};
+
+/// |IK(pose) − joints| above this (inches) is a wrong pose.
+const LEG_TOLERANCE: f64 = 1e-6;
+/// Feedback further than this from the command in a coordinated move (inches, degrees) is
+/// off the path: the lag at these feeds is a few servo cycles, well below it.
+const LAG_LINEAR: f64 = 0.05;
+const LAG_ANGULAR: f64 = 0.5;
+/// A step with fewer samples did not really run.
+const MIN_SAMPLES: usize = 20;
+
+struct Sample {
+    step: usize,
+    joints: [f64; 6],
+    pose: LinkagePose,
+    command: LinkagePose,
+    fail: bool,
+    /// linkagehexkins' proximity pin (NaN for genhexkins).
+    proximity: f64,
+}
+
+#[derive(Clone, Copy)]
+struct Stats {
+    samples: usize,
+    failed: usize,
+    /// Samples whose pose is wrong though the pin says success (it does not give back the
+    /// joints), or, in coordinated moves, is off the commanded pose; each counted once.
+    bad: usize,
+    max_leg_error: f64,
+    max_lag: f64,
+    max_lag_angle: f64,
+    /// The smallest proximity pin value seen (NaN if none).
+    min_proximity: f64,
+}
+
+impl Default for Stats {
+    fn default() -> Self {
+        Stats {
+            samples: 0,
+            failed: 0,
+            bad: 0,
+            max_leg_error: 0.0,
+            max_lag: 0.0,
+            max_lag_angle: 0.0,
+            min_proximity: f64::NAN,
+        }
+    }
+}
+
+impl Stats {
+    fn add(&mut self, o: &Stats) {
+        self.samples += o.samples;
+        self.failed += o.failed;
+        self.bad += o.bad;
+        self.max_leg_error = self.max_leg_error.max(o.max_leg_error);
+        self.max_lag = self.max_lag.max(o.max_lag);
+        self.max_lag_angle = self.max_lag_angle.max(o.max_lag_angle);
+        self.min_proximity = self.min_proximity.min(o.min_proximity);
+    }
+}
+
+fn geometry(file: &str) -> Result<LinkageGeometry, String> {
+    let text = std::fs::read_to_string(file).map_err(|e| format!("{file}: {e}"))?;
+    let mut g = LinkageGeometry {
+        base: [[f64::NAN; 3]; 6],
+        platform: [[f64::NAN; 3]; 6],
+    };
+    for line in text.lines().filter(|l| l.starts_with("setp ")) {
+        let mut words = line.split_whitespace().skip(1);
+        let (Some(name), Some(value)) = (words.next(), words.next()) else {
+            continue;
+        };
+        let parts: Vec<&str> = name.split('.').collect();
+        let value: f64 = value
+            .parse()
+            .map_err(|_| format!("{file}: bad value in `{line}`"))?;
+        if let [_, link, i, axis] = parts[..] {
+            let i: usize = i
+                .parse()
+                .map_err(|_| format!("{file}: bad index in `{line}`"))?;
+            let k = ["x", "y", "z"]
+                .iter()
+                .position(|a| *a == axis)
+                .ok_or(format!("{file}: bad axis in `{line}`"))?;
+            let target = match link {
+                "base" => &mut g.base,
+                "platform" => &mut g.platform,
+                _ => continue,
+            };
+            *target
+                .get_mut(i)
+                .ok_or(format!("{file}: bad index in `{line}`"))?
+                .get_mut(k)
+                .unwrap() = value;
+        }
+    }
+    if g.base
+        .iter()
+        .chain(&g.platform)
+        .flatten()
+        .any(|v| v.is_nan())
+    {
+        return Err(format!("{file}: not every joint centre is set"));
+    }
+    Ok(g)
+}
+
+fn samples(file: &str) -> Result<Vec<Sample>, String> {
+    let text = std::fs::read_to_string(file).map_err(|e| format!("{file}: {e}"))?;
+    if let Some(e) = text.lines().find(|l| l.starts_with("# error")) {
+        return Err(format!("{file}: the run stopped: {e}"));
+    }
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate().skip(1) {
+        let v: Vec<f64> = line
+            .split(',')
+            .map(|w| w.parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| format!("{file}:{}: not a sample", n + 1))?;
+        if v.len() != 22 {
+            return Err(format!("{file}:{}: {} fields, not 22", n + 1, v.len()));
+        }
+        let pose = |i: usize| LinkagePose {
+            x: v[i],
+            y: v[i + 1],
+            z: v[i + 2],
+            a: v[i + 3],
+            b: v[i + 4],
+            c: v[i + 5],
+        };
+        out.push(Sample {
+            step: v[0] as usize,
+            joints: std::array::from_fn(|j| v[2 + j]),
+            pose: pose(8),
+            command: pose(14),
+            fail: v[20] != 0.0,
+            proximity: v[21],
+        });
+    }
+    Ok(out)
+}
+
+fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> bool) -> Vec<Stats> {
+    let steps = samples.iter().map(|s| s.step).max().unwrap_or(0) + 1;
+    let mut stats = vec![Stats::default(); steps];
+    for s in samples {
+        let st = &mut stats[s.step];
+        st.samples += 1;
+        st.min_proximity = st.min_proximity.min(s.proximity);
+        if s.fail {
+            st.failed += 1;
+        }
+        let error = hex.inverse(&s.pose).map_or(f64::INFINITY, |legs| {
+            (0..6)
+                .map(|i| (legs[i] - s.joints[i]).abs())
+                .fold(0.0, f64::max)
+        });
+        st.max_leg_error = st.max_leg_error.max(error);
+        let mut bad = !s.fail && !(error <= LEG_TOLERANCE);
+        if coordinated(s.step) {
+            let (p, q) = (&s.pose, &s.command);
+            let lag = [p.x - q.x, p.y - q.y, p.z - q.z]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
+            let turn = [p.a - q.a, p.b - q.b, p.c - q.c]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
+            st.max_lag = st.max_lag.max(lag);
+            st.max_lag_angle = st.max_lag_angle.max(turn);
+            bad |= !(lag <= LAG_LINEAR && turn <= LAG_ANGULAR);
+        }
+        st.bad += usize::from(bad);
+    }
+    stats
+}
+
+fn cell(s: &Stats) -> String {
+    format!(
+        "{:>6} {:>6} {:>6} {:>9.1e} {:>7.3}",
+        s.samples,
+        s.failed,
+        s.bad,
+        s.max_leg_error,
+        s.max_lag.max(s.max_lag_angle)
+    )
+}
+
+fn run() -> Result<bool, String> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.len() < 5 || args.len() % 4 != 1 {
+        return Err(
+            "usage: linuxcnc_report GEOMETRY.hal (NAME PATH OURS.csv GENHEX.csv)...".into(),
+        );
+    }
+    let hex = Hexapod::new(&geometry(&args[0])?).map_err(|c| format!("geometry: status {c}"))?;
+    let (mut ours_all, mut theirs_all) = (Stats::default(), Stats::default());
+    let mut ok = true;
+    let mut problems = Vec::new();
+    println!("columns per module: samples, fwd-kins-fail samples, wrong or off-path samples,");
+    println!(
+        "max |IK(pose) - joints| (in), max |pose - command| in coordinated moves (in or deg),"
+    );
+    println!(
+        "and for linkagehexkins the smallest value of its proximity pin, |det B| / |det B at home|"
+    );
+    for chunk in args[1..].chunks_exact(4) {
+        let [name, path, ours, theirs] = chunk else {
+            continue;
+        };
+        let commands: Vec<String> = std::fs::read_to_string(path)
+            .map_err(|e| format!("{path}: {e}"))?
+            .lines()
+            .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+            .map(str::to_string)
+            .collect();
+        let coordinated =
+            |step: usize| step > 0 && commands.get(step - 1).is_some_and(|c| c.starts_with("mdi"));
+        let a = measure(&hex, &samples(ours)?, &coordinated);
+        let b = measure(&hex, &samples(theirs)?, &coordinated);
+        println!("\npath {name} ({path})");
+        println!(
+            "{:<34} | {:^47} | {:^38}",
+            "step", "linkagehexkins", "genhexkins"
+        );
+        for step in 0..=commands.len() {
+            let label = if step == 0 {
+                "home".to_string()
+            } else {
+                commands[step - 1].clone()
+            };
+            let (sa, sb) = (
+                a.get(step).copied().unwrap_or_default(),
+                b.get(step).copied().unwrap_or_default(),
+            );
+            println!(
+                "{:<34} | {} {:>8.1e} | {}",
+                label,
+                cell(&sa),
+                sa.min_proximity,
+                cell(&sb)
+            );
+            if step > 0 && sa.samples < MIN_SAMPLES {
+                problems.push(format!("{name} step {step}: only {} samples", sa.samples));
+            }
+            ours_all.add(&sa);
+            theirs_all.add(&sb);
+        }
+    }
+    if !(ours_all.min_proximity > 0.0) {
+        problems.push("the proximity pin was not read or not positive".to_string());
+    }
+    if ours_all.failed > 0 {
+        problems.push(format!("{} samples with fwd-kins-fail", ours_all.failed));
+    }
+    if ours_all.bad > 0 || !(ours_all.max_leg_error <= LEG_TOLERANCE) {
+        problems.push(format!(
+            "{} wrong or off-path samples (max |IK(pose) - joints| {:.1e})",
+            ours_all.bad, ours_all.max_leg_error
+        ));
+    }
+    if !problems.is_empty() {
+        ok = false;
+        println!("\nlinkagehexkins failed: {}", problems.join("; "));
+    }
+    println!(
+        "\nlinuxcnc: {} — linkagehexkins: {} samples, {} failed, {} wrong or off-path, max |IK(pose) - joints| {:.1e} in, proximity down to {:.1e}; \
+         genhexkins: {} samples, {} failed, {} wrong or off-path, feedback up to {:.3} off the command",
+        if ok { "ok" } else { "FAILED" },
+        ours_all.samples, ours_all.failed, ours_all.bad, ours_all.max_leg_error, ours_all.min_proximity,
+        theirs_all.samples, theirs_all.failed, theirs_all.bad,
+        theirs_all.max_lag.max(theirs_all.max_lag_angle),
+    );
+    Ok(ok)
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::FAILURE,
+        Err(e) => {
+            eprintln!("linuxcnc_report: {e}");
+            println!("linuxcnc: FAILED — {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

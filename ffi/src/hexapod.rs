@@ -1,0 +1,456 @@
+//! A 6-6 hexapod whose geometry is set at run time: closed-form inverse kinematics, and
+//! forward kinematics by the trajectory tracker, which stays on one branch.
+
+use linkage::{Options, Tracker};
+use linkage_examples::stewart::{
+    find_start, legs_for_pose, platform_is_coplanar, SixSix, StartError, Stewart, StewartGeneral,
+};
+
+use crate::pose::LinkagePose;
+use crate::status;
+
+/// Joint centres: base ones in the base (world) frame, platform ones in the platform frame;
+/// leg `i` joins `base[i]` to `platform[i]`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkageGeometry {
+    pub base: [[f64; 3]; 6],
+    pub platform: [[f64; 3]; 6],
+}
+
+/// What one forward call did, besides its status.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkageReport {
+    /// |det B| / |det B at the start|: 1 at the start, 0 at a direct singularity.
+    /// Left unchanged by a refused call.
+    pub proximity: f64,
+    /// The call's status code (as returned).
+    pub status: i32,
+    /// Newton iterations spent.
+    pub newton_iterations: u32,
+    /// 1 when the predictor–corrector failed and continuation took over.
+    pub fell_back: i32,
+    /// 1 when this call started tracking (at the pose passed in).
+    pub started: i32,
+}
+
+/// The rigid-body form the geometry needs: the coplanar one is the paper's Eq. 19.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+enum Model {
+    Coplanar(Stewart),
+    General(StewartGeneral),
+}
+
+// Unboxed on purpose: the handle is one fixed-size block in caller storage, never allocated.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+enum Tracking {
+    Coplanar(Tracker<Stewart, 18, 6>),
+    General(Tracker<StewartGeneral, 18, 6>),
+}
+
+/// The state behind a C handle. Fixed size, never allocates, needs no destructor.
+#[derive(Clone, Debug)]
+pub struct Hexapod {
+    model: Model,
+    tracking: Option<Tracking>,
+    options: Options,
+}
+
+fn model(g: &LinkageGeometry) -> Result<Model, i32> {
+    let finite = g
+        .base
+        .iter()
+        .chain(&g.platform)
+        .flatten()
+        .all(|v| v.is_finite());
+    if !finite {
+        return Err(status::INVALID_GEOMETRY);
+    }
+    let built = if platform_is_coplanar(&g.platform) {
+        Stewart::with_joints(&g.base, &g.platform).map(Model::Coplanar)
+    } else {
+        StewartGeneral::with_joints(&g.base, &g.platform).map(Model::General)
+    };
+    built.map_err(|_| status::INVALID_GEOMETRY)
+}
+
+fn check_legs(legs: &[f64; 6]) -> Result<(), i32> {
+    if !legs.iter().all(|l| l.is_finite()) {
+        return Err(status::NON_FINITE);
+    }
+    if !legs.iter().all(|l| *l > 0.0) {
+        return Err(status::INVALID_INPUT);
+    }
+    Ok(())
+}
+
+fn inverse_with<S: SixSix>(sys: &S, pose: &LinkagePose) -> Result<[f64; 6], i32> {
+    if !pose.is_finite() {
+        return Err(status::NON_FINITE);
+    }
+    legs_for_pose(sys, &pose.to_pose())
+        .map(|(legs, _)| legs)
+        .ok_or(status::UNREACHABLE)
+}
+
+fn start_with<S: SixSix>(
+    sys: &S,
+    legs: &[f64; 6],
+    at: &LinkagePose,
+    options: Options,
+) -> Result<Tracker<S, 18, 6>, i32> {
+    let start = find_start(sys, *legs, Some(at.to_pose())).map_err(|e| match e {
+        StartError::Solve(e) => status::of_error(&e),
+        StartError::PoseMismatch | StartError::NoAssemblyMode => status::POSE_MISMATCH,
+    })?;
+    Ok(Tracker::new(sys.clone(), start, options))
+}
+
+fn track<S: SixSix>(
+    tracker: &mut Tracker<S, 18, 6>,
+    legs: &[f64; 6],
+    pose: &mut LinkagePose,
+    report: &mut LinkageReport,
+) -> i32 {
+    match tracker.update(legs) {
+        Ok(sample) => {
+            let Some(p) = linkage::pose_from_unknowns(tracker.mechanism(), &sample.v) else {
+                return status::FAILED;
+            };
+            *pose = LinkagePose::from_pose(&p, pose);
+            report.proximity = sample.proximity;
+            report.newton_iterations = sample.newton_iterations;
+            report.fell_back = i32::from(sample.fell_back);
+            status::OK
+        }
+        Err(linkage::TrackError::Input(e)) => status::of_error(&e),
+        Err(linkage::TrackError::Lost(s)) => status::of_status(&s),
+    }
+}
+
+impl Hexapod {
+    /// A hexapod with this geometry, not yet tracking.
+    pub fn new(geometry: &LinkageGeometry) -> Result<Hexapod, i32> {
+        Ok(Hexapod {
+            model: model(geometry)?,
+            tracking: None,
+            options: Options::TIGHT,
+        })
+    }
+
+    /// Replaces the geometry; tracking starts afresh at the next forward call.
+    pub fn set_geometry(&mut self, geometry: &LinkageGeometry) -> Result<(), i32> {
+        self.model = model(geometry)?;
+        self.tracking = None;
+        Ok(())
+    }
+
+    /// The convergence tolerance (length units of the geometry) and Newton iteration limit.
+    /// Takes effect when tracking next starts.
+    pub fn set_options(&mut self, tolerance: f64, max_iterations: u32) -> Result<(), i32> {
+        if !(tolerance.is_finite() && tolerance > 0.0) || max_iterations == 0 {
+            return Err(status::INVALID_OPTIONS);
+        }
+        if tolerance != self.options.tolerance || max_iterations != self.options.max_iterations {
+            self.options.tolerance = tolerance;
+            self.options.max_iterations = max_iterations;
+            self.tracking = None;
+        }
+        Ok(())
+    }
+
+    /// Forgets the tracked branch: the next forward call starts again.
+    pub fn reset(&mut self) {
+        self.tracking = None;
+    }
+
+    pub fn is_tracking(&self) -> bool {
+        self.tracking.is_some()
+    }
+
+    /// Leg lengths for a pose (closed form, one solution).
+    pub fn inverse(&self, pose: &LinkagePose) -> Result<[f64; 6], i32> {
+        match &self.model {
+            Model::Coplanar(s) => inverse_with(s, pose),
+            Model::General(s) => inverse_with(s, pose),
+        }
+    }
+
+    /// Forward kinematics. When not tracking, tracking starts at `pose` (the legs must match
+    /// it to 1 % of the platform's size); afterwards each call continues from the last
+    /// accepted solution and `pose` only chooses the angle words nearest it. On success
+    /// `pose` holds the result; on any refusal it is left as it was, and so is the tracker.
+    pub fn forward(
+        &mut self,
+        legs: &[f64; 6],
+        pose: &mut LinkagePose,
+        report: &mut LinkageReport,
+    ) -> i32 {
+        let code = self.forward_inner(legs, pose, report);
+        report.status = code;
+        code
+    }
+
+    fn forward_inner(
+        &mut self,
+        legs: &[f64; 6],
+        pose: &mut LinkagePose,
+        report: &mut LinkageReport,
+    ) -> i32 {
+        report.started = 0;
+        report.newton_iterations = 0;
+        report.fell_back = 0;
+        if let Err(code) = check_legs(legs) {
+            return code;
+        }
+        if !pose.is_finite() {
+            return status::NON_FINITE;
+        }
+        if self.tracking.is_none() {
+            let started = match &self.model {
+                Model::Coplanar(s) => {
+                    start_with(s, legs, pose, self.options).map(Tracking::Coplanar)
+                }
+                Model::General(s) => start_with(s, legs, pose, self.options).map(Tracking::General),
+            };
+            match started {
+                Ok(t) => self.tracking = Some(t),
+                Err(code) => return code,
+            }
+            report.started = 1;
+        }
+        let mut out = *pose;
+        let code = match self.tracking.as_mut() {
+            Some(Tracking::Coplanar(t)) => track(t, legs, &mut out, report),
+            Some(Tracking::General(t)) => track(t, legs, &mut out, report),
+            None => status::FAILED,
+        };
+        if code == status::OK {
+            *pose = out;
+        }
+        code
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// genhexkins' default geometry (genhexkins.h, inches), platform joints coplanar.
+    pub(crate) fn genhex() -> LinkageGeometry {
+        LinkageGeometry {
+            base: [
+                [-22.950, 13.250, 0.0],
+                [22.950, 13.250, 0.0],
+                [22.950, 13.250, 0.0],
+                [0.0, -26.500, 0.0],
+                [0.0, -26.500, 0.0],
+                [-22.950, 13.250, 0.0],
+            ],
+            platform: [
+                [-1.000, 11.500, 0.0],
+                [1.000, 11.500, 0.0],
+                [10.459, -4.884, 0.0],
+                [9.459, -6.616, 0.0],
+                [-9.459, -6.616, 0.0],
+                [-10.459, -4.884, 0.0],
+            ],
+        }
+    }
+
+    const HOME: LinkagePose = LinkagePose {
+        x: 0.0,
+        y: 0.0,
+        z: 20.0,
+        a: 0.0,
+        b: 0.0,
+        c: 0.0,
+    };
+
+    /// Strut lengths as genhexkins' inverse computes them: |t + R a_i − b_i|.
+    fn struts(g: &LinkageGeometry, p: &LinkagePose) -> [f64; 6] {
+        let pose = p.to_pose();
+        std::array::from_fn(|i| {
+            let w = pose.apply(g.platform[i]);
+            let d = [0, 1, 2].map(|k| w[k] - g.base[i][k]);
+            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+        })
+    }
+
+    fn max_diff(a: &LinkagePose, b: &LinkagePose) -> f64 {
+        [
+            a.x - b.x,
+            a.y - b.y,
+            a.z - b.z,
+            a.a - b.a,
+            a.b - b.b,
+            a.c - b.c,
+        ]
+        .iter()
+        .fold(0.0, |m, d| m.max(d.abs()))
+    }
+
+    #[test]
+    fn inverse_is_genhexkins_strut_lengths() {
+        let g = genhex();
+        let h = Hexapod::new(&g).unwrap();
+        let p = LinkagePose {
+            x: 1.0,
+            y: -0.5,
+            z: 21.0,
+            a: 3.0,
+            b: -2.0,
+            c: 10.0,
+        };
+        let legs = h.inverse(&p).unwrap();
+        let want = struts(&g, &p);
+        for i in 0..6 {
+            assert!((legs[i] - want[i]).abs() < 1e-9, "{legs:?} {want:?}");
+        }
+        assert_eq!(
+            h.inverse(&LinkagePose { x: f64::NAN, ..p }),
+            Err(status::NON_FINITE)
+        );
+    }
+
+    #[test]
+    fn forward_tracks_a_path_and_inverts_the_inverse() {
+        let g = genhex();
+        let mut h = Hexapod::new(&g).unwrap();
+        let mut report = LinkageReport::default();
+        let mut pose = HOME;
+        let legs = h.inverse(&HOME).unwrap();
+        assert_eq!(h.forward(&legs, &mut pose, &mut report), status::OK);
+        assert_eq!(report.started, 1);
+        assert!(max_diff(&pose, &HOME) < 1e-9);
+        for k in 1..=400 {
+            let t = k as f64 / 400.0;
+            let want = LinkagePose {
+                x: 2.0 * t,
+                y: -t,
+                z: 20.0 + 3.0 * t,
+                a: 8.0 * t,
+                b: -6.0 * t,
+                c: 40.0 * t,
+            };
+            let legs = h.inverse(&want).unwrap();
+            assert_eq!(
+                h.forward(&legs, &mut pose, &mut report),
+                status::OK,
+                "step {k}"
+            );
+            assert_eq!(report.started, 0);
+            assert!(
+                max_diff(&pose, &want) < 1e-7,
+                "step {k}: {pose:?} vs {want:?}"
+            );
+            assert!(report.proximity > 0.0 && report.proximity.is_finite());
+        }
+    }
+
+    #[test]
+    fn a_start_pose_that_does_not_match_is_refused() {
+        let mut h = Hexapod::new(&genhex()).unwrap();
+        let legs = h.inverse(&HOME).unwrap();
+        let mut far = LinkagePose { z: 26.0, ..HOME };
+        let before = far;
+        let mut report = LinkageReport::default();
+        assert_eq!(
+            h.forward(&legs, &mut far, &mut report),
+            status::POSE_MISMATCH
+        );
+        assert_eq!(far, before, "pose untouched on refusal");
+        assert!(!h.is_tracking());
+    }
+
+    #[test]
+    fn bad_input_is_typed_and_leaves_the_tracker_alone() {
+        let mut h = Hexapod::new(&genhex()).unwrap();
+        let mut pose = HOME;
+        let mut report = LinkageReport::default();
+        let legs = h.inverse(&HOME).unwrap();
+        assert_eq!(h.forward(&legs, &mut pose, &mut report), status::OK);
+        let mut bad = legs;
+        bad[3] = f64::NAN;
+        assert_eq!(h.forward(&bad, &mut pose, &mut report), status::NON_FINITE);
+        bad[3] = -1.0;
+        assert_eq!(
+            h.forward(&bad, &mut pose, &mut report),
+            status::INVALID_INPUT
+        );
+        assert_eq!(report.status, status::INVALID_INPUT);
+        assert!(h.is_tracking());
+        assert_eq!(h.forward(&legs, &mut pose, &mut report), status::OK);
+        assert!(max_diff(&pose, &HOME) < 1e-9);
+    }
+
+    #[test]
+    fn geometry_and_options_are_checked() {
+        let mut g = genhex();
+        g.platform[2][0] = f64::INFINITY;
+        assert_eq!(Hexapod::new(&g).err(), Some(status::INVALID_GEOMETRY));
+        let mut h = Hexapod::new(&genhex()).unwrap();
+        assert_eq!(h.set_options(0.0, 10), Err(status::INVALID_OPTIONS));
+        assert_eq!(h.set_options(f64::NAN, 10), Err(status::INVALID_OPTIONS));
+        assert_eq!(h.set_options(1e-9, 0), Err(status::INVALID_OPTIONS));
+        assert_eq!(h.set_options(1e-9, 120), Ok(()));
+        // A platform with joints out of plane takes the general model, and still inverts.
+        let mut g = genhex();
+        g.platform[1][2] = 0.7;
+        let mut h = Hexapod::new(&g).unwrap();
+        assert!(matches!(h.model, Model::General(_)));
+        let p = LinkagePose {
+            x: 0.3,
+            z: 19.0,
+            a: 2.0,
+            ..HOME
+        };
+        let legs = h.inverse(&p).unwrap();
+        let mut pose = p;
+        let mut report = LinkageReport::default();
+        assert_eq!(h.forward(&legs, &mut pose, &mut report), status::OK);
+        assert!(max_diff(&pose, &p) < 1e-9);
+    }
+
+    /// Joint-space steps toward a fold: the tracker either follows the branch or refuses with
+    /// a positive code, keeps its last good state, and carries on when the legs come back.
+    #[test]
+    fn past_a_fold_the_tracker_refuses_and_recovers() {
+        let g = genhex();
+        let mut h = Hexapod::new(&g).unwrap();
+        let mut pose = HOME;
+        let mut report = LinkageReport::default();
+        let home = h.inverse(&HOME).unwrap();
+        assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
+        // Shorten three legs and lengthen three until no assembly exists near the branch.
+        let mut refused = None;
+        for k in 1..=400 {
+            let s = k as f64 * 0.05;
+            let legs: [f64; 6] = std::array::from_fn(|i| home[i] + if i % 2 == 0 { s } else { -s });
+            let before = pose;
+            let code = h.forward(&legs, &mut pose, &mut report);
+            if code != status::OK {
+                assert!(code > 0, "a refusal, not an input error: {code}");
+                assert_eq!(pose, before);
+                refused = Some(code);
+                break;
+            }
+            let back = h.inverse(&pose).unwrap();
+            for i in 0..6 {
+                assert!(
+                    (back[i] - legs[i]).abs() < 1e-7,
+                    "step {k}: accepted a wrong pose"
+                );
+            }
+        }
+        assert!(
+            refused.is_some(),
+            "the legs were driven out of the workspace"
+        );
+        assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
+        assert!(max_diff(&pose, &HOME) < 1e-7, "{pose:?}");
+    }
+}
