@@ -1,0 +1,31 @@
+//! Mechanisms the general model declares, one file each, checked end to end: the generated
+//! Jacobians against finite differences, forward kinematics (by continuation from home)
+//! against an independent inverse or forward kinematics in closed form, the mobility and the
+//! rule that decided it, each mechanism's invariant, and distinct assembly modes reached from
+//! different declared homes of the same machine.
+
+mod delta;
+mod five_bar;
+mod planar_rpr;
+mod prs;
+mod rrs;
+mod spherical_wrist;
+mod translational_upu;
+
+/// The `mobility:` line of a listing.
+pub fn mobility_line(listing: &str) -> &str {
+    listing
+        .lines()
+        .find(|l| l.starts_with("mobility:"))
+        .unwrap_or("")
+}
+
+/// Panics unless `r` is the identity to `tol`.
+pub fn identity_within(r: &[[f64; 3]; 3], tol: f64) {
+    for (i, row) in r.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            let id = if i == j { 1.0 } else { 0.0 };
+            assert!((x - id).abs() <= tol, "the platform turned: {r:?}");
+        }
+    }
+}
