@@ -1,5 +1,6 @@
 //! A planar five-bar declared in space, whose output is a point: against circle intersection.
 
+use super::check_inverse;
 use linkage::{arc_length, det_b, Mechanism, Options, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -90,6 +91,8 @@ fn five_bar_forward_kinematics_matches_circle_intersection() {
             );
         }
         assert!(det_b(&fb, &sol.v, &q) * start.det > 0.0);
+        // The numerical inverse (Newton on the chains, from home).
+        check_inverse(&fb, &sol.v, &q, &FiveBar::HOME_INPUTS, 1e-9);
     }
     assert!(solved >= 50, "{solved} of 60 solved");
 }

@@ -12,6 +12,36 @@ mod rrs;
 mod spherical_wrist;
 mod translational_upu;
 
+use linkage::Mechanism;
+
+/// The inverse kinematics gives `x` back (to `tol`, from `reference`): from the solved unknowns,
+/// and from the platform's points alone (the unknowns of the links between zeroed, as
+/// `unknowns_from_pose` leaves them).
+pub fn check_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    reference: &[f64; M],
+    tol: f64,
+) {
+    let back = sys.inverse(v, reference).unwrap();
+    assert!(
+        linkage_tests::max_diff(&back, x) < tol,
+        "{}: {back:?} vs {x:?}",
+        S::NAME
+    );
+    let mut platform_only = *v;
+    for q in platform_only[3 * S::POINTS.len()..].iter_mut() {
+        *q = 0.0;
+    }
+    let back = sys.inverse(&platform_only, reference).unwrap();
+    assert!(
+        linkage_tests::max_diff(&back, x) < tol,
+        "{} from the platform alone: {back:?} vs {x:?}",
+        S::NAME
+    );
+}
+
 /// The `mobility:` line of a listing.
 pub fn mobility_line(listing: &str) -> &str {
     listing

@@ -1,5 +1,6 @@
 //! A planar 3-RPR with true R–P–R legs: against closed-form inverse kinematics.
 
+use super::check_inverse;
 use linkage::{arc_length, Options, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -56,6 +57,7 @@ fn planar_rpr_forward_kinematics_against_inverse() {
         let legs = rpr_legs(pose);
         let sol = arc_length(&rpr, &start, &legs, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "{pose:?}");
+        check_inverse(&rpr, &sol.v, &legs, &PlanarRpr::HOME_INPUTS, 1e-8);
         let got = linkage::pose_from_unknowns(&rpr, &sol.v).unwrap();
         let platform = rpr.link_pose(0, &sol.v, &legs).unwrap();
         assert_eq!(PlanarRpr::LINKS[0], "platform");

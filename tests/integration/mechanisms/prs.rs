@@ -2,7 +2,7 @@
 //! passive revolute pair tangent to the base circle, joined to the platform by a spherical pair.
 //! Declared twice: the platform above its sliders and below them (two assembly modes).
 
-use super::mobility_line;
+use super::{check_inverse, mobility_line};
 use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Options, Pose, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -104,6 +104,7 @@ fn prs_forward_kinematics_against_inverse() {
         );
         assert!(off_plane.iter().all(|d| d.abs() < 1e-9), "{off_plane:?}");
         assert!(det_b(&prs, &sol.v, &s) * det0 > 0.0);
+        check_inverse(&prs, &sol.v, &s, &Prs::HOME_INPUTS, 1e-8);
     }
 }
 

@@ -1,18 +1,18 @@
-//! A 3-RRS: cranks driven about horizontal axes tangent to the base circle, legs on passive
-//! revolute pairs parallel to them, spherical pairs at the platform. Declared twice, with the
-//! platform above and below the cranks' tips: two assembly modes.
+//! A 3-RRS: cranks driven about horizontal axes tangent to the base circle, pointing inwards,
+//! legs on passive revolute pairs parallel to them, spherical pairs at the platform. Declared
+//! twice, with the platform above and below the cranks: two assembly modes.
 
-use super::mobility_line;
+use super::{check_inverse, mobility_line};
 use linkage::{arc_length, det_b, pose_from_unknowns, Options, Pose, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 macro_rules! rrs {
     ($name:ident, $z:expr) => {
         linkage::mechanism! {
-            /// A 3-RRS: cranks of 100 mm at radius 150 mm, legs of √(30² + 100²) mm, a
-            /// platform of radius 120 mm; each input is its crank's angle from home.
+            /// A 3-RRS: cranks of 100 mm at radius 200 mm, legs of 150 mm (upright at home), a
+            /// platform of radius 100 mm; each input is its crank's angle from home.
             pub struct $name;
-            params { rb = 150.0, rc = 100.0, rp = 120.0, c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0) }
+            params { rb = 200.0, rc = 100.0, rp = 100.0, c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0) }
             base {
                 A1 = [rb, 0.0, 0.0], B1 = [rb, 1.0, 0.0],
                 A2 = [rb * c2, rb * s2, 0.0], B2 = [rb * c2 - s2, rb * s2 + c2, 0.0],
@@ -21,9 +21,9 @@ macro_rules! rrs {
             platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, $z]) {
                 G1 = [rp, 0.0, 0.0], G2 = [rp * c2, rp * s2, 0.0], G3 = [rp * c2, -rp * s2, 0.0],
             }
-            link crank1 { C1 = [rb, 0.0, rc], D1 = [rb, 1.0, rc] }
-            link crank2 { C2 = [rb * c2, rb * s2, rc], D2 = [rb * c2 - s2, rb * s2 + c2, rc] }
-            link crank3 { C3 = [rb * c2, -rb * s2, rc], D3 = [rb * c2 + s2, -rb * s2 + c2, rc] }
+            link crank1 { C1 = [rb - rc, 0.0, 0.0], D1 = [rb - rc, 1.0, 0.0] }
+            link crank2 { C2 = [(rb - rc) * c2, (rb - rc) * s2, 0.0], D2 = [(rb - rc) * c2 - s2, (rb - rc) * s2 + c2, 0.0] }
+            link crank3 { C3 = [(rb - rc) * c2, -(rb - rc) * s2, 0.0], D3 = [(rb - rc) * c2 + s2, -(rb - rc) * s2 + c2, 0.0] }
             link leg1 { } link leg2 { } link leg3 { }
             chain c1 = base - R(active q1, axis = A1 -> B1) - crank1 - R(passive, axis = C1 -> D1) - leg1 - S(G1) - platform;
             chain c2 = base - R(active q2, axis = A2 -> B2) - crank2 - R(passive, axis = C2 -> D2) - leg2 - S(G2) - platform;
@@ -32,16 +32,14 @@ macro_rules! rrs {
     };
 }
 
-rrs!(Rrs, 200.0);
-rrs!(RrsBelow, 0.0);
+rrs!(Rrs, 150.0);
+rrs!(RrsBelow, -150.0);
 
-const RB: f64 = 150.0;
+const RB: f64 = 200.0;
 const RC: f64 = 100.0;
-const RP: f64 = 120.0;
+const RP: f64 = 100.0;
 
-fn leg() -> f64 {
-    (30f64 * 30.0 + 100.0 * 100.0).sqrt()
-}
+const LEG: f64 = 150.0;
 
 /// Crank angles for a platform pose in closed form, each the root nearest `near`; and how far
 /// each platform pivot is from its leg's plane.
@@ -52,20 +50,19 @@ fn rrs_inverse(pose: &Pose, near: [f64; 3]) -> Option<([f64; 3], [f64; 3])> {
         let phi = 2.0 * std::f64::consts::PI * i as f64 / 3.0;
         let (c, s) = (phi.cos(), phi.sin());
         let g = pose.apply([RP * c, RP * s, 0.0]);
-        // In the leg's plane: ρ outwards from the crank axis, z up. The crank tip is
-        // rc (sin q, cos q) (right-handed about the tangent axis).
+        // In the leg's plane through the crank axis: ρ outwards, z up. The crank tip is at
+        // (−rc cos q, rc sin q) (right-handed about the tangent axis: positive q lifts it).
         let rho = c * g[0] + s * g[1] - RB;
         let z = g[2];
         off_plane[i] = -s * g[0] + c * g[1];
-        // ρ sin q + z cos q = (ρ² + z² + rc² − leg²) / (2 rc)
-        let k = (rho * rho + z * z + RC * RC - leg() * leg()) / (2.0 * RC);
+        // ρ cos q − z sin q = (leg² − ρ² − z² − rc²) / (2 rc)
+        let k = (LEG * LEG - rho * rho - z * z - RC * RC) / (2.0 * RC);
         let r = (rho * rho + z * z).sqrt();
-        let base = rho.atan2(z);
         if (k / r).abs() > 1.0 {
             return None;
         }
-        let spread = (k / r).acos();
-        let roots = [base + spread, base - spread];
+        let (beta, spread) = (z.atan2(rho), (k / r).acos());
+        let roots = [spread - beta, -spread - beta];
         let wrap = |a: f64| {
             (a + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI
         };
@@ -108,6 +105,7 @@ fn rrs_forward_kinematics_against_inverse() {
         );
         assert!(off_plane.iter().all(|d| d.abs() < 1e-9), "{off_plane:?}");
         assert!(det_b(&rrs, &sol.v, &q) * det0 > 0.0);
+        check_inverse(&rrs, &sol.v, &q, &Rrs::HOME_INPUTS, 1e-9);
     }
 }
 

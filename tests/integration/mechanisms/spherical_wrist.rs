@@ -2,8 +2,8 @@
 //! turns about it. Declared in space, each axis by two points on it; declared twice, with the
 //! platform at two orientations the same inputs reach (two assembly modes).
 
-use super::mobility_line;
-use linkage::{arc_length, det_b, pose_from_unknowns, Options, Pose, Status};
+use super::{check_inverse, mobility_line};
+use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Options, Pose, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 macro_rules! wrist {
@@ -151,6 +151,7 @@ fn wrist_forward_kinematics_against_inverse_about_a_fixed_centre() {
             "{back:?} vs {q:?}"
         );
         assert!(det_b(&wrist, &sol.v, &q) * det0 > 0.0);
+        check_inverse(&wrist, &sol.v, &q, &Wrist::HOME_INPUTS, 1e-9);
     }
 }
 
@@ -228,4 +229,27 @@ fn wrist_folds_only_where_the_mechanism_is_singular() {
         let ratio = det_b(&wrist, &s.v, &qk) / wrist_det(&p, qk);
         assert!((ratio / ratio0 - 1.0).abs() < 0.05, "{ratio} vs {ratio0}");
     }
+}
+
+#[test]
+fn wrist_inverse_refuses_a_pose_off_the_centre() {
+    let wrist = Wrist::new();
+    // The home orientation with the centre moved 1 mm: no inputs put the platform there.
+    let pose = Pose::from_euler(0.0, 0.0, 0.0, [1.0, 0.0, 0.0]);
+    let v = linkage::unknowns_from_pose(&wrist, &pose);
+    assert!(matches!(
+        wrist.inverse(&v, &Wrist::HOME_INPUTS),
+        Err(linkage::InverseError::Unreachable { .. })
+    ));
+    // A turned platform about the centre is reached, and its inputs put it there.
+    let pose = Pose::from_euler(0.1, -0.05, 0.08, [0.0; 3]);
+    let v = linkage::unknowns_from_pose(&wrist, &pose);
+    let q = wrist.inverse(&v, &Wrist::HOME_INPUTS).unwrap();
+    assert!(linkage_tests::max_diff(&wrist_inverse(&pose, q).unwrap(), &q) < 1e-9);
+    let mut nan = v;
+    nan[4] = f64::NAN;
+    assert_eq!(
+        wrist.inverse(&nan, &Wrist::HOME_INPUTS),
+        Err(linkage::InverseError::NonFinite)
+    );
 }

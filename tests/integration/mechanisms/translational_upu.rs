@@ -1,6 +1,7 @@
 //! Tsai's translational 3-UPU: against closed-form inverse kinematics; the platform keeps its
 //! orientation.
 
+use super::check_inverse;
 use linkage::{arc_length, Options, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -51,6 +52,7 @@ fn translational_upu_keeps_its_orientation() {
         });
         let sol = arc_length(&upu, &start, &legs, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "{t:?}");
+        check_inverse(&upu, &sol.v, &legs, &TranslationalUpu::HOME_INPUTS, 1e-8);
         let got = linkage::pose_from_unknowns(&upu, &sol.v).unwrap();
         for (r, row) in got.rotation.iter().enumerate() {
             for (c, x) in row.iter().enumerate() {

@@ -163,6 +163,10 @@ pub struct Model {
     pub general_points: Vec<(String, PointRef, usize)>,
     /// Scalar unknowns (passive slides), zero at home.
     pub general_scalars: Vec<usize>,
+    /// For each of `general_points`, the platform point it is nearer to than to any base pivot
+    /// at home (a joint's axis on the platform side of a leg): a guess for where it is moves
+    /// with that point.
+    pub carried_by: Vec<Option<usize>>,
     /// Points added to links, in dependency order.
     pub auto_points: Vec<Auto>,
     /// Inputs of the general chains and their values at home.
@@ -431,6 +435,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     }
     links.append(&mut added.links);
     let frame = frame.unwrap_or([0, 0, 0]);
+    let carried_by = carriers(&b, m, &added.points);
     let mut model = Model {
         name: m.name.clone(),
         slots: b.slots,
@@ -445,6 +450,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         home_pose: b.home_pose,
         general_points: added.points,
         general_scalars: added.scalars,
+        carried_by,
         auto_points: b.auto_points,
         general_home_inputs: added.home_inputs,
         dropped: Vec::new(),
@@ -457,6 +463,43 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         crate::model::reference::rank_at_home(&mut model, m)?;
     }
     Ok(model)
+}
+
+/// For each intermediate point, the platform point nearest it at home if no base pivot is
+/// nearer.
+fn carriers(
+    b: &Builder,
+    m: &Mechanism,
+    points: &[(String, PointRef, usize)],
+) -> Vec<Option<usize>> {
+    let distance = |a: [f64; 3], c: [f64; 3]| linkage_geometry::distance(a, c);
+    let base: Vec<[f64; 3]> = m
+        .base
+        .iter()
+        .flat_map(|l| &l.pivots)
+        .map(|p| b.default_point(&p.coords))
+        .collect();
+    let platform: Vec<[f64; 3]> = b
+        .points
+        .iter()
+        .map(|p| b.home(PointRef::PlatformHome(p.local)))
+        .collect();
+    points
+        .iter()
+        .map(|(_, at, _)| {
+            let h = b.home(*at);
+            let to_base = base
+                .iter()
+                .map(|q| distance(h, *q))
+                .fold(f64::INFINITY, f64::min);
+            let (nearest, to_platform) = platform
+                .iter()
+                .enumerate()
+                .map(|(i, q)| (i, distance(h, *q)))
+                .min_by(|a, c| a.1.total_cmp(&c.1))?;
+            (to_platform < to_base).then_some(nearest)
+        })
+        .collect()
 }
 
 /// An added point's home position from those it derives from (NaN when degenerate: the
