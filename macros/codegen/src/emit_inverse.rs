@@ -61,14 +61,23 @@ fn numerical_body(
             });
             quote!(#(#moves)*)
         });
-    let home_guess = if has_home && p < n {
+    // Where there is no second guess (no link between has unknowns, or no declared home), one
+    // attempt from the given v.
+    let guesses = if has_home && p < n {
         quote! {
+            let cost = |vv: &[f64; #n], xx: &[f64; #m]| -> f64 {
+                let mut f = [0.0f64; #n];
+                <Self as ::linkage::Mechanism<#n, #m>>::residual(self, vv, xx, &mut f);
+                let s: f64 = f.iter().map(|r| r * r).sum();
+                if s.is_finite() { s } else { f64::INFINITY }
+            };
             let mut other = *v;
             other[#p..].copy_from_slice(&Self::HOME_V[#p..]);
             #(#carried)*
+            let guesses = if cost(v, &x0) <= cost(&other, &x0) { [*v, other] } else { [other, *v] };
         }
     } else {
-        quote!(let other = *v;)
+        quote!(let guesses = [*v];)
     };
     quote! {
         if !v.iter().chain(reference.iter()).all(|a| a.is_finite()) {
@@ -79,17 +88,10 @@ fn numerical_body(
         let mut out = *reference;
         #(#steps)*
         let x0 = out;
-        #home_guess
-        let cost = |vv: &[f64; #n], xx: &[f64; #m]| -> f64 {
-            let mut f = [0.0f64; #n];
-            <Self as ::linkage::Mechanism<#n, #m>>::residual(self, vv, xx, &mut f);
-            let s: f64 = f.iter().map(|r| r * r).sum();
-            if s.is_finite() { s } else { f64::INFINITY }
-        };
-        let (a, b) = if cost(v, &x0) <= cost(&other, &x0) { (*v, other) } else { (other, *v) };
+        #guesses
         let scale = 1.0 + v[..#p].iter().fold(0.0f64, |s, q| s.max(q.abs()));
         let tolerance = 1e-8 * scale * scale;
-        for guess in [a, b] {
+        for guess in guesses {
             if let Some(x) = self.__inverse_newton(guess, x0, tolerance) {
                 return Ok(x);
             }
