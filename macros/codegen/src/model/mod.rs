@@ -15,7 +15,7 @@ use crate::expr::{Expr, Names, Vec3};
 use crate::front::ast::{
     ChainDecl, ChainItem, Coord, LinkDecl, LinkRole, Mechanism, PairDecl, PairKind,
 };
-use crate::front::check::Errors;
+use crate::front::errors::Errors;
 use proc_macro2::Span;
 use shapes::ChainModel;
 use std::collections::HashMap;
@@ -364,6 +364,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             .map(|v| b.input_index(v))
             .collect();
         b.inverses.push(Inverse::None { inputs });
+        consistent_home_inputs(m, &b.inputs, &added.home_inputs)?;
     }
 
     // Rigid-body equations of the platform (Eq. 3 / Eq. 16).
@@ -419,8 +420,14 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     crate::simplify::duplicates::remove_duplicates(&mut b.equations);
 
     // Grübler–Kutzbach counts a platform as a body with six freedoms: right for the closed-form
-    // shapes on a located platform, wrong for a point or line platform.
-    let by_rank = !general.is_empty() || frame.is_none();
+    // shapes on a located platform, wrong for a point or line platform; and it counts every
+    // active pair as an input, wrong where pairs share one.
+    let shared = m.chains.iter().any(|c| {
+        c.items
+            .iter()
+            .any(|i| matches!(i, ChainItem::Pair(p) if p.shared.is_some()))
+    });
+    let by_rank = !general.is_empty() || frame.is_none() || shared;
     let mut links = Vec::new();
     if let Some(f) = frame {
         links.push(LinkFrame {
@@ -514,6 +521,38 @@ pub fn auto_point(a: &Auto, home: &dyn Fn(PointRef) -> [f64; 3]) -> [f64; 3] {
     r.unwrap_or([f64::NAN; 3])
 }
 
+/// A shared input reads one value at home: every pair it drives must agree (a slide's offset).
+fn consistent_home_inputs(
+    m: &Mechanism,
+    inputs: &[String],
+    home: &[(usize, f64)],
+) -> syn::Result<()> {
+    for (k, &(input, value)) in home.iter().enumerate() {
+        let Some(&(_, first)) = home[..k].iter().find(|(i, _)| *i == input) else {
+            continue;
+        };
+        if (value - first).abs() > 1e-9 * (1.0 + first.abs()) {
+            let name = &inputs[input];
+            // The second pair that declares it, for the span.
+            let span = m
+                .chains
+                .iter()
+                .flat_map(|c| &c.items)
+                .filter_map(|i| match i {
+                    ChainItem::Pair(p) => p.variables.iter().find(|v| *v == name),
+                    ChainItem::Link(_) => None,
+                })
+                .nth(1)
+                .map_or_else(|| m.name.span(), |v| v.span());
+            return Err(syn::Error::new(
+                span,
+                format!("shared input `{name}` reads {first} at home on one pair and {value} on another: the pairs it drives must agree at the declared configuration (same `offset`)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Links an active pair attaches to the base (in any chain): explicit in that pair's inputs.
 fn explicit_pairs<'a>(
     m: &'a Mechanism,
@@ -603,20 +642,21 @@ fn choose_frame(
         .fold(1e-300f64, |a, x| a.max(x.abs()));
     let tol = 1e-9 * scale * scale;
     if let Some(frame) = &platform.frame {
+        // Unknown or missing names are reported by the resolver.
         let idx: Vec<usize> = frame
             .iter()
-            .map(|f| {
-                platform
-                    .pivots
-                    .iter()
-                    .position(|p| p.name == *f)
-                    .expect("validated")
-            })
+            .filter_map(|f| platform.pivots.iter().position(|p| p.name == *f))
             .collect();
-        if area(idx[0], idx[1], idx[2]) <= tol {
+        let [a, b, c] = idx[..] else {
+            return Err((
+                platform.name.span(),
+                "`frame` names three pivots of the platform".to_string(),
+            ));
+        };
+        if area(a, b, c) <= tol {
             return Err((frame[0].span(), format!("the `frame` pivots `{}`, `{}`, `{}` are collinear: the platform needs three non-collinear pivots", frame[0], frame[1], frame[2])));
         }
-        return Ok(Some([idx[0], idx[1], idx[2]]));
+        return Ok(Some([a, b, c]));
     }
     // Largest triangle: the best-conditioned frame.
     let n = pts.len();
