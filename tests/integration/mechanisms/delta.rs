@@ -52,6 +52,42 @@ macro_rules! delta {
 delta!(Delta, -200.0);
 delta!(DeltaAbove, 200.0);
 
+linkage::mechanism! {
+    /// The same delta with each crank split in two, one rod on each half, the halves driven by
+    /// one input: `active shared`.
+    pub struct DeltaSplitCranks;
+    params {
+        rb = 100.0, ra = 100.0, rp = 40.0, hw = 30.0, h = 200.0,
+        rod = sqrt((rb + ra - rp) * (rb + ra - rp) + h * h),
+        c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0),
+    }
+    base {
+        A1 = [rb, 0.0, 0.0], B1 = [rb, 1.0, 0.0],
+        A2 = [rb * c2, rb * s2, 0.0], B2 = [rb * c2 - s2, rb * s2 + c2, 0.0],
+        A3 = [rb * c2, -rb * s2, 0.0], B3 = [rb * c2 + s2, -rb * s2 + c2, 0.0],
+    }
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, -h]) {
+        F11 = [rp, hw, 0.0], F12 = [rp, -hw, 0.0],
+        F21 = [rp * c2 - hw * s2, rp * s2 + hw * c2, 0.0], F22 = [rp * c2 + hw * s2, rp * s2 - hw * c2, 0.0],
+        F31 = [rp * c2 + hw * s2, -rp * s2 + hw * c2, 0.0], F32 = [rp * c2 - hw * s2, -rp * s2 - hw * c2, 0.0],
+    }
+    link arm11 { E11 = [rb + ra, hw, 0.0] }
+    link arm12 { E12 = [rb + ra, -hw, 0.0] }
+    link arm21 { E21 = [(rb + ra) * c2 - hw * s2, (rb + ra) * s2 + hw * c2, 0.0] }
+    link arm22 { E22 = [(rb + ra) * c2 + hw * s2, (rb + ra) * s2 - hw * c2, 0.0] }
+    link arm31 { E31 = [(rb + ra) * c2 + hw * s2, -(rb + ra) * s2 + hw * c2, 0.0] }
+    link arm32 { E32 = [(rb + ra) * c2 - hw * s2, -(rb + ra) * s2 - hw * c2, 0.0] }
+    link rod11 { length = rod } link rod12 { length = rod }
+    link rod21 { length = rod } link rod22 { length = rod }
+    link rod31 { length = rod } link rod32 { length = rod }
+    chain a11 = base - R(active shared q1, axis = A1 -> B1) - arm11 - S(E11) - rod11 - S(F11) - platform;
+    chain a12 = base - R(active shared q1, axis = A1 -> B1) - arm12 - S(E12) - rod12 - S(F12) - platform;
+    chain a21 = base - R(active shared q2, axis = A2 -> B2) - arm21 - S(E21) - rod21 - S(F21) - platform;
+    chain a22 = base - R(active shared q2, axis = A2 -> B2) - arm22 - S(E22) - rod22 - S(F22) - platform;
+    chain a31 = base - R(active shared q3, axis = A3 -> B3) - arm31 - S(E31) - rod31 - S(F31) - platform;
+    chain a32 = base - R(active shared q3, axis = A3 -> B3) - arm32 - S(E32) - rod32 - S(F32) - platform;
+}
+
 const RB: f64 = 100.0;
 const RA: f64 = 100.0;
 const RP: f64 = 40.0;
@@ -167,5 +203,36 @@ fn delta_assembly_modes_below_and_above_the_base() {
             pb[2] - pa[2] > 100.0,
             "two distinct solutions: {pa:?} {pb:?}"
         );
+    }
+}
+
+#[test]
+fn delta_with_shared_inputs_is_the_same_machine() {
+    let (delta, split) = (Delta::new(), DeltaSplitCranks::new());
+    assert_eq!(DeltaSplitCranks::INPUTS, ["q1", "q2", "q3"]);
+    // Grübler–Kutzbach counts six driven pairs; the rank sees three freedoms.
+    assert_eq!(
+        mobility_line(DeltaSplitCranks::LISTING),
+        "mobility: rank of ∂F/∂(v, x) at home: M = 18 + 3 − 18 = 3 (Grübler–Kutzbach says 6)"
+    );
+    let split_start = split.home_start().unwrap();
+    check_jacobians(
+        &split,
+        &DeltaSplitCranks::HOME_V,
+        &DeltaSplitCranks::HOME_INPUTS,
+    );
+    let start = delta.home_start().unwrap();
+    let mut rng = Rng::new(33);
+    for _ in 0..20 {
+        let q = [0, 1, 2].map(|_| rng.uniform(-0.5, 0.5));
+        let a = arc_length(&delta, &start, &q, &Options::TIGHT).unwrap();
+        let b = arc_length(&split, &split_start, &q, &Options::TIGHT).unwrap();
+        assert_eq!((a.status, b.status), (Status::Converged, Status::Converged));
+        let pa = pose_from_unknowns(&delta, &a.v).unwrap();
+        let pb = pose_from_unknowns(&split, &b.v).unwrap();
+        assert!(linkage_tests::max_diff(&pa.translation, &pb.translation) < 1e-9);
+        identity_within(&pb.rotation, 1e-9);
+        // Both halves of a crank read the same input back.
+        check_inverse(&split, &b.v, &q, &[0.0; 3], 1e-9);
     }
 }

@@ -123,7 +123,7 @@ pub struct PairDecl {
     pub token: Ident,
     pub active: Option<Ident>,
     /// `active shared NAME`: the input drives other pairs too.
-    pub shared: Option<Ident>,
+    pub shared: bool,
     pub variables: Vec<Ident>,
     pub passive: Option<Ident>,
     pub pivots: Vec<Ident>,
@@ -368,7 +368,7 @@ fn parse_item(input: ParseStream, scope: &crate::front::value::Scope) -> Result<
         kind,
         token: name,
         active: None,
-        shared: None,
+        shared: false,
         variables: Vec::new(),
         passive: None,
         pivots: Vec::new(),
@@ -382,8 +382,8 @@ fn parse_item(input: ParseStream, scope: &crate::front::value::Scope) -> Result<
             pair.active = Some(Ident::new("active", kw.span));
             // `active shared q1`: one input driving several pairs.
             if args.peek(kw::shared) && args.peek2(Ident) {
-                let kw: kw::shared = args.parse()?;
-                pair.shared = Some(Ident::new("shared", kw.span));
+                args.parse::<kw::shared>()?;
+                pair.shared = true;
             }
             pair.variables.push(args.parse()?);
             // `C` and `H`-like pairs may carry more than one joint variable: `active theta z`.

@@ -491,7 +491,7 @@ fn inputs(chains: &[ChainDecl], errors: &mut Errors) -> Vec<InputSymbol> {
             }
             for (k, v) in p.variables.iter().enumerate() {
                 let quantity = Quantity::of(p.kind, k);
-                let shared = p.shared.is_some();
+                let shared = p.shared;
                 match out.iter().position(|i| i.name == *v) {
                     None => {
                         out.push(InputSymbol {

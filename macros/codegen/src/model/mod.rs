@@ -425,7 +425,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     let shared = m.chains.iter().any(|c| {
         c.items
             .iter()
-            .any(|i| matches!(i, ChainItem::Pair(p) if p.shared.is_some()))
+            .any(|i| matches!(i, ChainItem::Pair(p) if p.shared))
     });
     let by_rank = !general.is_empty() || frame.is_none() || shared;
     let mut links = Vec::new();
