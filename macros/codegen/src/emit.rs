@@ -178,6 +178,8 @@ pub fn expand(
             constants: [f64; #nc],
         }
 
+        // Declared values can be close to a named constant (a parameter `pi / 4`).
+        #[allow(clippy::approx_constant)]
         impl #name {
             /// Names of the run-time geometry values (`link.pivot.axis`, lengths, parameters).
             pub const GEOMETRY_NAMES: [&'static str; #ng] = [#(#geometry_names),*];
@@ -269,6 +271,7 @@ pub fn expand(
             }
         }
 
+        #[allow(clippy::approx_constant)]
         impl ::linkage::Mechanism<#n, #m> for #name {
             const NAME: &'static str = stringify!(#name);
             const UNKNOWNS: [&'static str; #n] = [#(#unknown_names),*];

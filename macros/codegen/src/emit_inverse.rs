@@ -7,9 +7,12 @@
 //! Levenberg–Marquardt on the normal equations (Marquardt's diagonal scaling, so that inputs in
 //! rad and in mm weigh alike). It starts from the reference inputs (with the closed-form
 //! chains' inputs filled in), and from whichever guess for the links between fits better
-//! there: the given v's, or the declared home's; then from the other. A result is returned only
-//! where the residual vanishes, so any inputs returned do place the platform at v; a pose the
-//! mechanism cannot take (off its motion, out of reach) is `Unreachable`.
+//! there: the given v's, or the declared home's; then from the other. Where neither converges
+//! (a long way from home, or points of the links between that the equations hold only weakly,
+//! such as the two points a unit apart on a cylindrical pair's axis), it follows the platform
+//! from home in 16 steps, each solved from the last. A result is returned only where the
+//! residual vanishes, so any inputs returned do place the platform at v; a pose the mechanism
+//! cannot take (off its motion, out of reach) is `Unreachable`.
 
 use crate::model::{Inverse, Model};
 use proc_macro2::TokenStream;
@@ -79,6 +82,58 @@ fn numerical_body(
     } else {
         quote!(let guesses = [*v];)
     };
+    // From home to v in steps of the platform's pose (Euler angles and translation each
+    // interpolated; the coordinates themselves for a platform of one or two points), each
+    // step's solution the next one's start, the last step exactly v.
+    let homotopy = if has_home {
+        quote! {
+            let from = ::linkage::pose_from_unknowns(self, &Self::HOME_V);
+            let to = ::linkage::pose_from_unknowns(self, v);
+            let (mut vv, mut x) = (Self::HOME_V, Self::HOME_INPUTS);
+            let mut k = 1;
+            while k <= 16 {
+                let t = k as f64 / 16.0;
+                let at: [f64; #n] = match (&from, &to) {
+                    (Some(a), Some(b)) if k < 16 => {
+                        let (ea, eb) = (a.euler(), b.euler());
+                        let angle = |i: usize| {
+                            // The shorter way round.
+                            let turn = 2.0 * ::core::f64::consts::PI;
+                            let mut d = (eb[i] - ea[i]) % turn;
+                            if d > 0.5 * turn {
+                                d -= turn;
+                            } else if d < -0.5 * turn {
+                                d += turn;
+                            }
+                            ea[i] + t * d
+                        };
+                        let (ta, tb) = (a.translation, b.translation);
+                        let pose = ::linkage::Pose::from_euler(angle(0), angle(1), angle(2), [
+                            ta[0] + t * (tb[0] - ta[0]),
+                            ta[1] + t * (tb[1] - ta[1]),
+                            ta[2] + t * (tb[2] - ta[2]),
+                        ]);
+                        ::linkage::unknowns_from_pose(self, &pose)
+                    }
+                    _ => {
+                        let mut at = *v;
+                        for i in 0..#p {
+                            at[i] = Self::HOME_V[i] + t * (v[i] - Self::HOME_V[i]);
+                        }
+                        at
+                    }
+                };
+                vv[..#p].copy_from_slice(&at[..#p]);
+                let left = self.__inverse_newton(&mut vv, &mut x);
+                if k == 16 && left <= tolerance {
+                    return Ok(x);
+                }
+                k += 1;
+            }
+        }
+    } else {
+        quote!()
+    };
     quote! {
         if !v.iter().chain(reference.iter()).all(|a| a.is_finite()) {
             return Err(::linkage::InverseError::NonFinite);
@@ -91,11 +146,13 @@ fn numerical_body(
         #guesses
         let scale = 1.0 + v[..#p].iter().fold(0.0f64, |s, q| s.max(q.abs()));
         let tolerance = 1e-8 * scale * scale;
-        for guess in guesses {
-            if let Some(x) = self.__inverse_newton(guess, x0, tolerance) {
+        for mut guess in guesses {
+            let mut x = x0;
+            if self.__inverse_newton(&mut guess, &mut x) <= tolerance {
                 return Ok(x);
             }
         }
+        #homotopy
         Err(::linkage::InverseError::Unreachable { input: #first })
     }
 }
@@ -120,7 +177,7 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
         (
             quote! {
                 let mut values = [0.0f64; #nnz];
-                self.jacobian(&v, &x, &mut values);
+                self.jacobian(v, x, &mut values);
                 for (k, &(r, col)) in <Self as ::linkage::Mechanism<#n, #m>>::PATTERN.iter().enumerate() {
                     if (#p..#n).contains(&col) && r < #n {
                         j[r][#m + col - #p] = values[k];
@@ -138,39 +195,63 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
     };
     Some(quote! {
         /// Levenberg–Marquardt for [`linkage::Mechanism::inverse`]: the inputs and the
-        /// unknowns after the platform's, the platform's held; `None` unless F vanishes (to
-        /// `tolerance`) at the end.
+        /// unknowns after the platform's, the platform's held; returns the largest |F| left.
         #[doc(hidden)]
         #[allow(clippy::needless_range_loop)]
-        fn __inverse_newton(&self, mut v: [f64; #n], mut x: [f64; #m], tolerance: f64) -> ::core::option::Option<[f64; #m]> {
+        fn __inverse_newton(&self, v: &mut [f64; #n], x: &mut [f64; #m]) -> f64 {
             use ::linkage::Mechanism as _;
             let mut f = [0.0f64; #n];
-            self.residual(&v, &x, &mut f);
-            let mut cost: f64 = f.iter().map(|r| r * r).sum();
-            let mut mu = 1e-3f64;
+            self.residual(v, x, &mut f);
+            let mut mu = 1e-6f64;
             let mut iteration = 0;
-            // Until the step is negligible or none lowers the cost: a residual test alone would stop
-            // early on the equations of unit-length points (an axis tip), whose residuals are
-            // small beside the slides that move them.
-            while iteration < 100 && cost.is_finite() && cost > 0.0 {
+            // Until the step is negligible or none lowers the cost: a residual test alone would
+            // stop early on the equations of points a unit apart (an axis tip), whose residuals
+            // are small beside the slides that move them.
+            while iteration < 100 {
                 iteration += 1;
                 let mut a = [[0.0f64; #m]; #n];
-                self.input_jacobian(&v, &x, &mut a);
-                // J = [∂F/∂x | ∂F/∂v after the platform's], then JᵀJ and −JᵀF.
+                self.input_jacobian(v, x, &mut a);
+                // J = [∂F/∂x | ∂F/∂v after the platform's].
                 let mut j = [[0.0f64; #z]; #n];
                 for r in 0..#n {
                     j[r][..#m].copy_from_slice(&a[r]);
                 }
                 #fill_intermediate
+                // Each equation weighed by its row's largest entry, so that equations in mm and
+                // in mm², or on points a unit apart and a hundred apart, count alike; one that
+                // these unknowns do not move (the platform's own, or one whose terms cancel,
+                // down to rounding) not at all.
+                let mut w = [0.0f64; #n];
+                let mut all = 0.0f64;
+                for r in 0..#n {
+                    w[r] = j[r].iter().fold(0.0f64, |t, q| t.max(q.abs()));
+                    all = all.max(w[r]);
+                }
+                for r in 0..#n {
+                    w[r] = if w[r] > 1e-9 * all { 1.0 / w[r] } else { 0.0 };
+                }
+                let weighted = |f: &[f64; #n]| -> f64 {
+                    let mut c = 0.0f64;
+                    for r in 0..#n {
+                        c += (w[r] * f[r]) * (w[r] * f[r]);
+                    }
+                    c
+                };
+                let cost = weighted(&f);
+                if !(cost > 0.0) {
+                    break;
+                }
+                // Weighted JᵀJ and −JᵀF.
                 let mut h = [[0.0f64; #z]; #z];
                 let mut g = [0.0f64; #z];
                 for r in 0..#n {
+                    let wr = w[r] * w[r];
                     for p in 0..#z {
                         let jp = j[r][p];
                         if jp != 0.0 {
-                            g[p] -= jp * f[r];
+                            g[p] -= wr * jp * f[r];
                             for q in 0..#z {
-                                h[p][q] += jp * j[r][q];
+                                h[p][q] += wr * jp * j[r][q];
                             }
                         }
                     }
@@ -188,20 +269,18 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
                     };
                     let mut d = g;
                     ::linkage::lu::solve_dense::<#z>(&damped, &piv, &mut d);
-                    let (mut vt, mut xt) = (v, x);
+                    let (mut vt, mut xt) = (*v, *x);
                     for p in 0..#m {
                         xt[p] += d[p];
                     }
                     #step_intermediate
                     let mut ft = [0.0f64; #n];
                     self.residual(&vt, &xt, &mut ft);
-                    let trial: f64 = ft.iter().map(|r| r * r).sum();
-                    if trial < cost {
+                    if weighted(&ft) < cost {
                         let negligible = d.iter().zip(xt.iter().chain(vt[#p..].iter())).all(|(s, q)| s.abs() <= 1e-13 * (1.0 + q.abs()));
-                        v = vt;
-                        x = xt;
+                        *v = vt;
+                        *x = xt;
                         f = ft;
-                        cost = trial;
                         mu = (mu * 0.1).max(1e-15);
                         accepted = !negligible;
                         break;
@@ -212,7 +291,8 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
                     break;
                 }
             }
-            (f.iter().all(|r| r.abs() <= tolerance)).then_some(x)
+            let left = f.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            if left.is_finite() { left } else { f64::INFINITY }
         }
     })
 }

@@ -6,6 +6,7 @@
 
 mod delta;
 mod five_bar;
+mod pcs;
 mod planar_rpr;
 mod prs;
 mod rrs;

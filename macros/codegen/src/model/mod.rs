@@ -342,6 +342,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         scalars: Vec::new(),
         home_inputs: Vec::new(),
         links: Vec::new(),
+        link_equations: 0..0,
     };
     let mut foreign = Vec::new();
     if !general.is_empty() {
@@ -368,6 +369,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     }
 
     // Rigid-body equations of the platform (Eq. 3 / Eq. 16).
+    let chain_equations = b.equations.len();
     let coplanar = match frame {
         Some(frame) => {
             let planar = rigid::is_coplanar(&b, frame, k);
@@ -417,7 +419,19 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         }
         rigid::link_equations(&mut b, "platform", &members, None);
     }
-    crate::simplify::duplicates::remove_duplicates(&mut b.equations);
+    // Which equations the rank test keeps first where some depend on others (see
+    // `simplify::rank`): the pairs' and chains' equations, then the links' Eq. 3, the
+    // platform's last. A link's distance that the pairs' equations already imply goes rather
+    // than one of those (the two points on a cylindrical pair's axis); and where the legs and
+    // the platform overlap (a spherical mechanism), every leg keeps its own constraints and
+    // the platform's go — dropping a leg's instead leaves that leg held only near home.
+    let mut priority = vec![0u8; chain_equations];
+    for i in added.link_equations.clone() {
+        priority[i] = 1;
+    }
+    priority.resize(b.equations.len(), 2);
+    let kept = crate::simplify::duplicates::remove_duplicates(&mut b.equations);
+    let priority: Vec<u8> = kept.iter().map(|&i| priority[i]).collect();
 
     // Grübler–Kutzbach counts a platform as a body with six freedoms: right for the closed-form
     // shapes on a located platform, wrong for a point or line platform; and it counts every
@@ -467,7 +481,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     if !by_rank {
         check_system(&model, m)?;
     } else {
-        crate::model::reference::rank_at_home(&mut model, m)?;
+        crate::model::reference::rank_at_home(&mut model, m, &priority)?;
     }
     Ok(model)
 }
