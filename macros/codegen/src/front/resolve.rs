@@ -1,8 +1,9 @@
-//! Name resolution, the one pass after parsing: every name (link, pivot, parameter, joint
-//! variable) becomes an index into one table ([`Symbols`]), and every pair's arguments are
-//! checked against the one table of what each pair kind takes ([`Accepts`]). Never builds
-//! tokens; collects every mistake into the shared [`Errors`] so that the user sees them all in
-//! one build.
+//! Name resolution, the one pass after parsing: links, pivots and joint variables are entered
+//! in one table ([`Symbols`]), parameters and every name a declaration uses are checked against
+//! it, and every pair's arguments against the one table of what each pair kind takes
+//! (`Accepts`). Never builds tokens; collects every mistake into the shared [`Errors`] so that
+//! the user sees them all in one build. (The model still looks pivots up by name; with names
+//! global, which this pass enforces, that is unambiguous.)
 //!
 //! Pivot names are global: an axis `A -> B` names its pivots without their links, so one name
 //! on two links is an error here rather than a silent choice later. A joint variable names one
