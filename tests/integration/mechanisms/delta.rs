@@ -164,11 +164,17 @@ fn delta_forward_kinematics_matches_sphere_intersection_and_keeps_orientation() 
     let start = delta.home_start().unwrap();
     let det0 = det_b(&delta, &Delta::HOME_V, &Delta::HOME_INPUTS);
     let mut rng = Rng::new(31);
+    let mut first = true;
     for _ in 0..60 {
         let q = [0, 1, 2].map(|_| rng.uniform(-0.5, 0.5));
         let sol = arc_length(&delta, &start, &q, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "q = {q:?}");
         let pose = pose_from_unknowns(&delta, &sol.v).unwrap();
+        if first {
+            // The Jacobians away from home too.
+            check_jacobians(&delta, &sol.v, &q);
+            first = false;
+        }
         identity_within(&pose.rotation, 1e-9);
         let [below, _] = sphere_intersection(q).unwrap();
         assert!(

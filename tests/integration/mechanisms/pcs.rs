@@ -87,6 +87,7 @@ fn pcs_forward_kinematics_against_inverse() {
     let start = pcs.home_start().unwrap();
     let det0 = det_b(&pcs, &Pcs::HOME_V, &Pcs::HOME_INPUTS);
     let mut rng = Rng::new(71);
+    let mut first = true;
     for _ in 0..60 {
         let pose = Pose::from_euler(
             rng.uniform(-0.1, 0.1),
@@ -101,6 +102,11 @@ fn pcs_forward_kinematics_against_inverse() {
         let s = pcs_inverse(&pose).unwrap();
         let sol = arc_length(&pcs, &start, &s, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "{pose:?}");
+        if first {
+            // The Jacobians away from home too.
+            check_jacobians(&pcs, &sol.v, &s);
+            first = false;
+        }
         let got = pose_from_unknowns(&pcs, &sol.v).unwrap();
         assert!(linkage_tests::max_diff(&got.translation, &pose.translation) < 1e-7);
         let (a, b) = (got.euler(), pose.euler());

@@ -92,10 +92,16 @@ fn prs_forward_kinematics_against_inverse() {
     let start = prs.home_start().unwrap();
     let det0 = det_b(&prs, &Prs::HOME_V, &Prs::HOME_INPUTS);
     let mut rng = Rng::new(41);
+    let mut first = true;
     for _ in 0..60 {
         let s = Prs::HOME_INPUTS.map(|h| h + rng.uniform(-20.0, 20.0));
         let sol = arc_length(&prs, &start, &s, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "s = {s:?}");
+        if first {
+            // The Jacobians away from home too.
+            check_jacobians(&prs, &sol.v, &s);
+            first = false;
+        }
         let pose = pose_from_unknowns(&prs, &sol.v).unwrap();
         let (heights, off_plane) = prs_inverse(&pose, true);
         assert!(

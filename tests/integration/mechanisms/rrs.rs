@@ -93,10 +93,16 @@ fn rrs_forward_kinematics_against_inverse() {
     let start = rrs.home_start().unwrap();
     let det0 = det_b(&rrs, &Rrs::HOME_V, &Rrs::HOME_INPUTS);
     let mut rng = Rng::new(51);
+    let mut first = true;
     for _ in 0..60 {
         let q = [0, 1, 2].map(|_| rng.uniform(-0.4, 0.4));
         let sol = arc_length(&rrs, &start, &q, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "q = {q:?}");
+        if first {
+            // The Jacobians away from home too.
+            check_jacobians(&rrs, &sol.v, &q);
+            first = false;
+        }
         let pose = pose_from_unknowns(&rrs, &sol.v).unwrap();
         let (back, off_plane) = rrs_inverse(&pose, q).unwrap();
         assert!(

@@ -134,10 +134,16 @@ fn wrist_forward_kinematics_against_inverse_about_a_fixed_centre() {
     let start = wrist.home_start().unwrap();
     let det0 = det_b(&wrist, &Wrist::HOME_V, &Wrist::HOME_INPUTS);
     let mut rng = Rng::new(61);
+    let mut first = true;
     for _ in 0..60 {
         let q = [0, 1, 2].map(|_| rng.uniform(-0.25, 0.25));
         let sol = arc_length(&wrist, &start, &q, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged, "q = {q:?}");
+        if first {
+            // The Jacobians away from home too.
+            check_jacobians(&wrist, &sol.v, &q);
+            first = false;
+        }
         let pose = pose_from_unknowns(&wrist, &sol.v).unwrap();
         // The platform turns about the centre of the base's axes.
         assert!(
