@@ -81,23 +81,14 @@ pub fn expand(
         let [x, y, z] = p.local;
         quote!(#i => [g[#x], g[#y], g[#z]],)
     });
-    // A chain without a closed-form inverse makes the whole inverse unavailable.
+    // A chain without a closed-form inverse makes the inverse numerical, and `home_start` the
+    // declared configuration itself.
     let no_closed_form = model.inverses.iter().find_map(|inv| match inv {
         Inverse::None { inputs } => inputs.first().copied(),
         _ => None,
     });
-    let inverse_body = match no_closed_form {
-        Some(input) => quote!(Err(::linkage::InverseError::NoClosedForm { input: #input })),
-        None => {
-            let steps = model.inverses.iter().map(|inv| inverse(model, inv));
-            quote! {
-                let c = &self.constants;
-                let mut out = *reference;
-                #(#steps)*
-                Ok(out)
-            }
-        }
-    };
+    let inverse_body = crate::emit_inverse::body(model, home.is_some());
+    let inverse_newton = crate::emit_inverse::newton_method(model);
     // A leg's length (input plus offset) must be positive.
     let ranges = model.inverses.iter().filter_map(|inv| match inv {
         Inverse::Distance { input, offset, .. } => {
@@ -187,6 +178,8 @@ pub fn expand(
             constants: [f64; #nc],
         }
 
+        // Declared values can be close to a named constant (a parameter `pi / 4`).
+        #[allow(clippy::approx_constant)]
         impl #name {
             /// Names of the run-time geometry values (`link.pivot.axis`, lengths, parameters).
             pub const GEOMETRY_NAMES: [&'static str; #ng] = [#(#geometry_names),*];
@@ -243,6 +236,8 @@ pub fn expand(
 
             #home_items
 
+            #inverse_newton
+
             /// The moving links [`Self::link_pose`] reports on: the platform, then the named
             /// links between it and the base.
             pub const LINKS: [&'static str; #nl] = [#(#link_names),*];
@@ -276,6 +271,7 @@ pub fn expand(
             }
         }
 
+        #[allow(clippy::approx_constant)]
         impl ::linkage::Mechanism<#n, #m> for #name {
             const NAME: &'static str = stringify!(#name);
             const UNKNOWNS: [&'static str; #n] = [#(#unknown_names),*];
@@ -549,11 +545,6 @@ fn auto_points(model: &Model) -> TokenStream {
     }
 }
 
-fn consts3(s: [usize; 3]) -> TokenStream {
-    let [a, b, c] = s;
-    quote!([c[#a], c[#b], c[#c]])
-}
-
 fn recipe(model: &Model, i: usize, r: &Recipe) -> TokenStream {
     let p = quote!(::linkage::__private);
     let point3 = |q: PointRef| point3(model, q);
@@ -586,55 +577,5 @@ fn recipe(model: &Model, i: usize, r: &Recipe) -> TokenStream {
             let (a, b, q) = (point3(*a), point3(*b), point3(*point));
             quote!(c[#i] = #p::axis_frame(#a, #b, #q)?[#index];)
         }
-    }
-}
-
-fn inverse(model: &Model, inv: &Inverse) -> TokenStream {
-    let p = quote!(::linkage::__private);
-    let point = |q: usize| {
-        let [x, y, z] = [0, 1, 2].map(|a| model.unknown(q, a));
-        quote!([v[#x], v[#y], v[#z]])
-    };
-    match inv {
-        Inverse::Distance {
-            input,
-            point: q,
-            anchor,
-            offset,
-        } => {
-            let g = point(*q);
-            let a = consts3(*anchor);
-            let off = match offset {
-                Some(o) => quote!(c[#o]),
-                None => quote!(0.0),
-            };
-            quote!(out[#input] = #p::distance(#g, #a) - #off;)
-        }
-        Inverse::RevoluteRod {
-            input,
-            point: q,
-            o,
-            u,
-            w,
-            length,
-        } => {
-            let g = point(*q);
-            let (o, u, w) = (consts3(*o), consts3(*u), consts3(*w));
-            quote!(out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
-                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
-        }
-        Inverse::PrismaticRod {
-            input,
-            point: q,
-            c0,
-            e,
-            length,
-        } => {
-            let g = point(*q);
-            let (c0, e) = (consts3(*c0), consts3(*e));
-            quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input])
-                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
-        }
-        Inverse::None { .. } => quote!(),
     }
 }

@@ -288,7 +288,7 @@ fn simplify_sum(ts: Vec<Expr>) -> Expr {
     }
     match out.len() {
         0 => Expr::zero(),
-        1 => out.pop().expect("one term"),
+        1 => out.swap_remove(0),
         _ => Expr::Sum(out),
     }
 }
@@ -339,7 +339,7 @@ fn simplify_product(fs: Vec<Expr>) -> Expr {
         out.insert(0, Expr::Num(number));
     }
     if out.len() == 1 {
-        out.pop().expect("one factor")
+        out.swap_remove(0)
     } else {
         Expr::Product(out)
     }

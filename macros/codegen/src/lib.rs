@@ -9,6 +9,7 @@
 
 pub mod emit;
 pub mod emit_factor;
+pub mod emit_inverse;
 pub mod expr;
 pub mod factor;
 pub mod front;

@@ -213,3 +213,23 @@ fn home_as_matrix_and_quaternion_agree_with_euler_angles() {
         assert!((a - b).abs() < 1e-12, "{euler:?} {matrix:?} {quaternion:?}");
     }
 }
+
+#[test]
+fn a_passive_slide_on_a_base_rail_is_modelled_not_a_panic() {
+    // The rail's added axis point is on the base: a constant like the base pivots. (This
+    // declaration has five freedoms for two inputs, which is the error it must get.)
+    let e = match model(quote! {
+        pub struct Pb;
+        base { A1 = [200.0, 0.0, 0.0], A1x = [201.0, 0.0, 0.0], A2 = [-100.0, 173.2, 0.0], A3 = [-100.0, -173.2, 0.0] }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 50.0]) { G1 = [40.0, 0.0, 0.0], G2 = [-20.0, 34.64, 0.0], G3 = [-20.0, -34.64, 0.0] }
+        link s1 { C1 = [200.0, 0.0, 0.0], C1y = [200.0, 1.0, 0.0] }
+        link l1 {}
+        chain c1 = base - P(passive, axis = A1 -> A1x) - s1 - R(passive, axis = C1 -> C1y) - l1 - S(G1) - platform;
+        chain c2 = base - S(A2) - P(active L2) - S(G2) - platform;
+        chain c3 = base - S(A3) - P(active L3) - S(G3) - platform;
+    }) {
+        Ok(_) => panic!("five freedoms, two inputs"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("2 active joint variables but mobility 5"), "{e}");
+}

@@ -14,7 +14,7 @@
 //! item        := IDENT                     (a link: `base`, `platform` or a declared link)
 //!              | PAIR "(" arg ("," arg)* ")"
 //! PAIR        := "R" | "P" | "C" | "H" | "S" | "U"
-//! arg         := "active" IDENT | "passive" | IDENT (a pivot)
+//! arg         := "active" "shared"? IDENT+ | "passive" | IDENT (a pivot)
 //!              | "axis" "=" IDENT "->" IDENT | "offset" "=" coord | "lead" "=" coord
 //! ```
 
@@ -122,6 +122,8 @@ pub struct PairDecl {
     pub kind: PairKind,
     pub token: Ident,
     pub active: Option<Ident>,
+    /// `active shared NAME`: the input drives other pairs too.
+    pub shared: bool,
     pub variables: Vec<Ident>,
     pub passive: Option<Ident>,
     pub pivots: Vec<Ident>,
@@ -142,6 +144,7 @@ mod kw {
     syn::custom_keyword!(length);
     syn::custom_keyword!(active);
     syn::custom_keyword!(passive);
+    syn::custom_keyword!(shared);
     syn::custom_keyword!(axis);
     syn::custom_keyword!(offset);
     syn::custom_keyword!(lead);
@@ -365,6 +368,7 @@ fn parse_item(input: ParseStream, scope: &crate::front::value::Scope) -> Result<
         kind,
         token: name,
         active: None,
+        shared: false,
         variables: Vec::new(),
         passive: None,
         pivots: Vec::new(),
@@ -376,6 +380,11 @@ fn parse_item(input: ParseStream, scope: &crate::front::value::Scope) -> Result<
         if args.peek(kw::active) {
             let kw: kw::active = args.parse()?;
             pair.active = Some(Ident::new("active", kw.span));
+            // `active shared q1`: one input driving several pairs.
+            if args.peek(kw::shared) && args.peek2(Ident) {
+                args.parse::<kw::shared>()?;
+                pair.shared = true;
+            }
             pair.variables.push(args.parse()?);
             // `C` and `H`-like pairs may carry more than one joint variable: `active theta z`.
             while args.peek(Ident) && !args.peek2(Token![=]) {

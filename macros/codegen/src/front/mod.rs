@@ -1,8 +1,10 @@
 //! The front end: the DSL parsed into a tree that keeps every span ([`ast`], with numbers in
-//! [`value`] and the platform's `home` in [`home`]), then checked name by name against one table
-//! of what each pair takes ([`check`]).
+//! [`value`] and the platform's `home` in [`home`]), then resolved in one pass ([`resolve`]):
+//! names to indices, every pair checked against one table of what each pair kind takes, every
+//! mistake into one accumulator ([`errors`]) that the later phases share.
 
 pub mod ast;
-pub mod check;
+pub mod errors;
 pub mod home;
+pub mod resolve;
 pub mod value;

@@ -15,7 +15,7 @@ use crate::expr::{Expr, Names, Vec3};
 use crate::front::ast::{
     ChainDecl, ChainItem, Coord, LinkDecl, LinkRole, Mechanism, PairDecl, PairKind,
 };
-use crate::front::check::Errors;
+use crate::front::errors::Errors;
 use proc_macro2::Span;
 use shapes::ChainModel;
 use std::collections::HashMap;
@@ -163,6 +163,10 @@ pub struct Model {
     pub general_points: Vec<(String, PointRef, usize)>,
     /// Scalar unknowns (passive slides), zero at home.
     pub general_scalars: Vec<usize>,
+    /// For each of `general_points`, the platform point it is nearer to than to any base pivot
+    /// at home (a joint's axis on the platform side of a leg): a guess for where it is moves
+    /// with that point.
+    pub carried_by: Vec<Option<usize>>,
     /// Points added to links, in dependency order.
     pub auto_points: Vec<Auto>,
     /// Inputs of the general chains and their values at home.
@@ -338,6 +342,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         scalars: Vec::new(),
         home_inputs: Vec::new(),
         links: Vec::new(),
+        link_equations: 0..0,
     };
     let mut foreign = Vec::new();
     if !general.is_empty() {
@@ -360,9 +365,11 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
             .map(|v| b.input_index(v))
             .collect();
         b.inverses.push(Inverse::None { inputs });
+        consistent_home_inputs(m, &b.inputs, &added.home_inputs)?;
     }
 
     // Rigid-body equations of the platform (Eq. 3 / Eq. 16).
+    let chain_equations = b.equations.len();
     let coplanar = match frame {
         Some(frame) => {
             let planar = rigid::is_coplanar(&b, frame, k);
@@ -412,11 +419,29 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         }
         rigid::link_equations(&mut b, "platform", &members, None);
     }
-    crate::simplify::duplicates::remove_duplicates(&mut b.equations);
+    // Which equations the rank test keeps first where some depend on others (see
+    // `simplify::rank`): the pairs' and chains' equations, then the links' Eq. 3, the
+    // platform's last. A link's distance that the pairs' equations already imply goes rather
+    // than one of those (the two points on a cylindrical pair's axis); and where the legs and
+    // the platform overlap (a spherical mechanism), every leg keeps its own constraints and
+    // the platform's go — dropping a leg's instead leaves that leg held only near home.
+    let mut priority = vec![0u8; chain_equations];
+    for i in added.link_equations.clone() {
+        priority[i] = 1;
+    }
+    priority.resize(b.equations.len(), 2);
+    let kept = crate::simplify::duplicates::remove_duplicates(&mut b.equations);
+    let priority: Vec<u8> = kept.iter().map(|&i| priority[i]).collect();
 
     // Grübler–Kutzbach counts a platform as a body with six freedoms: right for the closed-form
-    // shapes on a located platform, wrong for a point or line platform.
-    let by_rank = !general.is_empty() || frame.is_none();
+    // shapes on a located platform, wrong for a point or line platform; and it counts every
+    // active pair as an input, wrong where pairs share one.
+    let shared = m.chains.iter().any(|c| {
+        c.items
+            .iter()
+            .any(|i| matches!(i, ChainItem::Pair(p) if p.shared))
+    });
+    let by_rank = !general.is_empty() || frame.is_none() || shared;
     let mut links = Vec::new();
     if let Some(f) = frame {
         links.push(LinkFrame {
@@ -431,6 +456,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     }
     links.append(&mut added.links);
     let frame = frame.unwrap_or([0, 0, 0]);
+    let carried_by = carriers(&b, m, &added.points);
     let mut model = Model {
         name: m.name.clone(),
         slots: b.slots,
@@ -445,6 +471,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         home_pose: b.home_pose,
         general_points: added.points,
         general_scalars: added.scalars,
+        carried_by,
         auto_points: b.auto_points,
         general_home_inputs: added.home_inputs,
         dropped: Vec::new(),
@@ -454,9 +481,46 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     if !by_rank {
         check_system(&model, m)?;
     } else {
-        crate::model::reference::rank_at_home(&mut model, m)?;
+        crate::model::reference::rank_at_home(&mut model, m, &priority)?;
     }
     Ok(model)
+}
+
+/// For each intermediate point, the platform point nearest it at home if no base pivot is
+/// nearer.
+fn carriers(
+    b: &Builder,
+    m: &Mechanism,
+    points: &[(String, PointRef, usize)],
+) -> Vec<Option<usize>> {
+    let distance = |a: [f64; 3], c: [f64; 3]| linkage_geometry::distance(a, c);
+    let base: Vec<[f64; 3]> = m
+        .base
+        .iter()
+        .flat_map(|l| &l.pivots)
+        .map(|p| b.default_point(&p.coords))
+        .collect();
+    let platform: Vec<[f64; 3]> = b
+        .points
+        .iter()
+        .map(|p| b.home(PointRef::PlatformHome(p.local)))
+        .collect();
+    points
+        .iter()
+        .map(|(_, at, _)| {
+            let h = b.home(*at);
+            let to_base = base
+                .iter()
+                .map(|q| distance(h, *q))
+                .fold(f64::INFINITY, f64::min);
+            let (nearest, to_platform) = platform
+                .iter()
+                .enumerate()
+                .map(|(i, q)| (i, distance(h, *q)))
+                .min_by(|a, c| a.1.total_cmp(&c.1))?;
+            (to_platform < to_base).then_some(nearest)
+        })
+        .collect()
 }
 
 /// An added point's home position from those it derives from (NaN when degenerate: the
@@ -469,6 +533,38 @@ pub fn auto_point(a: &Auto, home: &dyn Fn(PointRef) -> [f64; 3]) -> [f64; 3] {
         }
     };
     r.unwrap_or([f64::NAN; 3])
+}
+
+/// A shared input reads one value at home: every pair it drives must agree (a slide's offset).
+fn consistent_home_inputs(
+    m: &Mechanism,
+    inputs: &[String],
+    home: &[(usize, f64)],
+) -> syn::Result<()> {
+    for (k, &(input, value)) in home.iter().enumerate() {
+        let Some(&(_, first)) = home[..k].iter().find(|(i, _)| *i == input) else {
+            continue;
+        };
+        if (value - first).abs() > 1e-9 * (1.0 + first.abs()) {
+            let name = &inputs[input];
+            // The second pair that declares it, for the span.
+            let span = m
+                .chains
+                .iter()
+                .flat_map(|c| &c.items)
+                .filter_map(|i| match i {
+                    ChainItem::Pair(p) => p.variables.iter().find(|v| *v == name),
+                    ChainItem::Link(_) => None,
+                })
+                .nth(1)
+                .map_or_else(|| m.name.span(), |v| v.span());
+            return Err(syn::Error::new(
+                span,
+                format!("shared input `{name}` reads {first} at home on one pair and {value} on another: the pairs it drives must agree at the declared configuration (same `offset`)"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Links an active pair attaches to the base (in any chain): explicit in that pair's inputs.
@@ -560,20 +656,21 @@ fn choose_frame(
         .fold(1e-300f64, |a, x| a.max(x.abs()));
     let tol = 1e-9 * scale * scale;
     if let Some(frame) = &platform.frame {
+        // Unknown or missing names are reported by the resolver.
         let idx: Vec<usize> = frame
             .iter()
-            .map(|f| {
-                platform
-                    .pivots
-                    .iter()
-                    .position(|p| p.name == *f)
-                    .expect("validated")
-            })
+            .filter_map(|f| platform.pivots.iter().position(|p| p.name == *f))
             .collect();
-        if area(idx[0], idx[1], idx[2]) <= tol {
+        let [a, b, c] = idx[..] else {
+            return Err((
+                platform.name.span(),
+                "`frame` names three pivots of the platform".to_string(),
+            ));
+        };
+        if area(a, b, c) <= tol {
             return Err((frame[0].span(), format!("the `frame` pivots `{}`, `{}`, `{}` are collinear: the platform needs three non-collinear pivots", frame[0], frame[1], frame[2])));
         }
-        return Ok(Some([idx[0], idx[1], idx[2]]));
+        return Ok(Some([a, b, c]));
     }
     // Largest triangle: the best-conditioned frame.
     let n = pts.len();

@@ -195,7 +195,13 @@ fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), Strin
 
 /// For the general model: checks that the declared configuration assembles, decides the mobility
 /// by the rank of the Jacobian there, and drops equations that depend on earlier ones.
-pub fn rank_at_home(model: &mut Model, m: &crate::front::ast::Mechanism) -> syn::Result<()> {
+/// `priority` orders the equations for the rank test (lower first, then in order): of two
+/// that depend on each other, the later in that order is left out.
+pub fn rank_at_home(
+    model: &mut Model,
+    m: &crate::front::ast::Mechanism,
+    priority: &[u8],
+) -> syn::Result<()> {
     let span = m
         .platform
         .as_ref()
@@ -213,7 +219,9 @@ pub fn rank_at_home(model: &mut Model, m: &crate::front::ast::Mechanism) -> syn:
     let (v, x, c) = configuration(model, model.home_pose).map_err(fail)?;
     assembled(model, &v, &x, &c).map_err(fail)?;
     let (n, inputs) = (model.unknowns.len(), model.inputs.len());
-    let ranked = crate::simplify::rank::at_home(&model.equations, n, inputs, &v, &x, &c);
+    let mut order: Vec<usize> = (0..model.equations.len()).collect();
+    order.sort_by_key(|&i| (priority.get(i).copied().unwrap_or(u8::MAX), i));
+    let ranked = crate::simplify::rank::at_home(&model.equations, &order, n, inputs, &v, &x, &c);
     let gk = crate::model::mobility::of(m);
     let rule = format!(
         "rank of ∂F/∂(v, x) at home: M = {n} + {inputs} − {} = {} (Grübler–Kutzbach says {})",

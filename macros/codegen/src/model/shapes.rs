@@ -34,6 +34,9 @@ pub enum Shape<'a> {
     },
     Driven {
         driver: &'a PairDecl,
+        axis: (&'a Ident, &'a Ident),
+        /// The lead of a helical driver.
+        lead: Option<&'a Coord>,
         link: &'a Ident,
         tip: &'a Ident,
         rod: &'a Ident,
@@ -42,6 +45,7 @@ pub enum Shape<'a> {
     },
     Swing {
         hinge: &'a PairDecl,
+        axis: (&'a Ident, &'a Ident),
         slider: &'a PairDecl,
         platform: &'a Ident,
     },
@@ -94,7 +98,9 @@ fn on_link(m: &Mechanism, link: &str, pivot: &Ident) -> bool {
 /// The axis `A -> B` of a pair must not be given by points that coincide at the declared geometry.
 fn check_axis(m: &Mechanism, p: &PairDecl) -> Result<(), (Span, String)> {
     let Some((a, b)) = &p.axis else { return Ok(()) };
-    let base = m.base.as_ref().expect("validated");
+    let Some(base) = m.base.as_ref() else {
+        return Ok(());
+    };
     let point = |n: &Ident| {
         base.pivots
             .iter()
@@ -233,7 +239,7 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
                     ),
                 )));
             }
-            if driver.axis.is_none() {
+            let Some((ax_a, ax_b)) = &driver.axis else {
                 return Err(Some((
                     driver.token.span(),
                     format!(
@@ -242,7 +248,7 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
                         c.name
                     ),
                 )));
-            }
+            };
             if driver.kind == PairKind::H && driver.lead.is_none() {
                 return Err(Some((
                     driver.token.span(),
@@ -264,6 +270,8 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
             match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
                 Some((rod, length)) => Ok(Shape::Driven {
                     driver,
+                    axis: (ax_a, ax_b),
+                    lead: driver.lead.as_ref(),
                     link: &link.name,
                     tip,
                     rod: &rod.name,
@@ -283,7 +291,7 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
             if hinge.active.is_some() || slider.active.is_none() {
                 return Err(unsupported());
             }
-            if hinge.axis.is_none() {
+            let Some((ax_a, ax_b)) = &hinge.axis else {
                 return Err(Some((
                     hinge.token.span(),
                     format!(
@@ -291,13 +299,14 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
                         c.name
                     ),
                 )));
-            }
+            };
             if role(n.links[0]) != Some(LinkRole::Base) {
                 return Err(unsupported());
             }
             single_variable(slider, c).map_err(Some)?;
             Ok(Shape::Swing {
                 hinge,
+                axis: (ax_a, ax_b),
                 slider,
                 platform: platform_center(s)?,
             })
@@ -369,13 +378,14 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
         }
         Shape::Driven {
             driver,
+            axis: (ax_a, ax_b),
+            lead,
             link,
             tip,
             rod,
             length,
             ..
         } => {
-            let (ax_a, ax_b) = driver.axis.as_ref().expect("classified");
             let a = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
             let bb = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
             let c0 = PointRef::Slots(b.pivot_slots(&link.to_string(), &tip.to_string()));
@@ -438,8 +448,7 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     } else {
                         o.clone()
                     };
-                    if kind == PairKind::H {
-                        let lead = driver.lead.as_ref().expect("classified");
+                    if let (PairKind::H, Some(lead)) = (kind, lead) {
                         let lead = b.scalar_constant(
                             &format!("{chain}.lead"),
                             lead,
@@ -465,8 +474,11 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                 inverse,
             }
         }
-        Shape::Swing { hinge, slider, .. } => {
-            let (ax_a, ax_b) = hinge.axis.as_ref().expect("classified");
+        Shape::Swing {
+            axis: (ax_a, ax_b),
+            slider,
+            ..
+        } => {
             let a_slots = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
             let b_slots = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
             let a = b.pivot_constants("base", &ax_a.to_string());

@@ -62,19 +62,30 @@ fn rank(rows: &[Vec<f64>]) -> usize {
     sv.iter().filter(|s| **s > 1e-9 * top).count()
 }
 
-pub fn at_home(equations: &[Expr], n: usize, m: usize, v: &[f64], x: &[f64], c: &[f64]) -> Ranked {
+/// `order`: the order in which equations are offered to the basis (a permutation of their
+/// indices); of dependent ones, the later is left out. `kept` is in the equations' own order.
+pub fn at_home(
+    equations: &[Expr],
+    order: &[usize],
+    n: usize,
+    m: usize,
+    v: &[f64],
+    x: &[f64],
+    c: &[f64],
+) -> Ranked {
     let vars_v: Vec<Var> = (0..n).map(Var::Unknown).collect();
     let mut vars_all = vars_v.clone();
     vars_all.extend((0..m).map(Var::Input));
     let b = rows(equations, &vars_v, v, x, c);
     let mut kept = Vec::new();
     let mut basis: Vec<Vec<f64>> = Vec::new();
-    for (i, row) in b.iter().enumerate() {
-        if let Some(q) = independent(&basis, row) {
+    for &i in order {
+        if let Some(q) = b.get(i).and_then(|row| independent(&basis, row)) {
             basis.push(q);
             kept.push(i);
         }
     }
+    kept.sort_unstable();
     let full = rows(equations, &vars_all, v, x, c);
     Ranked {
         kept,

@@ -220,6 +220,8 @@ pub struct Added {
     pub home_inputs: Vec<(usize, f64)>,
     /// Every named moving link and three of its points, for its pose.
     pub links: Vec<crate::model::LinkFrame>,
+    /// Where the intermediate links' Eq. 3 are among the equations.
+    pub link_equations: std::ops::Range<usize>,
 }
 
 /// Builds the equations of the general chains into `b`. `platform` gives the platform's points
@@ -239,6 +241,22 @@ pub fn model(
             let name = p.name.to_string();
             let e = b.pivot_constants("base", &name);
             repr.insert(name, Repr::Known(e));
+        }
+    }
+    // Points the model adds to the base (the axis tip of a slide on a base rail) are constants
+    // too, derived from the geometry.
+    for l in topo.links.iter().filter(|l| l.role == LinkRole::Base) {
+        for q in &l.members {
+            if !repr.contains_key(q) {
+                let at = topo.home[q];
+                let e = [0, 1, 2].map(|index| {
+                    b.constant(
+                        format!("{}_{q}", ["x", "y", "z"][index]),
+                        crate::model::Recipe::Coordinate { point: at, index },
+                    )
+                });
+                repr.insert(q.clone(), Repr::Known(e));
+            }
         }
     }
     for (name, e) in platform {
@@ -296,6 +314,7 @@ pub fn model(
         b.equations.extend(d.into_iter().filter(|e| e.degree() > 0));
     }
     // Eq. 3 for every moving intermediate link that is not explicit.
+    let links_from = b.equations.len();
     for l in &topo.links {
         let explicit = explicit_pairs.iter().any(|(_, n)| *n == l.name);
         if l.role != LinkRole::Intermediate || explicit {
@@ -312,6 +331,7 @@ pub fn model(
             .map(|c| b.scalar_constant(&format!("{}.length", l.name), c, format!("l_{}", l.name)));
         crate::model::rigid::link_equations(b, &l.name, &members, length);
     }
+    added.link_equations = links_from..b.equations.len();
     // Three points of every named moving link locate it.
     for l in &topo.links {
         if l.role != LinkRole::Intermediate || l.name.contains('#') {

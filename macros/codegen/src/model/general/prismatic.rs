@@ -1,5 +1,8 @@
 //! A prismatic pair between moving links (or a passive one on the base): the link after the
 //! pair (the slider) moves with the link before it (the rail) and slides along the rail's axis.
+//! A passive cylindrical pair is the same slide with the turn about the axis left free: only
+//! the slider's points on the axis follow the rail — two of them, added to the slider where it
+//! declares none, hold its axis on the rail's (Table I: C is P and R on one axis).
 //!
 //! The rail carries the axis: its origin O (the declared `axis = A -> B`'s A, or for a leg the
 //! centre of the joint before the pair) and the added point `O_T` one unit towards B (or towards
@@ -45,7 +48,8 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
         return Ok(());
     }
     let p = topo.joints[k].pair;
-    if p.kind != PairKind::P {
+    let cylinder = p.kind == PairKind::C && p.active.is_none();
+    if p.kind != PairKind::P && !cylinder {
         return Err(err(
             p.token.span(),
             format!(
@@ -72,7 +76,18 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
     topo.home.insert(name.clone(), tip);
     topo.add_member(rail, &origin);
     topo.add_member(rail, &name);
-    topo.joints[k].added.push(name);
+    topo.joints[k].added.push(name.clone());
+    if cylinder {
+        // The slider's own two points on the axis, where the rail's are at home.
+        let slider = topo.joints[k].after;
+        for (copy, at) in [
+            (format!("{name}_c0"), topo.home[&origin]),
+            (format!("{name}_c1"), tip),
+        ] {
+            topo.home.insert(copy.clone(), at);
+            topo.add_member(slider, &copy);
+        }
+    }
     Ok(())
 }
 
@@ -170,7 +185,13 @@ pub fn equations(
     let (eo, et) = (e(&origin), e(tip));
     let direction = expr::vsub(&et, &eo);
     let at = |q: &str| -> PointRef { topo.home[q] };
+    let cylinder = p.kind == PairKind::C;
     for q in &slider.members {
+        // The turn about a cylindrical pair's axis is free: its slider's other points follow
+        // from the slider's own Eq. 3.
+        if cylinder && off_axis(q) {
+            continue;
+        }
         let terms: Vec<[Expr; 3]> = if !off_axis(q) {
             let c: Vec<Expr> = (0..2)
                 .map(|index| {

@@ -1,27 +1,82 @@
-//! Name-level validation of a declaration. Never builds tokens; collects every mistake so the
-//! user sees them all in one build.
+//! Name resolution, the one pass after parsing: links, pivots and joint variables are entered
+//! in one table ([`Symbols`]), parameters and every name a declaration uses are checked against
+//! it, and every pair's arguments against the one table of what each pair kind takes
+//! (`Accepts`). Never builds tokens; collects every mistake into the shared [`Errors`] so that
+//! the user sees them all in one build. (The model still looks pivots up by name; with names
+//! global, which this pass enforces, that is unambiguous.)
+//!
+//! Pivot names are global: an axis `A -> B` names its pivots without their links, so one name
+//! on two links is an error here rather than a silent choice later. A joint variable names one
+//! input; several pairs may share it only where each declares it `active shared NAME`, and
+//! only if it means the same quantity (an angle, or a length) in each.
 
-use crate::front::ast::{ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
+use crate::front::ast::{ChainDecl, ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
+pub use crate::front::errors::Errors;
+use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;
 
-#[derive(Default)]
-pub struct Errors(Option<syn::Error>);
+/// What a joint variable measures.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Quantity {
+    /// A rotation (R, H, a C's first variable), radians.
+    Angle,
+    /// A slide (P, a C's second variable), the base frame's length unit.
+    Length,
+}
 
-impl Errors {
-    pub fn push(&mut self, span: proc_macro2::Span, msg: impl std::fmt::Display) {
-        let e = syn::Error::new(span, msg);
-        match &mut self.0 {
-            Some(all) => all.combine(e),
-            None => self.0 = Some(e),
+impl Quantity {
+    fn describe(self) -> &'static str {
+        match self {
+            Quantity::Angle => "an angle",
+            Quantity::Length => "a length",
         }
     }
 
-    pub fn finish(self) -> syn::Result<()> {
-        match self.0 {
-            Some(e) => Err(e),
-            None => Ok(()),
+    /// What the `k`-th joint variable of an active pair of this kind measures.
+    fn of(kind: PairKind, k: usize) -> Quantity {
+        match (kind, k) {
+            (PairKind::P, _) | (PairKind::C, 1) => Quantity::Length,
+            _ => Quantity::Angle,
         }
+    }
+}
+
+/// A pivot: its name and the link (index into [`Symbols::links`]) that declares it.
+pub struct PivotSymbol {
+    pub name: Ident,
+    pub link: usize,
+}
+
+/// A joint input: the pairs it drives (chain name and the variable's token).
+pub struct InputSymbol {
+    pub name: Ident,
+    pub quantity: Quantity,
+    pub shared: bool,
+    pub uses: Vec<(String, Span)>,
+}
+
+/// The resolved names of a declaration: links (base, platform, then the others, in declaration
+/// order), pivots, and inputs in chain order (the order of `x`).
+#[derive(Default)]
+pub struct Symbols {
+    pub links: Vec<Ident>,
+    pub pivots: Vec<PivotSymbol>,
+    pub inputs: Vec<InputSymbol>,
+    pivot_index: HashMap<String, usize>,
+}
+
+impl Symbols {
+    /// The pivot called `name`, if one is declared.
+    pub fn pivot(&self, name: &Ident) -> Option<&PivotSymbol> {
+        self.pivot_index
+            .get(&name.to_string())
+            .and_then(|&i| self.pivots.get(i))
+    }
+
+    /// Whether any input drives several pairs.
+    pub fn has_shared_inputs(&self) -> bool {
+        self.inputs.iter().any(|i| i.uses.len() > 1)
     }
 }
 
@@ -37,8 +92,33 @@ impl Mechanism {
         self.all_links().find(|l| l.name == *name)
     }
 
-    pub fn validate(&self) -> syn::Result<()> {
-        let mut errors = Errors::default();
+    /// Resolves every name and checks every pair; the mistakes go to `errors`.
+    pub fn resolve(&self, errors: &mut Errors) -> Symbols {
+        let mut symbols = Symbols::default();
+        for link in self.all_links() {
+            let id = symbols.links.len();
+            symbols.links.push(link.name.clone());
+            for p in &link.pivots {
+                match symbols.pivot_index.get(&p.name.to_string()) {
+                    // The same name twice on one link is reported below.
+                    Some(&first) if symbols.pivots[first].link != id => errors.push(
+                        p.name.span(),
+                        format!(
+                            "pivot `{}` is declared on `{}` and on `{}`: pivot names are global (an axis `A -> B` names its pivots without their links); rename one",
+                            p.name, symbols.links[symbols.pivots[first].link], link.name
+                        ),
+                    ),
+                    Some(_) => {}
+                    None => {
+                        symbols.pivot_index.insert(p.name.to_string(), symbols.pivots.len());
+                        symbols.pivots.push(PivotSymbol {
+                            name: p.name.clone(),
+                            link: id,
+                        });
+                    }
+                }
+            }
+        }
         if self.base.is_none() {
             errors.push(self.name.span(), "mechanism has no `base { ... }` link");
         }
@@ -48,30 +128,20 @@ impl Mechanism {
         if self.chains.is_empty() {
             errors.push(self.name.span(), "mechanism has no `chain`: declare at least one `chain NAME = base - ... - platform;`");
         }
-        unique(
-            self.params.iter().map(|p| &p.name),
-            "parameter",
-            &mut errors,
-        );
-        unique(self.all_links().map(|l| &l.name), "link", &mut errors);
-        unique(self.chains.iter().map(|c| &c.name), "chain", &mut errors);
-        let variables = self.chains.iter().flat_map(|c| {
-            c.items.iter().filter_map(|i| match i {
-                ChainItem::Pair(p) => Some(p.variables.iter()),
-                ChainItem::Link(_) => None,
-            })
-        });
-        unique(variables.flatten(), "joint variable", &mut errors);
+        unique(self.params.iter().map(|p| &p.name), "parameter", errors);
+        unique(self.all_links().map(|l| &l.name), "link", errors);
+        unique(self.chains.iter().map(|c| &c.name), "chain", errors);
+        symbols.inputs = inputs(&self.chains, errors);
 
         for link in self.all_links() {
-            unique(link.pivots.iter().map(|p| &p.name), "pivot", &mut errors);
+            unique(link.pivots.iter().map(|p| &p.name), "pivot", errors);
             for pivot in &link.pivots {
                 for c in &pivot.coords {
-                    self.check_coord(c, &mut errors);
+                    self.check_coord(c, errors);
                 }
             }
             if let Some(c) = &link.length {
-                self.check_coord(c, &mut errors);
+                self.check_coord(c, errors);
             }
             if let Some(frame) = &link.frame {
                 if frame.len() != 3 {
@@ -91,7 +161,7 @@ impl Mechanism {
             }
         }
         for chain in &self.chains {
-            self.check_chain(chain, &mut errors);
+            self.check_chain(chain, errors);
         }
         for link in &self.links {
             let used = self.chains.iter().any(|c| {
@@ -109,6 +179,13 @@ impl Mechanism {
                 );
             }
         }
+        symbols
+    }
+
+    /// [`Mechanism::resolve`] on its own, for callers that only want the verdict.
+    pub fn validate(&self) -> syn::Result<()> {
+        let mut errors = Errors::default();
+        self.resolve(&mut errors);
         errors.finish()
     }
 
@@ -400,6 +477,62 @@ fn neighbour(items: &[ChainItem], k: usize, forward: bool) -> Option<&Ident> {
         ChainItem::Link(l) => Some(l),
         ChainItem::Pair(_) => None,
     }
+}
+
+/// The inputs in chain order, each with the pairs it drives; a name used by several pairs must
+/// be `shared` at each, and mean the same quantity.
+fn inputs(chains: &[ChainDecl], errors: &mut Errors) -> Vec<InputSymbol> {
+    let mut out: Vec<InputSymbol> = Vec::new();
+    let mut shared_at: Vec<Vec<bool>> = Vec::new();
+    for c in chains {
+        for item in &c.items {
+            let ChainItem::Pair(p) = item else { continue };
+            if p.active.is_none() {
+                continue;
+            }
+            for (k, v) in p.variables.iter().enumerate() {
+                let quantity = Quantity::of(p.kind, k);
+                let shared = p.shared;
+                match out.iter().position(|i| i.name == *v) {
+                    None => {
+                        out.push(InputSymbol {
+                            name: v.clone(),
+                            quantity,
+                            shared,
+                            uses: vec![(c.name.to_string(), v.span())],
+                        });
+                        shared_at.push(vec![shared]);
+                    }
+                    Some(i) => {
+                        let first = &out[i];
+                        let letter = p.kind.letter();
+                        if !(shared && first.shared) {
+                            errors.push(v.span(), format!(
+                                "duplicate joint variable `{v}`: it drives a pair in chain `{}` already; an input that drives several pairs is declared `shared` at each, e.g. `{letter}(active shared {v}, ...)`",
+                                first.uses[0].0
+                            ));
+                        } else if quantity != first.quantity {
+                            errors.push(v.span(), format!(
+                                "shared input `{v}` is {} in chain `{}` but {} here: an input shared by several pairs measures the same quantity in each",
+                                first.quantity.describe(), first.uses[0].0, quantity.describe()
+                            ));
+                        }
+                        out[i].uses.push((c.name.to_string(), v.span()));
+                        shared_at[i].push(shared);
+                    }
+                }
+            }
+        }
+    }
+    for i in &out {
+        if i.shared && i.uses.len() == 1 {
+            errors.push(i.uses[0].1, format!(
+                "input `{}` is declared `shared` but drives one pair only: `shared` is for an input that several pairs share (declare it at each of them)",
+                i.name
+            ));
+        }
+    }
+    out
 }
 
 fn unique<'a>(names: impl Iterator<Item = &'a Ident>, what: &str, errors: &mut Errors) {

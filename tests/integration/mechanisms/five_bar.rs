@@ -1,0 +1,98 @@
+//! A planar five-bar declared in space, whose output is a point: against circle intersection.
+
+use super::check_inverse;
+use linkage::{arc_length, det_b, Mechanism, Options, Status};
+use linkage_tests::{check_factorization, check_jacobians, Rng};
+
+linkage::mechanism! {
+    /// A planar five-bar: two cranks driven about vertical axes, two distal links meeting at the
+    /// output point P (the platform is that point).
+    pub struct FiveBar;
+    params { crank = 100.0, distal = 150.0 }
+    base { A1 = [-40.0, 0.0, 0.0], A1z = [-40.0, 0.0, 1.0], A2 = [40.0, 0.0, 0.0], A2z = [40.0, 0.0, 1.0] }
+    platform(home = [0.0, 0.0, 0.0, 0.0, crank * sin(pi / 3.0) + 120.0, 0.0]) { P = [0.0, 0.0, 0.0] }
+    link crank1 { C1 = [-40.0 - crank * cos(pi / 3.0), crank * sin(pi / 3.0), 0.0], C1z = [-40.0 - crank * cos(pi / 3.0), crank * sin(pi / 3.0), 1.0] }
+    link crank2 { C2 = [40.0 + crank * cos(pi / 3.0), crank * sin(pi / 3.0), 0.0], C2z = [40.0 + crank * cos(pi / 3.0), crank * sin(pi / 3.0), 1.0] }
+    link distal1 { }
+    link distal2 { }
+    chain left = base - R(active q1, axis = A1 -> A1z) - crank1 - R(passive, axis = C1 -> C1z) - distal1 - S(P) - platform;
+    chain right = base - R(active q2, axis = A2 -> A2z) - crank2 - R(passive, axis = C2 -> C2z) - distal2 - S(P) - platform;
+}
+
+/// The output point by circle intersection: the root on the same side of C1C2 as `near`.
+fn five_bar_point(q: [f64; 2], near: [f64; 2]) -> Option<[f64; 2]> {
+    let (r, l) = (100.0, 150.0);
+    let a1 = -40.0 - r * (std::f64::consts::PI / 3.0).cos();
+    let s = r * (std::f64::consts::PI / 3.0).sin();
+    // C_i at home, rotated by q_i about A_i.
+    let rot = |c: [f64; 2], a: [f64; 2], t: f64| {
+        let (dx, dy) = (c[0] - a[0], c[1] - a[1]);
+        [
+            a[0] + dx * t.cos() - dy * t.sin(),
+            a[1] + dx * t.sin() + dy * t.cos(),
+        ]
+    };
+    let c1 = rot([a1, s], [-40.0, 0.0], q[0]);
+    let c2 = rot([-a1, s], [40.0, 0.0], q[1]);
+    let d = ((c2[0] - c1[0]).powi(2) + (c2[1] - c1[1]).powi(2)).sqrt();
+    if d > 2.0 * l {
+        return None;
+    }
+    let h = (l * l - d * d / 4.0).sqrt();
+    let m = [(c1[0] + c2[0]) / 2.0, (c1[1] + c2[1]) / 2.0];
+    let n = [-(c2[1] - c1[1]) / d, (c2[0] - c1[0]) / d];
+    let p1 = [m[0] + h * n[0], m[1] + h * n[1]];
+    let p2 = [m[0] - h * n[0], m[1] - h * n[1]];
+    let dist = |p: [f64; 2]| (p[0] - near[0]).powi(2) + (p[1] - near[1]).powi(2);
+    Some(if dist(p1) <= dist(p2) { p1 } else { p2 })
+}
+
+#[test]
+fn five_bar_has_two_inputs_and_exact_jacobians() {
+    let fb = FiveBar::new();
+    assert_eq!(FiveBar::INPUTS, ["q1", "q2"]);
+    let start = fb.home_start().unwrap();
+    check_jacobians(&fb, &start.v, &start.x);
+    check_factorization(&fb, &start.v, &start.x);
+    assert!(FiveBar::LISTING.contains("rank of ∂F/∂(v, x) at home"));
+}
+
+#[test]
+fn five_bar_forward_kinematics_matches_circle_intersection() {
+    let fb = FiveBar::new();
+    let start = fb.home_start().unwrap();
+    let home = [start.v[0], start.v[1]];
+    let mut rng = Rng::new(11);
+    let mut solved = 0;
+    for _ in 0..60 {
+        let q = [rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)];
+        let sol = arc_length(&fb, &start, &q, &Options::TIGHT).unwrap();
+        if sol.status != Status::Converged {
+            continue;
+        }
+        solved += 1;
+        let truth = five_bar_point(q, home).unwrap();
+        assert!(
+            (sol.v[0] - truth[0]).abs() < 1e-7 && (sol.v[1] - truth[1]).abs() < 1e-7,
+            "q = {q:?}: {:?} vs {truth:?}",
+            &sol.v[..2]
+        );
+        assert!(sol.v[2].abs() < 1e-9, "the output stays in its plane");
+        // Each crank has turned by its input about its vertical axis.
+        for (link, angle) in [("crank1", q[0]), ("crank2", q[1])] {
+            let i = FiveBar::LINKS.iter().position(|l| *l == link).unwrap();
+            let pose = fb
+                .link_pose(i, &sol.v, &q)
+                .expect("a crank has three points");
+            assert!(
+                (pose.euler()[0] - angle).abs() < 1e-9,
+                "{link}: {:?}",
+                pose.euler()
+            );
+        }
+        assert!(det_b(&fb, &sol.v, &q) * start.det > 0.0);
+        // The numerical inverse (Newton on the chains, from home).
+        check_inverse(&fb, &sol.v, &q, &FiveBar::HOME_INPUTS, 1e-9);
+    }
+    assert!(solved >= 50, "{solved} of 60 solved");
+}

@@ -1,0 +1,62 @@
+//! Mechanisms the general model declares, one file each, checked end to end: the generated
+//! Jacobians against finite differences, forward kinematics (by continuation from home)
+//! against an independent inverse or forward kinematics in closed form, the mobility and the
+//! rule that decided it, each mechanism's invariant, and distinct assembly modes reached from
+//! different declared homes of the same machine.
+
+mod delta;
+mod five_bar;
+mod pcs;
+mod planar_rpr;
+mod prs;
+mod rrs;
+mod spherical_wrist;
+mod translational_upu;
+
+use linkage::Mechanism;
+
+/// The inverse kinematics gives `x` back (to `tol`, from `reference`): from the solved unknowns,
+/// and from the platform's points alone (the unknowns of the links between zeroed, as
+/// `unknowns_from_pose` leaves them).
+pub fn check_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    reference: &[f64; M],
+    tol: f64,
+) {
+    let back = sys.inverse(v, reference).unwrap();
+    assert!(
+        linkage_tests::max_diff(&back, x) < tol,
+        "{}: {back:?} vs {x:?}",
+        S::NAME
+    );
+    let mut platform_only = *v;
+    for q in platform_only[3 * S::POINTS.len()..].iter_mut() {
+        *q = 0.0;
+    }
+    let back = sys.inverse(&platform_only, reference).unwrap();
+    assert!(
+        linkage_tests::max_diff(&back, x) < tol,
+        "{} from the platform alone: {back:?} vs {x:?}",
+        S::NAME
+    );
+}
+
+/// The `mobility:` line of a listing.
+pub fn mobility_line(listing: &str) -> &str {
+    listing
+        .lines()
+        .find(|l| l.starts_with("mobility:"))
+        .unwrap_or("")
+}
+
+/// Panics unless `r` is the identity to `tol`.
+pub fn identity_within(r: &[[f64; 3]; 3], tol: f64) {
+    for (i, row) in r.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            let id = if i == j { 1.0 } else { 0.0 };
+            assert!((x - id).abs() <= tol, "the platform turned: {r:?}");
+        }
+    }
+}
