@@ -35,7 +35,7 @@ pub fn operations_doc(
     let fill = plan.lu.filled.iter().flatten().filter(|&&x| x).count()
         - plan.lu.initial.iter().flatten().filter(|&&x| x).count();
     format!(
-        "Generated code: F(v, x) {} additions, {} multiplications, {} sin/cos; ∂F/∂v ({} nonzeros) {} additions, {} multiplications, {} sin/cos; factorisation of ∂F/∂v: {} static pivots eliminated in {} additions and {} multiplications, then the {k}×{k} complement factored in a pivot order fixed at generation time for its sparsity ({} nonzeros, {fill} fill-ins; {fma} multiply-adds, {mul} multiplications, {div} reciprocals), redone with partial pivoting when a multiplier exceeds {MAX_MULTIPLIER}.",
+        "Generated code: F(v, x) {} additions, {} multiplications, {} sin/cos; ∂F/∂v ({} nonzeros) {} additions, {} multiplications, {} sin/cos; factorisation of ∂F/∂v ({} rows with a common numeric factor divided out): {} static pivots eliminated in {} additions and {} multiplications, then the {k}×{k} complement factored in a pivot order fixed at generation time for its sparsity ({} nonzeros, {fill} fill-ins; {fma} multiply-adds, {mul} multiplications, {div} reciprocals), redone with partial pivoting when a multiplier exceeds {MAX_MULTIPLIER}.",
         f.0,
         f.1,
         f.2,
@@ -43,6 +43,7 @@ pub fn operations_doc(
         j.0,
         j.1,
         j.2,
+        plan.row_scale.iter().filter(|&&s| s != 1.0).count(),
         plan.statics.len(),
         factor.0,
         factor.1,
@@ -404,17 +405,38 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         .map(|(&c, &r)| (c, r))
         .collect();
     let back = plan.statics.iter().enumerate().map(|(s, &(r, c, p))| {
-        let terms = plan.cols.iter().filter_map(|&j| {
-            statics.x.get(&(s, j)).map(|x| {
-                let at = solution_at[&j];
-                match x.value().times_code(quote!(w[#at])) {
-                    (false, t) => quote!(- #t),
-                    (true, t) => quote!(+ #t),
-                }
+        // x_c = (b_r − Σ X x) / p; for p = −1 written Σ X x − b_r, without a negation.
+        let products: Vec<(bool, TokenStream)> = plan
+            .cols
+            .iter()
+            .filter_map(|&j| {
+                statics.x.get(&(s, j)).map(|x| {
+                    let at = solution_at[&j];
+                    x.value().times_code(quote!(w[#at]))
+                })
             })
+            .collect();
+        if p == -1.0 {
+            let sum = products
+                .iter()
+                .enumerate()
+                .map(|(k, (neg, t))| match (k, neg) {
+                    (0, false) => quote!(#t),
+                    (0, true) => quote!(-#t),
+                    (_, false) => quote!(+ #t),
+                    (_, true) => quote!(- #t),
+                });
+            return if products.is_empty() {
+                quote!(b[#c] = -w[#r];)
+            } else {
+                quote!(b[#c] = #(#sum)* - w[#r];)
+            };
+        }
+        let terms = products.iter().map(|(neg, t)| match neg {
+            false => quote!(- #t),
+            true => quote!(+ #t),
         });
         match p {
-            -1.0 => quote!(b[#c] = -(w[#r] #(#terms)*);),
             1.0 => quote!(b[#c] = w[#r] #(#terms)*;),
             _ => {
                 let inv = lit(1.0 / p);
