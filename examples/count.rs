@@ -10,7 +10,8 @@
 //!
 //! `nr-normal` and `nr-all`: Newton–Raphson on the Stewart platform from home to every normal
 //! (every) row of a `stewart table-v --export` CSV, one pass; it prints the number of solves and
-//! Newton iterations to divide the count by. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
+//! Newton iterations to divide the count by. `nr-rps`, `nr-rss_hexapod`: the same from the
+//! home configurations of the other examples to 100 inputs around it. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Mechanism, Options, Start};
@@ -38,6 +39,26 @@ fn main() -> Result<(), String> {
                 rows.len()
             );
         }
+        "nr-rps" => {
+            let r = rps::Rps3::new();
+            let start = rps::home_start(&r).map_err(|e| e.to_string())?;
+            let rows = around(&start.x, 10.0);
+            let (ok, iterations) = measure_nr(&r, &start, &rows);
+            println!(
+                "rps NR from home, legs within 10 mm of home: {} solves, {ok} ok, {iterations} iterations",
+                rows.len()
+            );
+        }
+        "nr-rss_hexapod" => {
+            let h = rss_hexapod::RssHexapod::new();
+            let start = rss_hexapod::home_start(&h).map_err(|e| e.to_string())?;
+            let rows = around(&start.x, 0.15);
+            let (ok, iterations) = measure_nr(&h, &start, &rows);
+            println!(
+                "rss_hexapod NR from home, cranks within 0.15 rad of home: {} solves, {ok} ok, {iterations} iterations",
+                rows.len()
+            );
+        }
         "stewart" => kernels("stewart", &sys, &start),
         "rps" => {
             let r = rps::Rps3::new();
@@ -49,10 +70,17 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-rps|nr-rss_hexapod|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
+}
+
+/// 100 inputs within `by` of `home`, spread deterministically.
+fn around<const M: usize>(home: &[f64; M], by: f64) -> Vec<[f64; M]> {
+    (1..=100)
+        .map(|k| std::array::from_fn(|j| home[j] + by * (1.3 * k as f64 + 0.7 * j as f64).sin()))
+        .collect()
 }
 
 /// Leg lengths, one row per point.
@@ -80,7 +108,11 @@ fn points(path: &str) -> Result<(Legs, Legs), String> {
 }
 
 #[inline(never)]
-fn measure_nr(sys: &stewart::Stewart, start: &Start<18, 6>, rows: &[[f64; 6]]) -> (usize, u64) {
+fn measure_nr<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    rows: &[[f64; M]],
+) -> (usize, u64) {
     let (mut ok, mut iterations) = (0, 0);
     for x in rows {
         if let Ok(sol) = newton_raphson(sys, start, black_box(x), &Options::TIGHT) {
