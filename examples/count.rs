@@ -11,7 +11,9 @@
 //! `nr-normal` and `nr-all`: Newton–Raphson on the Stewart platform from home to every normal
 //! (every) row of a `stewart table-v --export` CSV, one pass; it prints the number of solves and
 //! Newton iterations to divide the count by. `nr-rps`, `nr-rss_hexapod`: the same from the
-//! home configurations of the other examples to 100 inputs around it. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
+//! home configurations of the other examples to 100 inputs around it. `ph-all`: pseudo-arc-length
+//! continuation from home to every row. `track TRAJECTORY.csv`:
+//! the `Tracker` over every sample of a `stewart trajectory` CSV. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Mechanism, Options, Start};
@@ -59,6 +61,20 @@ fn main() -> Result<(), String> {
                 rows.len()
             );
         }
+        "ph-all" => {
+            let (_, all) = points(&path)?;
+            let (ok, steps) = measure_ph(&sys, &start, &all);
+            println!(
+                "stewart PH (arc length) from home, all points: {} solves, {ok} ok, {steps} steps accepted and rejected",
+                all.len()
+            );
+        }
+        "track" => {
+            // A `stewart trajectory` CSV: t_s, L1…L6, …
+            let rows = legs_after_first_column(&path)?;
+            let (ok, samples) = measure_track(&sys, &start, &rows);
+            println!("stewart tracker: {samples} samples, {ok} ok");
+        }
         "stewart" => kernels("stewart", &sys, &start),
         "rps" => {
             let r = rps::Rps3::new();
@@ -70,7 +86,7 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|nr-rps|nr-rss_hexapod|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-rps|nr-rss_hexapod|ph-all|track|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
@@ -80,6 +96,25 @@ fn main() -> Result<(), String> {
 fn around<const M: usize>(home: &[f64; M], by: f64) -> Vec<[f64; M]> {
     (1..=100)
         .map(|k| std::array::from_fn(|j| home[j] + by * (1.3 * k as f64 + 0.7 * j as f64).sin()))
+        .collect()
+}
+
+/// Columns 2 to 7 of every row after the header.
+fn legs_after_first_column(path: &str) -> Result<Legs, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    text.lines()
+        .skip(1)
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            let mut x = [0.0; 6];
+            for (j, v) in x.iter_mut().enumerate() {
+                *v = fields
+                    .get(j + 1)
+                    .and_then(|f| f.trim().parse().ok())
+                    .ok_or_else(|| format!("{path}: bad row {line}"))?;
+            }
+            Ok(x)
+        })
         .collect()
 }
 
@@ -99,7 +134,7 @@ fn points(path: &str) -> Result<(Legs, Legs), String> {
                 .and_then(|f| f.trim().parse().ok())
                 .ok_or_else(|| format!("{path}: bad row {line}"))?;
         }
-        if fields[0] == "normal" {
+        if fields.first() == Some(&"normal") {
             normal.push(x);
         }
         all.push(x);
@@ -121,6 +156,32 @@ fn measure_nr<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
     }
     (ok, iterations)
+}
+
+#[inline(never)]
+fn measure_ph(sys: &stewart::Stewart, start: &Start<18, 6>, rows: &[[f64; 6]]) -> (usize, u64) {
+    let (mut ok, mut steps) = (0, 0);
+    for x in rows {
+        if let Ok(sol) = linkage::arc_length(sys, start, black_box(x), &Options::TIGHT) {
+            ok += usize::from(sol.is_ok());
+            steps += u64::from(sol.steps_accepted + sol.steps_rejected);
+        }
+    }
+    (ok, steps)
+}
+
+#[inline(never)]
+fn measure_track(
+    sys: &stewart::Stewart,
+    start: &Start<18, 6>,
+    rows: &[[f64; 6]],
+) -> (usize, usize) {
+    let mut tracker = linkage::Tracker::new(sys.clone(), *start, Options::TIGHT);
+    let ok = rows
+        .iter()
+        .filter(|x| tracker.update(black_box(x)).is_ok())
+        .count();
+    (ok, rows.len())
 }
 
 fn kernels<S: Mechanism<N, M>, const N: usize, const M: usize>(
