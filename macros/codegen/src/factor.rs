@@ -13,6 +13,11 @@
 //! columns: B permuted to [[D, X], [Y, Z]] with D = diag(p_k), so
 //! det B = sign · Π p_k · det(Z − Y D⁻¹ X), and the solve is forward elimination of the static
 //! rows, a solve with the complement's factors, and back-substitution of the static unknowns.
+//!
+//! Before all this, a row whose entries share a numeric factor s (the 2 of a squared distance's
+//! derivative) is divided by it: B = diag(s) B', so det B = Π s · det B' and the solve divides
+//! that row's right-hand side by s, once, instead of multiplying s into every entry at every
+//! factorisation.
 
 use crate::expr::Expr;
 
