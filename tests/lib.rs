@@ -144,35 +144,182 @@ pub fn stewart_pose_samples(
     out
 }
 
-/// The generated factorisation of B against dense LU: same determinant, same solution.
+/// The generated factorisation of B against dense LU with partial pivoting, at any
+/// conditioning: the generated solve is backward stable (‖B y − b‖∞ ≤ 1e-12 (‖B‖∞ ‖y‖∞ +
+/// ‖b‖∞)) and its determinant agrees with dense LU's to what the condition number κ∞(B) allows
+/// (relative difference ≤ 1e-12 κ∞), with the same sign wherever that bound is below ½. Where
+/// dense LU finds B exactly singular nothing is asserted. Returns the factor storage, or
+/// `None` when B was singular to dense LU.
 pub fn check_factorization<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
     x: &[f64; M],
-) {
-    let mut fac = sys.new_factor();
-    let info = sys.factor(v, x, &mut fac).expect("nonsingular");
+) -> Option<S::Factor> {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     let dense = b;
-    let piv = linkage::lu::factor::<N, _>(&mut b).expect("nonsingular");
+    let piv = linkage::lu::factor_dense(&mut b)?;
+    let inf_norm = |m: &[[f64; N]; N]| {
+        m.iter()
+            .map(|row| row.iter().map(|a| a.abs()).sum::<f64>())
+            .fold(0.0, f64::max)
+    };
+    let mut inverse = [[0.0; N]; N];
+    for j in 0..N {
+        let mut e = [0.0; N];
+        e[j] = 1.0;
+        linkage::lu::solve_dense(&b, &piv, &mut e);
+        for i in 0..N {
+            inverse[i][j] = e[i];
+        }
+    }
+    let kappa = inf_norm(&dense) * inf_norm(&inverse);
+    let bound = 1e-12 * kappa;
+    let mut fac = sys.new_factor();
+    let Some(info) = sys.factor(v, x, &mut fac) else {
+        // Singular to rounding, found by other pivots: as much an answer as dense LU's.
+        assert!(
+            bound >= 0.5,
+            "{}: the generated factorisation calls B singular where dense LU does not (κ∞ {kappa:e})",
+            S::NAME
+        );
+        return None;
+    };
     assert!(
-        (info.det - piv.det).abs() <= 1e-9 * piv.det.abs(),
-        "{}: det {} vs {}",
+        (info.det - piv.det).abs() <= bound.max(1e-12) * piv.det.abs(),
+        "{}: det {:e} vs {:e} (κ∞ {kappa:e})",
         S::NAME,
         info.det,
         piv.det
     );
+    if bound < 0.5 {
+        assert_eq!(
+            info.det.signum(),
+            piv.det.signum(),
+            "{}: det sign (κ∞ {kappa:e})",
+            S::NAME
+        );
+    }
+    assert!(
+        info.pivot_ratio > 0.0 && info.pivot_ratio <= 1.0,
+        "{}: pivot ratio {}",
+        S::NAME,
+        info.pivot_ratio
+    );
     let rhs: [f64; N] = std::array::from_fn(|i| (i as f64 * 0.7).sin() * 100.0);
     let mut y = rhs;
     sys.solve(&fac, &mut y);
+    let norm = |a: &[f64; N]| a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let scale = inf_norm(&dense) * norm(&y) + norm(&rhs);
     for r in 0..N {
         let back: f64 = (0..N).map(|c| dense[r][c] * y[c]).sum();
         assert!(
-            (back - rhs[r]).abs() <= 1e-9 * (1.0 + rhs[r].abs()),
-            "{}: row {r}: {back} vs {}",
+            (back - rhs[r]).abs() <= 1e-12 * scale,
+            "{}: row {r}: {back} vs {} (κ∞ {kappa:e})",
             S::NAME,
             rhs[r]
         );
     }
+    Some(fac)
+}
+
+/// Unknowns at which B is ever closer to singular: [`toward_zero`] of det B.
+pub fn toward_singular<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    d: &[f64; N],
+    x: &[f64; M],
+    steps: usize,
+) -> Vec<[f64; N]> {
+    toward_zero(&|v| linkage::det_b(sys, v, x), v, d, steps)
+}
+
+/// Points ever closer to a zero of `f` along `v + t d`, t ∈ [0, 1]: the first change of sign
+/// (checked at 64 steps), then `steps` bisections of it; every midpoint. Empty if `f` keeps its
+/// sign.
+pub fn toward_zero<const N: usize>(
+    f: &dyn Fn(&[f64; N]) -> f64,
+    v: &[f64; N],
+    d: &[f64; N],
+    steps: usize,
+) -> Vec<[f64; N]> {
+    let at = |t: f64| -> [f64; N] { std::array::from_fn(|i| v[i] + t * d[i]) };
+    let first = f(&at(0.0));
+    let Some(end) = (1..=64)
+        .map(|k| k as f64 / 64.0)
+        .find(|&t| f(&at(t)) * first <= 0.0)
+    else {
+        return Vec::new();
+    };
+    let (mut lo, mut hi) = (end - 1.0 / 64.0, end);
+    let mut out = Vec::new();
+    for _ in 0..steps {
+        let mid = 0.5 * (lo + hi);
+        out.push(at(mid));
+        if f(&at(mid)) * first > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    out
+}
+
+/// [`check_factorization`] where one entry of B after another vanishes while B stays regular,
+/// along the line `v + t d` at inputs `x`: a pivot fixed at generation time may be one of them,
+/// and then its multipliers grow without bound unless the fallback takes over. `(fixed,
+/// fallback)` as [`near_singularities`].
+pub fn vanishing_entries<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    d: &[f64; N],
+    x: &[f64; M],
+) -> (usize, usize)
+where
+    S::Factor: std::ops::Index<usize, Output = f64>,
+{
+    let (mut fixed, mut fallback) = (0, 0);
+    for k in 0..S::NNZ {
+        let entry = |v: &[f64; N]| {
+            let mut values = vec![0.0; S::NNZ];
+            sys.jacobian(v, x, &mut values);
+            values[k]
+        };
+        for v in toward_zero(&entry, v, d, 40) {
+            match check_factorization(sys, &v, x) {
+                Some(f) if f[0] == 0.0 => fixed += 1,
+                Some(_) => fallback += 1,
+                None => {}
+            }
+        }
+    }
+    (fixed, fallback)
+}
+
+/// [`check_factorization`] on a line from `start` (unknowns moved by up to `by` along
+/// `dv[..N]`, inputs by up to `dx` along `dv[32 − M..]`) toward a singularity of B, at ever
+/// closer points; `(fixed, fallback)`: how many took the pivot order fixed at generation time
+/// and how many the partial-pivoting fallback.
+pub fn near_singularities<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &linkage::Start<N, M>,
+    dv: &[f64; 32],
+    by: f64,
+    dx: f64,
+) -> (usize, usize)
+where
+    S::Factor: std::ops::Index<usize, Output = f64>,
+{
+    let d: [f64; N] = std::array::from_fn(|i| by * dv[i]);
+    let x: [f64; M] = std::array::from_fn(|j| start.x[j] + dx * dv[31 - j]);
+    let (mut fixed, mut fallback) = (0, 0);
+    for v in toward_singular(sys, &start.v, &d, &x, 48) {
+        // Entry 0 of the generated storage says which factors are valid (0: the fixed order).
+        match check_factorization(sys, &v, &x) {
+            Some(f) if f[0] == 0.0 => fixed += 1,
+            Some(_) => fallback += 1,
+            None => {}
+        }
+    }
+    (fixed, fallback)
 }

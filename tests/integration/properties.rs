@@ -7,7 +7,10 @@ use linkage_examples::stewart::{
     find_start, legs_for_pose, SixSix, Stewart, StewartGeneral, HOME_LEGS,
 };
 use linkage_examples::{rps, rss_hexapod};
-use linkage_tests::{check_factorization, check_jacobians, max_diff, straight_path_truth};
+use linkage_tests::{
+    check_factorization, check_jacobians, max_diff, near_singularities, straight_path_truth,
+    toward_singular,
+};
 use proptest::prelude::*;
 
 /// Table III's joints moved by up to `by` mm in x and y, and `lift` mm in z.
@@ -149,5 +152,26 @@ proptest! {
         check_factorization(&s, &v, &HOME_LEGS);
         let c = Stewart::with_joints(&base, &platform.map(|p| [p[0], p[1], 0.0])).unwrap();
         check_factorization(&c, &v, &HOME_LEGS);
+        // Toward a singularity of B along a random line: the pivots fixed at generation time
+        // meet small pivots and large multipliers there, and the fallback takes over.
+        let d: [f64; 18] = std::array::from_fn(|i| 4.0 * dv[31 - i]);
+        for v in toward_singular(&s, &v, &d, &HOME_LEGS, 48) {
+            check_factorization(&s, &v, &HOME_LEGS);
+        }
+        for v in toward_singular(&c, &v, &d, &HOME_LEGS, 48) {
+            check_factorization(&c, &v, &HOME_LEGS);
+        }
+    }
+
+    #[test]
+    fn generated_factorisations_equal_dense_lu_near_singularities_of_every_example(dv in prop::array::uniform32(-1.0f64..1.0)) {
+        let s = Stewart::new();
+        near_singularities(&s, &s.home_start().unwrap(), &dv, 120.0, 1.0);
+        let g = StewartGeneral::new();
+        near_singularities(&g, &g.home_start().unwrap(), &dv, 120.0, 1.0);
+        let r = rps::Rps3::new();
+        near_singularities(&r, &r.home_start().unwrap(), &dv, 60.0, 1.0);
+        let h = rss_hexapod::RssHexapod::new();
+        near_singularities(&h, &h.home_start().unwrap(), &dv, 150.0, 0.5);
     }
 }

@@ -161,8 +161,13 @@ pub fn expand(
             quote!(#i => ::linkage::Pose::between([#(#from),*], [#(#now),*]),)
         }
     });
-    let plan = crate::factor::plan(n, &jac);
-    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, &jac, m);
+    // B at home, so that the factorisation's pivot order prefers pivots that are large there.
+    let sample: Option<Vec<f64>> = home.and_then(|r| {
+        let c = crate::model::reference::constants(model).ok()?;
+        Some(jac.iter().map(|(_, _, e)| e.eval(&r.v, &r.x, &c)).collect())
+    });
+    let plan = crate::factor::plan(n, &jac, sample.as_deref());
+    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, m, nc);
     let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
     let new_doc =
         format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");

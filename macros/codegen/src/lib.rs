@@ -4,16 +4,18 @@
 //! Pipeline, one folder or file per phase, arrows one way:
 //! [`front`] (parse, check) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form
 //! shapes, the general model) → [`simplify`] (duplicates, rank at home) → [`expr`] (the symbolic
-//! IR every phase shares) → [`factor`] (the elimination plan for ∂F/∂v) → [`emit`] and
-//! [`emit_factor`] (the Rust).
+//! IR every phase shares) → [`factor`] (the elimination plan for ∂F/∂v, with the pivot order of
+//! [`pivot_order`]) → [`emit`], [`emit_factor`] and [`emit_lu`] (the Rust).
 
 pub mod emit;
 pub mod emit_factor;
 pub mod emit_inverse;
+pub mod emit_lu;
 pub mod expr;
 pub mod factor;
 pub mod front;
 pub mod model;
+pub mod pivot_order;
 pub mod simplify;
 
 use proc_macro2::TokenStream;

@@ -1,0 +1,280 @@
+//! Emission of the Schur complement's LU, unrolled: the fast path in the pivot order fixed at
+//! generation time ([`crate::pivot_order`]), touching only the nonzeros of [`Symbolic`], and
+//! the dense partial-pivoting fallback it hands over to when a multiplier exceeds
+//! [`MAX_MULTIPLIER`] (or a pivot is zero or not finite).
+//!
+//! Both write their factors into the flat `[f64; _]` storage of the generated `Factor` type at
+//! the offsets of [`Region`]. The fixed order stores reciprocal pivots, so that its solve only
+//! multiplies.
+//!
+//! Finiteness: B is not finite when an entry is NaN or infinite. A non-finite value that flows
+//! into a later pivot makes the determinant non-finite; one that flows nowhere (a multiplier
+//! whose pivot row has no other entry, an entry of U whose column has nothing below) is added
+//! to a sum whose finiteness is checked, so that no NaN can hide in the factors.
+
+use crate::factor::Symbolic;
+use crate::pivot_order::MAX_MULTIPLIER;
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+/// Where the complement's factors live in the storage: the fixed order's values from `fixed`
+/// on (one per nonzero of L and U), the fallback's dense `k`×`k` factors from `dense` and its
+/// row swaps (as `f64`) after them. The two overlap: only one is valid at a time.
+pub struct Region {
+    pub fixed: usize,
+    pub dense: usize,
+}
+
+impl Region {
+    /// Storage entries the fixed order needs.
+    pub fn fixed_len(lu: &Symbolic) -> usize {
+        lu.filled.iter().flatten().filter(|&&f| f).count()
+    }
+
+    /// Storage entries the fallback needs.
+    pub fn dense_len(k: usize) -> usize {
+        k * k + k
+    }
+}
+
+fn z(i: usize, j: usize) -> proc_macro2::Ident {
+    format_ident!("z{}_{}", i, j)
+}
+
+/// Offsets of the fixed order's stored values: the multiplier or U entry at `(i, j)`
+/// (i ≠ j), the reciprocal pivot at `(p, p)`.
+fn fixed_offsets(lu: &Symbolic, base: usize) -> Vec<Vec<Option<usize>>> {
+    let k = lu.size();
+    let mut at = vec![vec![None; k]; k];
+    let mut next = base;
+    for (i, row) in lu.filled.iter().enumerate() {
+        for (j, &f) in row.iter().enumerate() {
+            if f {
+                at[i][j] = Some(next);
+                next += 1;
+            }
+        }
+    }
+    at
+}
+
+/// The fixed-order factorisation as a block that evaluates to `Some((det Z, pivot ratio))`, or
+/// `None` when the order is not good enough here. `entry(i, j)` is the complement's entry at a
+/// structural nonzero `(i, j)` of `lu.initial`, in pivot order.
+pub fn fixed_factor(
+    lu: &Symbolic,
+    region: &Region,
+    entry: &dyn Fn(usize, usize) -> TokenStream,
+) -> TokenStream {
+    let k = lu.size();
+    if k == 0 {
+        return quote!(::core::option::Option::Some((1.0f64, 1.0f64)));
+    }
+    let at = fixed_offsets(lu, region.fixed);
+    // Row by row (Doolittle's order): row i takes the multipliers of the rows above it, then
+    // yields its part of U. Only the current row and the finished rows of U that are still
+    // needed are live, which keeps the registers from spilling much.
+    let mut body = Vec::new();
+    let mut sinks = Vec::new();
+    let mut pivots = Vec::new();
+    let mut assigned = lu.initial.clone();
+    for i in 0..k {
+        for j in 0..k {
+            let name = z(i, j);
+            if lu.initial[i][j] {
+                let e = entry(i, j);
+                body.push(quote!(let mut #name = #e;));
+            } else if i == j {
+                // A pivot that is not a nonzero of the complement (it may fill in).
+                body.push(quote!(let mut #name = 0.0f64;));
+                assigned[i][i] = true;
+            }
+        }
+        for p in (0..i).filter(|&p| lu.filled[i][p]) {
+            let recip = format_ident!("r{}", p);
+            let m = format_ident!("m{}_{}", i, p);
+            let source = z(i, p);
+            let o = at[i][p].unwrap_or(0);
+            body.push(quote! {
+                let #m = #source * #recip;
+                f[#o] = #m;
+                let a = #m.abs();
+                worst = if a > worst { a } else { worst };
+            });
+            let right: Vec<usize> = lu.right(p).collect();
+            if right.is_empty() {
+                sinks.push(quote!(#m));
+            }
+            for j in right {
+                let target = z(i, j);
+                let u = z(p, j);
+                if assigned[i][j] {
+                    body.push(quote!(#target -= #m * #u;));
+                } else {
+                    assigned[i][j] = true;
+                    body.push(quote!(let mut #target = -(#m * #u);));
+                }
+            }
+        }
+        let pivot = z(i, i);
+        let recip = format_ident!("r{}", i);
+        let ri = at[i][i].unwrap_or(0);
+        body.push(quote!(let #recip = 1.0 / #pivot; f[#ri] = #recip;));
+        pivots.push(pivot);
+        let below_empty = lu.below(i).next().is_none();
+        for j in lu.right(i) {
+            let u = z(i, j);
+            let o = at[i][j].unwrap_or(0);
+            body.push(quote!(f[#o] = #u;));
+            if below_empty {
+                sinks.push(quote!(#u));
+            }
+        }
+    }
+    let max = MAX_MULTIPLIER;
+    let sink = if sinks.is_empty() {
+        quote!(0.0f64)
+    } else {
+        quote!(#(#sinks)+*)
+    };
+    let abs_pivots = pivots.iter().map(|p| quote!(#p.abs()));
+    let det = pivots
+        .iter()
+        .map(|p| quote!(#p))
+        .reduce(|a, b| quote!(#a * #b))
+        .unwrap_or_else(|| quote!(1.0f64));
+    quote! {{
+        let mut worst = 0.0f64;
+        #(#body)*
+        let det = #det;
+        let sink: f64 = #sink;
+        if worst <= #max && det.is_finite() && det != 0.0 && sink.is_finite() {
+            let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
+            for a in [#(#abs_pivots),*] {
+                pmin = if a < pmin { a } else { pmin };
+                pmax = if a > pmax { a } else { pmax };
+            }
+            ::core::option::Option::Some((det, pmin / pmax))
+        } else {
+            ::core::option::Option::None
+        }
+    }}
+}
+
+/// The solve with the fixed-order factors on the complement's right-hand side, in place in
+/// `w` (a local `[f64; n]`): `rows[p]` holds the right-hand side of the p-th pivot row, and
+/// afterwards the solution for the p-th pivot column.
+pub fn fixed_solve(lu: &Symbolic, region: &Region, rows: &[usize]) -> TokenStream {
+    let k = lu.size();
+    let at = fixed_offsets(lu, region.fixed);
+    let mut body = Vec::new();
+    for p in 0..k {
+        let rp = rows[p];
+        for i in lu.below(p) {
+            let ri = rows[i];
+            let o = at[i][p].unwrap_or(0);
+            body.push(quote!(w[#ri] -= f[#o] * w[#rp];));
+        }
+    }
+    for p in (0..k).rev() {
+        let rp = rows[p];
+        let terms: Vec<TokenStream> = lu
+            .right(p)
+            .map(|j| {
+                let rj = rows[j];
+                let o = at[p][j].unwrap_or(0);
+                quote!(- f[#o] * w[#rj])
+            })
+            .collect();
+        let o = at[p][p].unwrap_or(0);
+        body.push(if terms.is_empty() {
+            quote!(w[#rp] *= f[#o];)
+        } else {
+            quote!(w[#rp] = (w[#rp] #(#terms)*) * f[#o];)
+        });
+    }
+    quote!(#(#body)*)
+}
+
+/// LU with partial pivoting of the dense `k`×`k` local `z`, unrolled: every loop bound is a
+/// literal, so the compiler schedules the whole elimination as straight-line code. Stores the
+/// factors and row swaps at `region.dense`; evaluates to `Some((det Z, pivot ratio))`, or
+/// `None` when a column has no usable pivot.
+pub fn dense_factor(k: usize, region: &Region) -> TokenStream {
+    let steps = (0..k).map(|c| {
+        let search =
+            (c + 1..k).map(|i| quote!(let a = z[#i][#c].abs(); if a > best { best = a; p = #i; }));
+        let rows = (c + 1..k).map(|i| {
+            let updates = (c + 1..k).map(|j| quote!(z[#i][#j] -= l * pr[#j];));
+            quote!({ let l = z[#i][#c] * inv; z[#i][#c] = l; #(#updates)* })
+        });
+        let swap = region.dense + k * k + c;
+        quote! {
+            let mut p = #c;
+            let mut best = z[#c][#c].abs();
+            #(#search)*
+            if !(best > 0.0) || !best.is_finite() {
+                return ::core::option::Option::None;
+            }
+            f[#swap] = p as f64;
+            if p != #c {
+                z.swap(#c, p);
+                det = -det;
+            }
+            let pr = z[#c];
+            det *= pr[#c];
+            pmin = pmin.min(best);
+            pmax = pmax.max(best);
+            let inv = 1.0 / pr[#c];
+            #(#rows)*
+        }
+    });
+    let base = region.dense;
+    quote! {{
+        let mut det = 1.0f64;
+        let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
+        #(#steps)*
+        for i in 0..#k {
+            for j in 0..#k {
+                f[#base + i * #k + j] = z[i][j];
+            }
+        }
+        ::core::option::Option::Some((det, if #k == 0 { 1.0 } else { pmin / pmax }))
+    }}
+}
+
+/// The solve with the fallback's dense factors, in place in `w` as [`fixed_solve`].
+pub fn dense_solve(k: usize, region: &Region, rows: &[usize]) -> TokenStream {
+    let base = region.dense;
+    let swaps = base + k * k;
+    let gather = rows
+        .iter()
+        .enumerate()
+        .map(|(p, &r)| quote!(y[#p] = w[#r];));
+    let scatter = rows
+        .iter()
+        .enumerate()
+        .map(|(p, &r)| quote!(w[#r] = y[#p];));
+    quote! {
+        let mut y = [0.0f64; #k];
+        #(#gather)*
+        for c in 0..#k {
+            let p = f[#swaps + c] as usize;
+            if p != c && p < #k {
+                y.swap(c, p);
+            }
+        }
+        for i in 0..#k {
+            for j in 0..i {
+                y[i] -= f[#base + i * #k + j] * y[j];
+            }
+        }
+        for i in (0..#k).rev() {
+            for j in i + 1..#k {
+                y[i] -= f[#base + i * #k + j] * y[j];
+            }
+            y[i] /= f[#base + i * #k + i];
+        }
+        #(#scatter)*
+    }
+}
