@@ -1,0 +1,561 @@
+//! Every assembly mode: all isolated complex roots of `F(v, x) = 0` at given inputs, the real
+//! ones with their poses.
+//!
+//! The inputs x are the parameters of a family of systems. [`AllModes::new`] solves the family
+//! once at a random complex parameter point p₀ — a seed made by placing the platform with a
+//! random complex rigid motion and moving (v, x) onto F = 0, then monodromy: loops of parameters
+//! around p₀ that permute the roots, until a number of loops in a row bring nothing new. Each
+//! query ([`AllModes::solve`]) is then a parameter homotopy from p₀ to the real target with the
+//! γ trick, tracked in complex arithmetic by an adaptive predictor–corrector (cubic Taylor
+//! predictor from Taylor-mode derivatives of the generated residual, Newton corrector as the
+//! acceptance test), the endpoints classified as real, complex, singular or diverging, and the
+//! real roots refined in real arithmetic with their pose, the sign of det B, the residual and
+//! the distance to the nearest other root. Two paths that end on the same root are tracked
+//! again with smaller steps.
+//!
+//! A query is `no_std` and allocates nothing: the starts live in the [`AllModes`] value and the
+//! results in a caller's [`Roots`] of fixed capacity `K`.
+//!
+//! ```
+//! use linkage::modes::{AllModes, ModesOptions, EndpointKind};
+//! # linkage::mechanism! {
+//! #     pub struct Rps;
+//! #     base {
+//! #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+//! #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+//! #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+//! #     }
+//! #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+//! #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+//! #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+//! #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+//! # }
+//! // A 3-RPS: 16 complex assembly modes for generic leg lengths.
+//! let modes = AllModes::<Rps, 9, 3, 32>::new(Rps::new(), &ModesOptions::default()).unwrap();
+//! assert_eq!(modes.start_count(), 16);
+//! let mut roots = linkage::modes::Roots::new();
+//! modes.solve(&[150.0, 160.0, 155.0], &mut roots).unwrap();
+//! assert!(roots.is_complete());
+//! for mode in roots.real() {
+//!     assert!(mode.residual < 1e-9 && mode.pose.is_some());
+//! }
+//! assert_eq!(roots.real().len(), roots.count(EndpointKind::Real));
+//! ```
+
+mod complex;
+mod dense;
+mod endpoint;
+mod monodromy;
+mod path;
+mod rng;
+mod roots;
+mod seed;
+mod sparse_lu;
+mod taylor;
+mod track;
+
+pub use complex::Complex;
+pub use roots::{Endpoint, EndpointKind, RealRoot, Roots};
+pub use taylor::Series;
+
+use crate::Mechanism;
+use monodromy::{contains, Stopping};
+use path::ParameterPath;
+use rng::Rng;
+use sparse_lu::Plan;
+use track::{Model, Settings, Workspace};
+
+/// A random γ = e^(iθ) with π/6 ≤ |θ| ≤ π/2: a real bend of the path, but far from −1, where
+/// the rational path (see `path.rs`) would pass near a pole and blow every solution up.
+fn gamma(rng: &mut Rng) -> Complex {
+    let t = core::f64::consts::PI * (1.0 / 6.0 + rng.uniform() / 3.0);
+    let t = if rng.uniform() < 0.5 { -t } else { t };
+    Complex::new(libm::cos(t), libm::sin(t))
+}
+
+/// How the start solutions are computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModesOptions {
+    /// Seed of every random choice (seed point, loops, γ): the same seed gives the same starts.
+    pub seed: u64,
+    /// Monodromy stops after this many consecutive loops that bring no new solution.
+    pub stable_loops: usize,
+    /// Monodromy stops after this many loops in any case.
+    pub max_loops: usize,
+    /// A generic root count known in advance (40 for a general 6-6 platform): monodromy stops
+    /// as soon as it has this many. `None`: count stability alone decides.
+    pub expected: Option<usize>,
+    /// Length scale of the mechanism (tolerances are relative to it below it); 0 takes the
+    /// largest platform pivot coordinate.
+    pub scale: f64,
+}
+
+impl Default for ModesOptions {
+    fn default() -> Self {
+        ModesOptions {
+            seed: 2015,
+            stable_loops: 5,
+            max_loops: 200,
+            expected: None,
+            scale: 0.0,
+        }
+    }
+}
+
+/// Why no start set could be made or a query could not be run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ModesError {
+    /// An input or option is NaN or infinite.
+    NonFinite,
+    /// Input `input` is out of its range (e.g. a negative leg length).
+    InvalidInput { input: usize },
+    /// ∂F/∂v was singular at every configuration the seeding reached: the geometry is
+    /// architecture-singular (or has a self-motion everywhere), so the family has no isolated
+    /// roots to count.
+    Degenerate,
+    /// Monodromy found more than `K` solutions.
+    Capacity { capacity: usize },
+    /// More than 255 unknowns.
+    TooLarge,
+    /// A given start solution is not a nonsingular root at the given parameters.
+    BadStart { index: usize },
+}
+
+impl core::fmt::Display for ModesError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ModesError::NonFinite => write!(f, "non-finite input"),
+            ModesError::InvalidInput { input } => write!(f, "joint input {input} is out of range"),
+            ModesError::Degenerate => write!(
+                f,
+                "∂F/∂v is singular at every configuration tried: the geometry is architecture-singular"
+            ),
+            ModesError::Capacity { capacity } => {
+                write!(f, "more than {capacity} solutions: raise the capacity K")
+            }
+            ModesError::TooLarge => write!(f, "more than 255 unknowns"),
+            ModesError::BadStart { index } => {
+                write!(f, "start solution {index} is not a nonsingular root")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for ModesError {}
+
+/// How the start set was found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct StartReport {
+    /// Seeds tried before one landed on a regular point.
+    pub seeds: usize,
+    /// Monodromy loops run.
+    pub loops: usize,
+    /// Paths that failed during monodromy (harmless: their solutions are found another way).
+    pub failed_paths: usize,
+}
+
+/// The solver for every assembly mode of a mechanism: its start solutions at a generic
+/// complex parameter point, ready for queries. `K` is the capacity (at least the generic root
+/// count: 40 for a general 6-6 Stewart–Gough platform).
+#[derive(Clone, Debug)]
+pub struct AllModes<S, const N: usize, const M: usize, const K: usize> {
+    sys: S,
+    plan: Plan<N>,
+    scale: f64,
+    p0: [Complex; M],
+    gamma: Complex,
+    starts: [[Complex; N]; K],
+    count: usize,
+    report: StartReport,
+}
+
+impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllModes<S, N, M, K> {
+    /// Computes the start solutions of `sys` (its geometry as it is now) by monodromy. Takes
+    /// milliseconds to a fraction of a second; allocation-free.
+    pub fn new(sys: S, options: &ModesOptions) -> Result<Self, ModesError> {
+        let mut me = Self::prepare(sys, options)?;
+        let mut rng = Rng::new(options.seed);
+        me.gamma = gamma(&mut rng);
+        let mut first = None;
+        for attempt in 1..=12 {
+            if let Some(found) = seed::seed(&me.model(), &mut rng) {
+                first = Some((found, attempt));
+                break;
+            }
+        }
+        let ((v, p0), seeds) = first.ok_or(ModesError::Degenerate)?;
+        let model = me.model();
+        let mut starts = [[Complex::ZERO; N]; K];
+        if K == 0 {
+            return Err(ModesError::Capacity { capacity: K });
+        }
+        starts[0] = v;
+        let stop = Stopping {
+            stable_loops: options.stable_loops.max(1),
+            max_loops: options.max_loops.max(1),
+            expected: options.expected,
+        };
+        let found = monodromy::monodromy(&model, &p0, &mut starts, &mut rng, &stop);
+        if found.overflow {
+            return Err(ModesError::Capacity { capacity: K });
+        }
+        let report = StartReport {
+            seeds,
+            loops: found.loops,
+            failed_paths: found.failed_paths,
+        };
+        me.report = report;
+        me.starts = starts;
+        me.count = found.count;
+        me.p0 = p0;
+        Ok(me)
+    }
+
+    /// Moves the start set to a parameter point near the real inputs `center` (each input
+    /// perturbed by a random complex number of size `spread` × the scale), so that queries near
+    /// `center` follow short paths. Every start is tracked there; if one fails, nothing changes
+    /// and the error says so.
+    pub fn recenter(
+        &mut self,
+        center: &[f64; M],
+        spread: f64,
+        seed: u64,
+    ) -> Result<(), ModesError> {
+        if !center.iter().all(|c| c.is_finite()) || !spread.is_finite() {
+            return Err(ModesError::NonFinite);
+        }
+        let mut rng = Rng::new(seed);
+        let p1: [Complex; M] = core::array::from_fn(|i| {
+            Complex::real(center[i]) + rng.complex_normal().scale(spread * self.scale)
+        });
+        let path = ParameterPath::new(self.p0, p1, Complex::ONE);
+        let model = self.model();
+        let mut ws = Workspace::new();
+        let mut moved = self.starts;
+        for (index, v) in moved[..self.count].iter_mut().enumerate() {
+            let from = *v;
+            let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
+                *v = from;
+                model.track(&path, v, &mut ws, set).outcome == track::Outcome::Reached
+                    && monodromy::polish(&model, v, &p1, &mut ws)
+            });
+            if !reached {
+                return Err(ModesError::BadStart { index });
+            }
+        }
+        for index in 1..self.count {
+            if contains(&model, &moved[..index], &moved[index], 1e-8) {
+                return Err(ModesError::BadStart { index });
+            }
+        }
+        self.starts = moved;
+        self.p0 = p1;
+        Ok(())
+    }
+
+    /// Takes start solutions computed before (e.g. by [`AllModes::new`] and stored): each
+    /// is checked to be a nonsingular root at `p0` and refined.
+    pub fn from_starts(
+        sys: S,
+        p0: [Complex; M],
+        gamma: Complex,
+        starts: &[[Complex; N]],
+        options: &ModesOptions,
+    ) -> Result<Self, ModesError> {
+        if starts.len() > K {
+            return Err(ModesError::Capacity { capacity: K });
+        }
+        if !p0.iter().all(|c| c.is_finite()) || !gamma.is_finite() || gamma.abs() == 0.0 {
+            return Err(ModesError::NonFinite);
+        }
+        let mut me = Self::prepare(sys, options)?;
+        me.p0 = p0;
+        me.gamma = gamma;
+        let mut ws = Workspace::new();
+        for (index, s) in starts.iter().enumerate() {
+            let mut v = *s;
+            let model = me.model();
+            if !monodromy::polish(&model, &mut v, &p0, &mut ws)
+                || contains(&model, &me.starts[..me.count], &v, 1e-8)
+            {
+                return Err(ModesError::BadStart { index });
+            }
+            me.starts[me.count] = v;
+            me.count += 1;
+        }
+        Ok(me)
+    }
+
+    fn prepare(sys: S, options: &ModesOptions) -> Result<Self, ModesError> {
+        if !options.scale.is_finite() || options.scale < 0.0 {
+            return Err(ModesError::NonFinite);
+        }
+        let scale = if options.scale > 0.0 {
+            options.scale
+        } else {
+            let s = (0..S::POINTS.len())
+                .flat_map(|p| sys.point_local(p))
+                .filter(|c| c.is_finite())
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            if s > 0.0 {
+                s
+            } else {
+                1.0
+            }
+        };
+        // Two unrelated real points tell constant Jacobian entries from variable ones.
+        let mut rng = Rng::new(options.seed ^ 0xA5A5);
+        let mut samples = [[[0.0f64; N]; N]; 2];
+        for sample in samples.iter_mut() {
+            let v = [0; N].map(|_| scale * (rng.uniform() - 0.5));
+            let x = [0; M].map(|_| scale * (rng.uniform() + 0.5));
+            sys.jacobian_in(&v, &x, sample.as_flattened_mut());
+        }
+        let plan = Plan::new(
+            S::PATTERN,
+            samples[0].as_flattened(),
+            samples[1].as_flattened(),
+        )
+        .map_err(|_| ModesError::TooLarge)?;
+        Ok(AllModes {
+            sys,
+            plan,
+            scale,
+            p0: [Complex::ZERO; M],
+            gamma: Complex::ONE,
+            starts: [[Complex::ZERO; N]; K],
+            count: 0,
+            report: StartReport::default(),
+        })
+    }
+
+    fn model(&self) -> Model<'_, S, N> {
+        Model {
+            sys: &self.sys,
+            plan: &self.plan,
+            pattern: S::PATTERN,
+            scale: self.scale,
+        }
+    }
+
+    /// The mechanism.
+    pub fn mechanism(&self) -> &S {
+        &self.sys
+    }
+
+    /// Number of start solutions: the generic number of complex roots.
+    pub fn start_count(&self) -> usize {
+        self.count
+    }
+
+    /// The start parameters p₀, γ and the start solutions (to store and pass to
+    /// [`AllModes::from_starts`]).
+    pub fn starts(&self) -> (&[Complex; M], Complex, &[[Complex; N]]) {
+        (&self.p0, self.gamma, &self.starts[..self.count])
+    }
+
+    /// How the start set was found.
+    pub fn report(&self) -> StartReport {
+        self.report
+    }
+
+    /// The factorisation plan: pivots on constant entries, size of the dense remainder.
+    #[doc(hidden)]
+    pub fn plan_shape(&self) -> (usize, usize) {
+        self.plan.shape()
+    }
+
+    #[doc(hidden)]
+    #[cfg(feature = "std")]
+    pub fn bench_internals(&self, x: &[f64; M]) {
+        struct Clock(u64);
+        impl Clock {
+            fn now() -> Clock {
+                let s = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap();
+                Clock(s.split_whitespace().next().unwrap().parse().unwrap())
+            }
+            fn elapsed(&self) -> std::time::Duration {
+                std::time::Duration::from_nanos(Clock::now().0 - self.0)
+            }
+        }
+        let model = self.model();
+        let target = x.map(Complex::real);
+        let mut ws = Workspace::new();
+        let v = self.starts[0];
+        let n = 100000;
+        let t = Clock::now();
+        for _ in 0..n {
+            let (values, lu) = ws.scratch();
+            core::hint::black_box(model.factor(core::hint::black_box(&v), &target, values, lu));
+        }
+        std::println!("jacobian+factor {:?}", t.elapsed() / n);
+        let mut vals = [[Complex::ZERO; N]; N];
+        let t = Clock::now();
+        for _ in 0..n {
+            self.sys
+                .jacobian_in(core::hint::black_box(&v), &target, vals.as_flattened_mut());
+            core::hint::black_box(&vals);
+        }
+        std::println!("jacobian {:?}", t.elapsed() / n);
+        let (_, lu) = ws.scratch();
+        let lu = *lu;
+        let t = Clock::now();
+        for _ in 0..n {
+            core::hint::black_box(model.newton(&lu, core::hint::black_box(&v), &target));
+        }
+        std::println!("residual+solve {:?}", t.elapsed() / n);
+        let mut f = [Complex::ZERO; N];
+        let t = Clock::now();
+        for _ in 0..n {
+            self.sys
+                .residual_in(core::hint::black_box(&v), &target, &mut f);
+            core::hint::black_box(&f);
+        }
+        std::println!("residual {:?}", t.elapsed() / n);
+        let vs = v.map(Series::<4>::constant);
+        let xs = target.map(Series::<4>::constant);
+        let mut fs = [Series::<4>::ZERO; N];
+        let t = Clock::now();
+        for _ in 0..n {
+            self.sys
+                .residual_in(core::hint::black_box(&vs), &xs, &mut fs);
+            core::hint::black_box(&fs);
+        }
+        std::println!("residual series4 {:?}", t.elapsed() / n);
+        let path = ParameterPath::new(self.p0, target, self.gamma);
+        let t = Clock::now();
+        for _ in 0..n / 10 {
+            let mut w = self.starts[0];
+            core::hint::black_box(model.track(&path, &mut w, &mut ws, &Settings::DEFAULT));
+        }
+        std::println!("track path 0 {:?}", t.elapsed() / (n / 10));
+    }
+
+    /// The length scale of the tolerances.
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// Every root at inputs `x`, into `out`. No heap, no panic; NaN, infinite or out-of-range
+    /// inputs are errors. Each of the [`AllModes::start_count`] paths gets an endpoint; a
+    /// target with fewer isolated roots than generic shows diverging or singular endpoints.
+    pub fn solve(&self, x: &[f64; M], out: &mut Roots<N, K>) -> Result<(), ModesError> {
+        if !x.iter().all(|c| c.is_finite()) {
+            return Err(ModesError::NonFinite);
+        }
+        self.sys
+            .validate_inputs(x)
+            .map_err(|input| ModesError::InvalidInput { input })?;
+        let target = x.map(Complex::real);
+        let path = ParameterPath::new(self.p0, target, self.gamma);
+        let model = self.model();
+        let mut ws = Workspace::new();
+        out.paths = self.count;
+        out.n_real = 0;
+        for i in 0..self.count {
+            out.endpoints[i] =
+                self.endpoint(&model, &path, i, &target, &Settings::DEFAULT, &mut ws);
+        }
+        // Two paths on one nonsingular root: one of them jumped. Track both again carefully.
+        for i in 0..self.count {
+            for j in i + 1..self.count {
+                if !(out.endpoints[i].is_root() && out.endpoints[j].is_root()) {
+                    continue;
+                }
+                let (a, b) = (out.endpoints[i].v, out.endpoints[j].v);
+                if !contains(&model, &[a], &b, 1e-8) {
+                    continue;
+                }
+                for k in [i, j] {
+                    let steps = out.endpoints[k].steps;
+                    out.endpoints[k] =
+                        self.endpoint(&model, &path, k, &target, &Settings::CAREFUL, &mut ws);
+                    out.endpoints[k].steps += steps;
+                }
+                let (a, b) = (out.endpoints[i].v, out.endpoints[j].v);
+                if out.endpoints[i].is_root() && contains(&model, &[a], &b, 1e-8) {
+                    out.endpoints[j].kind = EndpointKind::Duplicate;
+                }
+            }
+        }
+        self.finish(x, out);
+        Ok(())
+    }
+
+    fn endpoint(
+        &self,
+        model: &Model<'_, S, N>,
+        path: &ParameterPath<M>,
+        i: usize,
+        target: &[Complex; M],
+        settings: &Settings,
+        ws: &mut Workspace<N>,
+    ) -> Endpoint<N> {
+        let mut v = self.starts[i];
+        let tracked = model.track(path, &mut v, ws, settings);
+        endpoint::classify(model, target, &tracked, &v, ws)
+    }
+
+    /// Distances between roots and the real roots' refinement.
+    fn finish(&self, x: &[f64; M], out: &mut Roots<N, K>) {
+        let n = out.paths;
+        for i in 0..n {
+            out.endpoints[i].nearest = f64::INFINITY;
+        }
+        for i in 0..n {
+            if !out.endpoints[i].is_root() {
+                continue;
+            }
+            for j in i + 1..n {
+                if !out.endpoints[j].is_root() {
+                    continue;
+                }
+                let d = endpoint::distance(&out.endpoints[i].v, &out.endpoints[j].v);
+                let e = &mut out.endpoints;
+                e[i].nearest = e[i].nearest.min(d);
+                e[j].nearest = e[j].nearest.min(d);
+            }
+        }
+        for i in 0..n {
+            if out.endpoints[i].kind != EndpointKind::Real {
+                continue;
+            }
+            let refined = endpoint::real_root(&self.sys, self.scale, &out.endpoints[i].v, x);
+            let Some((v, residual, det)) = refined else {
+                // Tiny imaginary parts but no real root next to them: a complex pair
+                // close to the real space (near a fold).
+                out.endpoints[i].kind = EndpointKind::Complex;
+                continue;
+            };
+            let seen = out.real[..out.n_real].iter().any(|r| {
+                (0..N).all(|k| (r.v[k] - v[k]).abs() <= 1e-9 * self.scale.max(v[k].abs()))
+            });
+            if seen {
+                // Both members of a complex pair with tiny imaginary parts refined to one
+                // real point: a double root, not two modes.
+                out.endpoints[i].kind = EndpointKind::Complex;
+                continue;
+            }
+            out.real[out.n_real] = RealRoot {
+                v,
+                pose: crate::pose_from_unknowns(&self.sys, &v),
+                det,
+                residual,
+                nearest: out.endpoints[i].nearest,
+                nearest_real: f64::INFINITY,
+                path: i,
+            };
+            out.n_real += 1;
+        }
+        for i in 0..out.n_real {
+            for j in i + 1..out.n_real {
+                let d = crate::math::norm(&core::array::from_fn::<f64, N, _>(|k| {
+                    out.real[i].v[k] - out.real[j].v[k]
+                }));
+                out.real[i].nearest_real = out.real[i].nearest_real.min(d);
+                out.real[j].nearest_real = out.real[j].nearest_real.min(d);
+            }
+        }
+    }
+}
