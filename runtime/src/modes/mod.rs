@@ -80,6 +80,9 @@ pub struct ModesOptions {
     pub seed: u64,
     /// Monodromy stops after this many consecutive loops that bring no new solution.
     pub stable_loops: usize,
+    /// After the loops settle, fresh random solutions are tracked to the base point until this
+    /// many in a row bring nothing new (they reach components that loops cannot).
+    pub stable_seeds: usize,
     /// Monodromy stops after this many loops in any case.
     pub max_loops: usize,
     /// A generic root count known in advance (40 for a general 6-6 platform): monodromy stops
@@ -95,6 +98,7 @@ impl Default for ModesOptions {
         ModesOptions {
             seed: 2015,
             stable_loops: 5,
+            stable_seeds: 8,
             max_loops: 200,
             expected: None,
             scale: 0.0,
@@ -147,7 +151,8 @@ impl std::error::Error for ModesError {}
 /// How the start set was found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct StartReport {
-    /// Seeds tried before one landed on a regular point.
+    /// Seeds tried (random solutions at random parameters: the first, and later ones that
+    /// look for components the loops cannot reach).
     pub seeds: usize,
     /// Monodromy loops run.
     pub loops: usize,
@@ -193,6 +198,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         starts[0] = v;
         let stop = Stopping {
             stable_loops: options.stable_loops.max(1),
+            stable_seeds: options.stable_seeds,
             max_loops: options.max_loops.max(1),
             expected: options.expected,
         };
@@ -201,7 +207,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             return Err(ModesError::Capacity { capacity: K });
         }
         let report = StartReport {
-            seeds,
+            seeds: seeds + found.seeds,
             loops: found.loops,
             failed_paths: found.failed_paths,
         };
@@ -364,72 +370,6 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     #[doc(hidden)]
     pub fn plan_shape(&self) -> (usize, usize) {
         self.plan.shape()
-    }
-
-    #[doc(hidden)]
-    #[cfg(feature = "std")]
-    pub fn bench_internals(&self, x: &[f64; M]) {
-        struct Clock(u64);
-        impl Clock {
-            fn now() -> Clock {
-                let s = std::fs::read_to_string("/proc/thread-self/schedstat").unwrap();
-                Clock(s.split_whitespace().next().unwrap().parse().unwrap())
-            }
-            fn elapsed(&self) -> std::time::Duration {
-                std::time::Duration::from_nanos(Clock::now().0 - self.0)
-            }
-        }
-        let model = self.model();
-        let target = x.map(Complex::real);
-        let mut ws = Workspace::new();
-        let v = self.starts[0];
-        let n = 100000;
-        let t = Clock::now();
-        for _ in 0..n {
-            let (values, lu) = ws.scratch();
-            core::hint::black_box(model.factor(core::hint::black_box(&v), &target, values, lu));
-        }
-        std::println!("jacobian+factor {:?}", t.elapsed() / n);
-        let mut vals = [[Complex::ZERO; N]; N];
-        let t = Clock::now();
-        for _ in 0..n {
-            self.sys
-                .jacobian_in(core::hint::black_box(&v), &target, vals.as_flattened_mut());
-            core::hint::black_box(&vals);
-        }
-        std::println!("jacobian {:?}", t.elapsed() / n);
-        let (_, lu) = ws.scratch();
-        let lu = *lu;
-        let t = Clock::now();
-        for _ in 0..n {
-            core::hint::black_box(model.newton(&lu, core::hint::black_box(&v), &target));
-        }
-        std::println!("residual+solve {:?}", t.elapsed() / n);
-        let mut f = [Complex::ZERO; N];
-        let t = Clock::now();
-        for _ in 0..n {
-            self.sys
-                .residual_in(core::hint::black_box(&v), &target, &mut f);
-            core::hint::black_box(&f);
-        }
-        std::println!("residual {:?}", t.elapsed() / n);
-        let vs = v.map(Series::<4>::constant);
-        let xs = target.map(Series::<4>::constant);
-        let mut fs = [Series::<4>::ZERO; N];
-        let t = Clock::now();
-        for _ in 0..n {
-            self.sys
-                .residual_in(core::hint::black_box(&vs), &xs, &mut fs);
-            core::hint::black_box(&fs);
-        }
-        std::println!("residual series4 {:?}", t.elapsed() / n);
-        let path = ParameterPath::new(self.p0, target, self.gamma);
-        let t = Clock::now();
-        for _ in 0..n / 10 {
-            let mut w = self.starts[0];
-            core::hint::black_box(model.track(&path, &mut w, &mut ws, &Settings::DEFAULT));
-        }
-        std::println!("track path 0 {:?}", t.elapsed() / (n / 10));
     }
 
     /// The length scale of the tolerances.

@@ -14,15 +14,17 @@ use super::rng::Rng;
 use super::track::{Model, Outcome, Settings, Workspace};
 use crate::Mechanism;
 
-/// The loop points' size relative to p₀'s: loops as small as p₀ itself leave many roots fixed
-/// (their branch points lie further out), so that monodromy on a general 6-6 platform stalled
-/// at 34 or 35 of its 40 roots; three times as large found all 40 in trials.
-const LOOP_SIZE: f64 = 3.0;
+/// The loop points' size relative to p₀'s, alternating: loops as small as p₀ itself leave many
+/// roots fixed (their branch points lie further out), so that monodromy on a general 6-6
+/// platform stalled at 34 or 35 of its 40 roots; three times as large found all 40 in trials
+/// but stalled at 38 on a planar one, which loops ten times as large completed.
+const LOOP_SIZES: [f64; 2] = [3.0, 10.0];
 
 /// When monodromy stops.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Stopping {
     pub(crate) stable_loops: usize,
+    pub(crate) stable_seeds: usize,
     pub(crate) max_loops: usize,
     pub(crate) expected: Option<usize>,
 }
@@ -32,6 +34,8 @@ pub(crate) struct Stopping {
 pub(crate) struct Found {
     pub(crate) count: usize,
     pub(crate) loops: usize,
+    /// Seeds tried after the first.
+    pub(crate) seeds: usize,
     /// Paths that failed on some segment (their solutions are simply not used).
     pub(crate) failed_paths: usize,
     /// A solution would not fit the capacity.
@@ -96,7 +100,12 @@ pub(crate) fn contains<S, const N: usize>(
     })
 }
 
-/// Fills `out` with the solutions at `p0`, starting from `out[0]` (already a solution).
+/// Fills `out` with the solutions at `p0`, starting from `out[0]` (already a solution):
+/// rounds of loops until `stable_loops` in a row bring nothing new, then fresh seeds (random
+/// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
+/// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
+/// component of the seed's solution; seeds land on every component (the 3-RPS example's
+/// solutions split into two components of eight over its leg lengths).
 pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     model: &Model<'_, S, N>,
     p0: &[Complex; M],
@@ -108,54 +117,88 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
     let mut found = Found {
         count: 1,
         loops: 0,
+        seeds: 0,
         failed_paths: 0,
         overflow: false,
     };
-    // Loop points as far from p₀ as p₀'s own entries are from zero.
+    let done = |found: &Found| {
+        found.overflow
+            || found.loops >= stop.max_loops
+            || stop.expected.is_some_and(|e| found.count >= e)
+    };
+    // Loop points as far from zero as p₀'s entries, times LOOP_SIZE.
     let size = libm::sqrt(p0.iter().map(|p| p.norm_sqr()).sum::<f64>() / M.max(1) as f64);
-    let mut stale = 0;
-    while stale < stop.stable_loops
-        && found.loops < stop.max_loops
-        && stop.expected.is_none_or(|e| found.count < e)
-    {
-        found.loops += 1;
-        let a = [0; M].map(|_| rng.complex_normal().scale(LOOP_SIZE * size));
-        let b = [0; M].map(|_| rng.complex_normal().scale(LOOP_SIZE * size));
-        let legs = [
-            ParameterPath::new(*p0, a, Complex::ONE),
-            ParameterPath::new(a, b, Complex::ONE),
-            ParameterPath::new(b, *p0, Complex::ONE),
-        ];
+    loop {
+        let mut stale = 0;
+        while stale < stop.stable_loops && !done(&found) {
+            found.loops += 1;
+            let ls = LOOP_SIZES[found.loops % LOOP_SIZES.len()];
+            let a = [0; M].map(|_| rng.complex_normal().scale(ls * size));
+            let b = [0; M].map(|_| rng.complex_normal().scale(ls * size));
+            let legs = [
+                ParameterPath::new(*p0, a, Complex::ONE),
+                ParameterPath::new(a, b, Complex::ONE),
+                ParameterPath::new(b, *p0, Complex::ONE),
+            ];
+            let mut new = false;
+            let mut i = 0;
+            while i < found.count && !done(&found) {
+                let mut v = out[i];
+                i += 1;
+                let ok = legs.iter().all(|leg| {
+                    model
+                        .track(leg, &mut v, &mut ws, &Settings::DEFAULT)
+                        .outcome
+                        == Outcome::Reached
+                });
+                if !ok || !polish(model, &mut v, p0, &mut ws) {
+                    found.failed_paths += 1;
+                    continue;
+                }
+                new |= add(model, out, &mut found, v);
+            }
+            stale = if new { 0 } else { stale + 1 };
+        }
         let mut new = false;
-        let mut i = 0;
-        while i < found.count {
-            let mut v = out[i];
-            i += 1;
-            let ok = legs.iter().all(|leg| {
-                model
-                    .track(leg, &mut v, &mut ws, &Settings::DEFAULT)
-                    .outcome
-                    == Outcome::Reached
-            });
-            if !ok || !polish(model, &mut v, p0, &mut ws) {
+        let mut stale_seeds = 0;
+        while !new && stale_seeds < stop.stable_seeds && !done(&found) {
+            found.seeds += 1;
+            stale_seeds += 1;
+            let Some((mut v, p)) = super::seed::seed(model, rng) else {
+                continue;
+            };
+            let path = ParameterPath::new(p, *p0, Complex::ONE);
+            let reached = model
+                .track(&path, &mut v, &mut ws, &Settings::DEFAULT)
+                .outcome
+                == Outcome::Reached;
+            if !reached || !polish(model, &mut v, p0, &mut ws) {
                 found.failed_paths += 1;
                 continue;
             }
-            if contains(model, &out[..found.count], &v, 1e-8) {
-                continue;
-            }
-            if found.count == K {
-                found.overflow = true;
-                return found;
-            }
-            out[found.count] = v;
-            found.count += 1;
-            new = true;
-            if stop.expected.is_some_and(|e| found.count >= e) {
-                return found;
-            }
+            new = add(model, out, &mut found, v);
         }
-        stale = if new { 0 } else { stale + 1 };
+        if !new || done(&found) {
+            return found;
+        }
     }
-    found
+}
+
+/// Adds `v` to the known solutions if it is new; `true` if it was.
+fn add<S, const N: usize, const K: usize>(
+    model: &Model<'_, S, N>,
+    out: &mut [[Complex; N]; K],
+    found: &mut Found,
+    v: [Complex; N],
+) -> bool {
+    if contains(model, &out[..found.count], &v, 1e-8) {
+        return false;
+    }
+    if found.count == K {
+        found.overflow = true;
+        return false;
+    }
+    out[found.count] = v;
+    found.count += 1;
+    true
 }
