@@ -125,7 +125,11 @@ impl Div for Complex {
     type Output = Complex;
     #[inline]
     fn div(self, o: Complex) -> Complex {
-        self * o.recip()
+        let r = o.recip();
+        Complex::new(
+            self.re * r.re - self.im * r.im,
+            self.re * r.im + self.im * r.re,
+        )
     }
 }
 

@@ -14,17 +14,22 @@ const NEAR_TARGET: f64 = 1e-6;
 /// Coordinates whose imaginary parts are all below this (weighted) are real.
 const REAL_TOL: f64 = 1e-7;
 
+/// Beyond this size (in units of the scale) a root counts as at infinity.
+const AT_INFINITY: f64 = 1e8;
+
 /// Classifies the end of a path tracked to the target `p` (a finite or singular root, a
-/// diverging path, a failure), polishing finite roots to full precision.
+/// diverging path, a failure), polishing finite roots to full precision. `z` is the endpoint in
+/// tracking coordinates; the endpoint reports v.
 pub(crate) fn classify<S: Mechanism<N, M>, const N: usize, const M: usize>(
     model: &Model<'_, S, N>,
     p: &[Complex; M],
     tracked: &Tracked,
-    v: &[Complex; N],
+    z: &[Complex; N],
     ws: &mut Workspace<N>,
 ) -> Endpoint<N> {
     let mut e = Endpoint {
-        v: *v,
+        v: model.leave(z),
+        z: *z,
         kind: EndpointKind::Failed,
         steps: tracked.steps,
         residual: f64::NAN,
@@ -33,30 +38,47 @@ pub(crate) fn classify<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     match tracked.outcome {
         Outcome::Reached => {
-            if polish(model, &mut e.v, p, ws) {
-                e.kind = if is_real(model, &e.v) {
+            let mut polished = *z;
+            if polish(model, &mut polished, p, ws) {
+                e.v = model.leave(&polished);
+                e.z = polished;
+                e.kind = if !(model.size(&polished) <= AT_INFINITY) {
+                    EndpointKind::Diverging
+                } else if is_real(model, &e.v) {
                     EndpointKind::Real
                 } else {
                     EndpointKind::Complex
                 };
             } else {
-                e.v = *v;
-                e.kind = EndpointKind::Singular;
+                e.kind = if model.size(z) <= AT_INFINITY {
+                    EndpointKind::Singular
+                } else {
+                    EndpointKind::Diverging
+                };
             }
         }
         Outcome::Diverged => e.kind = EndpointKind::Diverging,
         Outcome::Singular | Outcome::StepTooSmall | Outcome::TooManySteps => {
             if tracked.s >= 1.0 - NEAR_TARGET {
-                e.kind = EndpointKind::Singular;
+                e.kind = if model.size(z) <= AT_INFINITY {
+                    EndpointKind::Singular
+                } else {
+                    EndpointKind::Diverging
+                };
             }
         }
     }
-    if e.kind != EndpointKind::Diverging {
+    if e.kind != EndpointKind::Diverging && e.v.iter().all(|c| c.is_finite()) {
         let mut f = [Complex::ZERO; N];
         model.sys.residual_in(&e.v, p, &mut f);
         e.residual = f.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        // B itself, not the projective Jacobian: what a user means by "near singular".
+        let affine = Model {
+            chart: None,
+            ..*model
+        };
         let (values, lu) = ws.scratch();
-        e.pivot_ratio = if model.factor(&e.v, p, values, lu) {
+        e.pivot_ratio = if affine.factor(&e.v, p, values, lu) {
             lu.pivot_ratio()
         } else {
             0.0

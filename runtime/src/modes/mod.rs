@@ -59,11 +59,11 @@ pub use roots::{Endpoint, EndpointKind, RealRoot, Roots};
 pub use taylor::Series;
 
 use crate::Mechanism;
-use monodromy::{contains, Stopping};
+use monodromy::{contains, Stopping, SAME};
 use path::ParameterPath;
 use rng::Rng;
 use sparse_lu::Plan;
-use track::{Model, Settings, Workspace};
+use track::{Chart, Model, Settings, Workspace};
 
 /// A random γ = e^(iθ) with π/6 ≤ |θ| ≤ π/2: a real bend of the path, but far from −1, where
 /// the rational path (see `path.rs`) would pass near a pole and blow every solution up.
@@ -71,6 +71,32 @@ fn gamma(rng: &mut Rng) -> Complex {
     let t = core::f64::consts::PI * (1.0 / 6.0 + rng.uniform() / 3.0);
     let t = if rng.uniform() < 0.5 { -t } else { t };
     Complex::new(libm::cos(t), libm::sin(t))
+}
+
+/// The degree of each equation in v, from F at two points far out along a random direction
+/// (`F_i(t z) ≈ t^(d_i) P_i(z)` for large t); `None` unless every one is a whole number from 1
+/// to 4 (then no projective chart is used).
+fn degrees<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    scale: f64,
+    rng: &mut Rng,
+) -> Option<[u8; N]> {
+    let z = [0; N].map(|_| rng.uniform() - 0.5);
+    let x = [0; M].map(|_| scale * (rng.uniform() + 0.5));
+    let t = 1e6 * scale;
+    let (mut f1, mut f2) = ([0.0; N], [0.0; N]);
+    sys.residual(&z.map(|c| t * c), &x, &mut f1);
+    sys.residual(&z.map(|c| 2.0 * t * c), &x, &mut f2);
+    let mut out = [0u8; N];
+    for i in 0..N {
+        let d = libm::log2((f2[i] / f1[i]).abs());
+        let r = libm::round(d);
+        if !(d.is_finite() && (d - r).abs() < 0.01 && (1.0..=4.0).contains(&r)) {
+            return None;
+        }
+        out[i] = r as u8;
+    }
+    Some(out)
 }
 
 /// How the start solutions are computed.
@@ -91,17 +117,22 @@ pub struct ModesOptions {
     /// Length scale of the mechanism (tolerances are relative to it below it); 0 takes the
     /// largest platform pivot coordinate.
     pub scale: f64,
+    /// Track in projective coordinates (see [`AllModes`]): needed for roots very far out (a
+    /// general 6-6 platform has complex roots 10⁶ times its size away), about a third slower
+    /// per step. Ignored if the equations are not polynomial in v of degree 1 to 4.
+    pub projective: bool,
 }
 
 impl Default for ModesOptions {
     fn default() -> Self {
         ModesOptions {
             seed: 2015,
-            stable_loops: 5,
+            stable_loops: 10,
             stable_seeds: 8,
             max_loops: 200,
             expected: None,
             scale: 0.0,
+            projective: true,
         }
     }
 }
@@ -167,9 +198,11 @@ pub struct StartReport {
 pub struct AllModes<S, const N: usize, const M: usize, const K: usize> {
     sys: S,
     plan: Plan<N>,
+    chart: Option<Chart<N>>,
     scale: f64,
     p0: [Complex; M],
     gamma: Complex,
+    /// The start solutions in tracking coordinates (see `track::Chart`).
     starts: [[Complex; N]; K],
     count: usize,
     report: StartReport,
@@ -195,7 +228,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         if K == 0 {
             return Err(ModesError::Capacity { capacity: K });
         }
-        starts[0] = v;
+        starts[0] = model.enter(&v);
         let stop = Stopping {
             stable_loops: options.stable_loops.max(1),
             stable_seeds: options.stable_seeds,
@@ -220,8 +253,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
 
     /// Moves the start set to a parameter point near the real inputs `center` (each input
     /// perturbed by a random complex number of size `spread` × the scale), so that queries near
-    /// `center` follow short paths. Every start is tracked there; if one fails, nothing changes
-    /// and the error says so.
+    /// `center` follow short paths. Every start is tracked there; if one fails, another random
+    /// point is tried (four in all); if all fail, nothing changes and the error names the start
+    /// that failed last.
     pub fn recenter(
         &mut self,
         center: &[f64; M],
@@ -232,10 +266,27 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             return Err(ModesError::NonFinite);
         }
         let mut rng = Rng::new(seed);
-        let p1: [Complex; M] = core::array::from_fn(|i| {
-            Complex::real(center[i]) + rng.complex_normal().scale(spread * self.scale)
-        });
-        let path = ParameterPath::new(self.p0, p1, Complex::ONE);
+        let mut error = ModesError::BadStart { index: 0 };
+        for _ in 0..4 {
+            let p1: [Complex; M] = core::array::from_fn(|i| {
+                Complex::real(center[i]) + rng.complex_normal().scale(spread * self.scale)
+            });
+            match self.moved_to(&p1) {
+                Ok(moved) => {
+                    self.starts = moved;
+                    self.p0 = p1;
+                    return Ok(());
+                }
+                Err(e) => error = e,
+            }
+        }
+        Err(error)
+    }
+
+    /// The start set tracked from p₀ to `p1`, each path tried with the default and the careful
+    /// settings; all distinct.
+    fn moved_to(&self, p1: &[Complex; M]) -> Result<[[Complex; N]; K], ModesError> {
+        let path = ParameterPath::new(self.p0, *p1, Complex::ONE);
         let model = self.model();
         let mut ws = Workspace::new();
         let mut moved = self.starts;
@@ -244,20 +295,19 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
                 *v = from;
                 model.track(&path, v, &mut ws, set).outcome == track::Outcome::Reached
-                    && monodromy::polish(&model, v, &p1, &mut ws)
+                    && monodromy::polish(&model, v, p1, &mut ws)
+                    && model.size(v) <= 1e8
             });
             if !reached {
                 return Err(ModesError::BadStart { index });
             }
         }
         for index in 1..self.count {
-            if contains(&model, &moved[..index], &moved[index], 1e-8) {
+            if contains(&model, &moved[..index], &moved[index], SAME) {
                 return Err(ModesError::BadStart { index });
             }
         }
-        self.starts = moved;
-        self.p0 = p1;
-        Ok(())
+        Ok(moved)
     }
 
     /// Takes start solutions computed before (e.g. by [`AllModes::new`] and stored): each
@@ -280,14 +330,15 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         me.gamma = gamma;
         let mut ws = Workspace::new();
         for (index, s) in starts.iter().enumerate() {
-            let mut v = *s;
             let model = me.model();
-            if !monodromy::polish(&model, &mut v, &p0, &mut ws)
-                || contains(&model, &me.starts[..me.count], &v, 1e-8)
+            let mut z = model.enter(s);
+            if !monodromy::polish(&model, &mut z, &p0, &mut ws)
+                || !(model.size(&z) <= 1e8)
+                || contains(&model, &me.starts[..me.count], &z, SAME)
             {
                 return Err(ModesError::BadStart { index });
             }
-            me.starts[me.count] = v;
+            me.starts[me.count] = z;
             me.count += 1;
         }
         Ok(me)
@@ -318,15 +369,20 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             let x = [0; M].map(|_| scale * (rng.uniform() + 0.5));
             sys.jacobian_in(&v, &x, sample.as_flattened_mut());
         }
-        let plan = Plan::new(
-            S::PATTERN,
-            samples[0].as_flattened(),
-            samples[1].as_flattened(),
-        )
-        .map_err(|_| ModesError::TooLarge)?;
+        let (a, b) = (samples[0].as_flattened(), samples[1].as_flattened());
+        let plan = Plan::new(S::PATTERN, a, b).map_err(|_| ModesError::TooLarge)?;
+        // The border of the projective Jacobian needs one static pivot (room in the compact
+        // remainder).
+        let chart = degrees(&sys, scale, &mut rng)
+            .filter(|_| options.projective && plan.shape().0 > 0)
+            .map(|degree| Chart {
+                c: [0; N].map(|_| rng.complex_normal().scale(1.0 / (scale * N as f64))),
+                degree,
+            });
         Ok(AllModes {
             sys,
             plan,
+            chart,
             scale,
             p0: [Complex::ZERO; M],
             gamma: Complex::ONE,
@@ -342,6 +398,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             plan: &self.plan,
             pattern: S::PATTERN,
             scale: self.scale,
+            chart: self.chart.as_ref(),
         }
     }
 
@@ -355,21 +412,19 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         self.count
     }
 
-    /// The start parameters p₀, γ and the start solutions (to store and pass to
-    /// [`AllModes::from_starts`]).
-    pub fn starts(&self) -> (&[Complex; M], Complex, &[[Complex; N]]) {
-        (&self.p0, self.gamma, &self.starts[..self.count])
+    /// The start parameters p₀ and γ (to store and pass to [`AllModes::from_starts`]).
+    pub fn base_point(&self) -> (&[Complex; M], Complex) {
+        (&self.p0, self.gamma)
+    }
+
+    /// Start solution `i` (v at p₀), `None` past [`AllModes::start_count`].
+    pub fn start(&self, i: usize) -> Option<[Complex; N]> {
+        (i < self.count).then(|| self.model().leave(&self.starts[i]))
     }
 
     /// How the start set was found.
     pub fn report(&self) -> StartReport {
         self.report
-    }
-
-    /// The factorisation plan: pivots on constant entries, size of the dense remainder.
-    #[doc(hidden)]
-    pub fn plan_shape(&self) -> (usize, usize) {
-        self.plan.shape()
     }
 
     /// The length scale of the tolerances.
@@ -390,12 +445,30 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         let target = x.map(Complex::real);
         let path = ParameterPath::new(self.p0, target, self.gamma);
         let model = self.model();
+        // First pass in affine coordinates: a third cheaper per step, and enough for every path
+        // that stays within reach of double precision.
+        let affine = Model {
+            chart: None,
+            ..model
+        };
         let mut ws = Workspace::new();
         out.paths = self.count;
         out.n_real = 0;
         for i in 0..self.count {
             out.endpoints[i] =
-                self.endpoint(&model, &path, i, &target, &Settings::DEFAULT, &mut ws);
+                self.endpoint(&affine, &path, i, &target, &Settings::DEFAULT, &mut ws);
+        }
+        // Paths that did not end at a regular root: again in projective coordinates, then with
+        // small steps. (At a target with fewer roots than generic they end as they did.)
+        for i in 0..self.count {
+            for (m, set) in [(&model, &Settings::DEFAULT), (&model, &Settings::CAREFUL)] {
+                if out.endpoints[i].is_root() {
+                    break;
+                }
+                let steps = out.endpoints[i].steps;
+                out.endpoints[i] = self.endpoint(m, &path, i, &target, set, &mut ws);
+                out.endpoints[i].steps += steps;
+            }
         }
         // Two paths on one nonsingular root: one of them jumped. Track both again carefully.
         for i in 0..self.count {
@@ -403,8 +476,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 if !(out.endpoints[i].is_root() && out.endpoints[j].is_root()) {
                     continue;
                 }
-                let (a, b) = (out.endpoints[i].v, out.endpoints[j].v);
-                if !contains(&model, &[a], &b, 1e-8) {
+                let (a, b) = (out.endpoints[i].z, out.endpoints[j].z);
+                if !contains(&model, &[a], &b, SAME) {
                     continue;
                 }
                 for k in [i, j] {
@@ -413,8 +486,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                         self.endpoint(&model, &path, k, &target, &Settings::CAREFUL, &mut ws);
                     out.endpoints[k].steps += steps;
                 }
-                let (a, b) = (out.endpoints[i].v, out.endpoints[j].v);
-                if out.endpoints[i].is_root() && contains(&model, &[a], &b, 1e-8) {
+                let (a, b) = (out.endpoints[i].z, out.endpoints[j].z);
+                if out.endpoints[i].is_root() && contains(&model, &[a], &b, SAME) {
                     out.endpoints[j].kind = EndpointKind::Duplicate;
                 }
             }
@@ -423,6 +496,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         Ok(())
     }
 
+    /// Tracks start `i` along `path` with `model` and classifies where it ends; the endpoint's
+    /// `z` is in the solver's own tracking coordinates whichever model tracked it.
     fn endpoint(
         &self,
         model: &Model<'_, S, N>,
@@ -432,9 +507,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         settings: &Settings,
         ws: &mut Workspace<N>,
     ) -> Endpoint<N> {
-        let mut v = self.starts[i];
-        let tracked = model.track(path, &mut v, ws, settings);
-        endpoint::classify(model, target, &tracked, &v, ws)
+        let own = self.model();
+        let mut z = model.enter(&own.leave(&self.starts[i]));
+        let tracked = model.track(path, &mut z, ws, settings);
+        let mut e = endpoint::classify(model, target, &tracked, &z, ws);
+        if model.chart.is_none() && e.v.iter().all(|c| c.is_finite()) {
+            e.z = own.enter(&e.v);
+        }
+        e
     }
 
     /// Distances between roots and the real roots' refinement.

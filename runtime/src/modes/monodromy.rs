@@ -44,7 +44,8 @@ pub(crate) struct Found {
 
 /// Newton at fixed parameters to full precision. `true` if it converges as at a nonsingular
 /// root: the correction falls below 1e-13 (weighted), or it stalls at the floor rounding sets
-/// for an ill-conditioned root (below 1e-8) after contracting quadratically or starting there.
+/// for an ill-conditioned root (below [`FLOOR`]) after contracting quadratically or starting
+/// there.
 /// At a singular root Newton converges only linearly (ratio ½ at a double root) from the path
 /// accuracy, and this is `false`.
 pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
@@ -73,7 +74,7 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         if n >= 0.5 * previous {
             // No progress: the rounding floor (keep the previous iterate) or a singular root.
-            return fast && previous <= 1e-8;
+            return fast && previous <= FLOOR;
         }
         fast |= (it == 0 && n <= 1e-11) || n < 0.1 * previous;
         for i in 0..N {
@@ -81,8 +82,17 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         previous = n;
     }
-    fast && previous <= 1e-8
+    fast && previous <= FLOOR
 }
+
+/// The largest rounding floor [`polish`] accepts (weighted): roots 10⁶ times the mechanism's
+/// size away, which a general 6-6 platform can have, stall near 1e-7 in double precision.
+pub(crate) const FLOOR: f64 = 1e-6;
+
+/// Two roots closer than this (weighted, in tracking coordinates) are one: ten times the worst
+/// accuracy [`polish`] accepts, and far below the distance between distinct roots at a generic
+/// parameter point.
+pub(crate) const SAME: f64 = 1e-5;
 
 /// Whether `v` is within `tol` (weighted) of one of `known`.
 pub(crate) fn contains<S, const N: usize>(
@@ -100,7 +110,8 @@ pub(crate) fn contains<S, const N: usize>(
     })
 }
 
-/// Fills `out` with the solutions at `p0`, starting from `out[0]` (already a solution):
+/// Fills `out` with the solutions at `p0` in tracking coordinates, starting from `out[0]`
+/// (already a solution):
 /// rounds of loops until `stable_loops` in a row bring nothing new, then fresh seeds (random
 /// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
 /// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
@@ -164,9 +175,10 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         while !new && stale_seeds < stop.stable_seeds && !done(&found) {
             found.seeds += 1;
             stale_seeds += 1;
-            let Some((mut v, p)) = super::seed::seed(model, rng) else {
+            let Some((v, p)) = super::seed::seed(model, rng) else {
                 continue;
             };
+            let mut v = model.enter(&v);
             let path = ParameterPath::new(p, *p0, Complex::ONE);
             let reached = model
                 .track(&path, &mut v, &mut ws, &Settings::DEFAULT)
@@ -184,14 +196,15 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
     }
 }
 
-/// Adds `v` to the known solutions if it is new; `true` if it was.
+/// Adds `v` (tracking coordinates) to the known solutions if it is new and finite; `true` if
+/// it was. Compared in tracking coordinates: far-out roots are accurate there, not in v.
 fn add<S, const N: usize, const K: usize>(
     model: &Model<'_, S, N>,
     out: &mut [[Complex; N]; K],
     found: &mut Found,
     v: [Complex; N],
 ) -> bool {
-    if contains(model, &out[..found.count], &v, 1e-8) {
+    if !(model.size(&v) <= 1e8) || contains(model, &out[..found.count], &v, SAME) {
         return false;
     }
     if found.count == K {

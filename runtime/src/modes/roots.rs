@@ -28,6 +28,8 @@ pub struct Endpoint<const N: usize> {
     /// Where the path ended (the root, for [`EndpointKind::Real`] and
     /// [`EndpointKind::Complex`]).
     pub v: [Complex; N],
+    /// The same point in the tracker's coordinates (accurate also far out).
+    pub(crate) z: [Complex; N],
     pub kind: EndpointKind,
     /// Steps the tracker took (over both attempts if the path was retracked).
     pub steps: usize,
@@ -44,6 +46,7 @@ pub struct Endpoint<const N: usize> {
 impl<const N: usize> Endpoint<N> {
     const EMPTY: Self = Endpoint {
         v: [Complex::ZERO; N],
+        z: [Complex::ZERO; N],
         kind: EndpointKind::Failed,
         steps: 0,
         residual: f64::NAN,

@@ -150,5 +150,9 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     let mut values = [[Complex::ZERO; N]; N];
     let mut lu = Lu::new();
-    (model.factor(&v, &x, &mut values, &mut lu) && lu.pivot_ratio() > 1e-9).then_some((v, x))
+    let affine = Model {
+        chart: None,
+        ..*model
+    };
+    (affine.factor(&v, &x, &mut values, &mut lu) && lu.pivot_ratio() > 1e-9).then_some((v, x))
 }

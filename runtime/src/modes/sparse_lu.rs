@@ -47,7 +47,9 @@ impl<const N: usize> Plan<N> {
     /// Plans the factorisation of matrices with nonzeros at `pattern`. `a` and `b` are the
     /// values at two unrelated points: an entry equal in both is taken as constant, and only
     /// constant entries at least a tenth of the largest magnitude in their row serve as static
-    /// pivots (a constant pivot cannot become small, and the bound keeps growth modest).
+    /// pivots (a constant pivot cannot become small relative to its row, and the bound keeps
+    /// growth modest). Scaling a row by a common factor, as the projective formulation does,
+    /// keeps that property.
     pub(crate) fn new(pattern: &[(usize, usize)], a: &[f64], b: &[f64]) -> Result<Self, PlanError> {
         if N > 255 {
             return Err(PlanError::TooLarge);
@@ -147,16 +149,30 @@ impl<const N: usize> Plan<N> {
     }
 }
 
-/// A factorisation of B: the static phase in place in `a`; the dense remainder compacted, rows in
-/// pivot order, with real and imaginary parts in separate arrays so that the row updates and
-/// substitutions run on plain vectors of f64 (no shuffles of interleaved complex numbers);
-/// reciprocal pivots for the substitutions.
+/// The border of a bordered matrix `[[B, col], [row, corner]]` (see [`Lu::factor`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Border<const N: usize> {
+    pub(crate) col: [Complex; N],
+    pub(crate) row: [Complex; N],
+    pub(crate) corner: Complex,
+}
+
+/// A factorisation of B (or of B bordered by one row and column): the static phase in place in
+/// `a` (and in the border vectors); the dense remainder — the Schur complement on the other
+/// rows and columns, with the border as its last row and column — compacted, rows in pivot
+/// order, real and imaginary parts in separate arrays so that the row updates and substitutions
+/// run on plain vectors of f64 (no shuffles of interleaved complex numbers); reciprocal pivots
+/// for the substitutions.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lu<const N: usize> {
     a: [[Complex; N]; N],
+    border: Option<Border<N>>,
     re: [[f64; N]; N],
     im: [[f64; N]; N],
-    /// Original row (index into the plan's rest rows) of each row of the remainder.
+    /// Size of the compact remainder (the plan's plus one with a border).
+    m: usize,
+    /// Original row of each row of the remainder: an index into the plan's rest rows, or the
+    /// plan's rest count for the border row.
     perm: [u8; N],
     inv_static: [Complex; N],
     inv_dense: [Complex; N],
@@ -169,8 +185,10 @@ impl<const N: usize> Lu<N> {
     pub(crate) const fn new() -> Self {
         Lu {
             a: [[Complex::ZERO; N]; N],
+            border: None,
             re: [[0.0; N]; N],
             im: [[0.0; N]; N],
+            m: 0,
             perm: [0; N],
             inv_static: [Complex::ZERO; N],
             inv_dense: [Complex::ZERO; N],
@@ -188,14 +206,21 @@ impl<const N: usize> Lu<N> {
         }
     }
 
-    /// Factors the matrix whose nonzeros are `values` at `pattern` (the plan's pattern).
-    /// `false` if a pivot is zero or not finite.
+    /// Factors the matrix whose nonzeros are `values` at `pattern` (the plan's pattern),
+    /// bordered by `border` if given. A border needs at least one static pivot (the compact
+    /// remainder has room for N rows). `false` if a pivot is zero or not finite.
     pub(crate) fn factor(
         &mut self,
         plan: &Plan<N>,
         pattern: &[(usize, usize)],
         values: &[Complex],
+        border: Option<&Border<N>>,
     ) -> bool {
+        let n = plan.rest;
+        if border.is_some() && n >= N {
+            return false;
+        }
+        self.border = border.copied();
         let a = &mut self.a;
         for i in 0..N {
             for jj in 0..plan.n_fill[i] as usize {
@@ -226,26 +251,56 @@ impl<const N: usize> Lu<N> {
                     let u = a[r][j];
                     a[i][j] -= l * u;
                 }
+                if let Some(b) = self.border.as_mut() {
+                    let u = b.col[r];
+                    b.col[i] -= l * u;
+                }
+            }
+            if let Some(b) = self.border.as_mut() {
+                // The border row has an entry in every column.
+                let l = b.row[c] * inv;
+                b.row[c] = l;
+                for jj in 0..plan.n_cols[k] as usize {
+                    let j = plan.cols[k][jj] as usize;
+                    b.row[j] -= l * a[r][j];
+                }
+                let u = b.col[r];
+                b.corner -= l * u;
             }
         }
-        let n = plan.rest;
+        let m = n + self.border.is_some() as usize;
+        self.m = m;
         let (re, im) = (&mut self.re, &mut self.im);
         for i in 0..n {
-            let row = &a[plan.rest_rows[i] as usize];
+            let r = plan.rest_rows[i] as usize;
             for j in 0..n {
-                let x = row[plan.rest_cols[j] as usize];
+                let x = a[r][plan.rest_cols[j] as usize];
                 re[i][j] = x.re;
                 im[i][j] = x.im;
             }
+            if let Some(b) = &self.border {
+                re[i][n] = b.col[r].re;
+                im[i][n] = b.col[r].im;
+            }
             self.perm[i] = i as u8;
         }
-        for k in 0..n {
+        if let Some(b) = &self.border {
+            for j in 0..n {
+                let x = b.row[plan.rest_cols[j] as usize];
+                re[n][j] = x.re;
+                im[n][j] = x.im;
+            }
+            re[n][n] = b.corner.re;
+            im[n][n] = b.corner.im;
+            self.perm[n] = n as u8;
+        }
+        for k in 0..m {
             let mut best = k;
             let mut bm = re[k][k].abs().max(im[k][k].abs());
-            for i in k + 1..n {
-                let m = re[i][k].abs().max(im[i][k].abs());
-                if m > bm {
-                    bm = m;
+            for i in k + 1..m {
+                let v = re[i][k].abs().max(im[i][k].abs());
+                if v > bm {
+                    bm = v;
                     best = i;
                 }
             }
@@ -261,15 +316,15 @@ impl<const N: usize> Lu<N> {
             self.inv_dense[k] = inv;
             let (rtop, rbottom) = re.split_at_mut(k + 1);
             let (itop, ibottom) = im.split_at_mut(k + 1);
-            let (ur, ui) = (&rtop[k][k + 1..n], &itop[k][k + 1..n]);
-            for (xr, xi) in rbottom[..n - k - 1]
+            let (ur, ui) = (&rtop[k][k + 1..m], &itop[k][k + 1..m]);
+            for (xr, xi) in rbottom[..m - k - 1]
                 .iter_mut()
-                .zip(ibottom[..n - k - 1].iter_mut())
+                .zip(ibottom[..m - k - 1].iter_mut())
             {
                 let l = Complex::new(xr[k], xi[k]) * inv;
                 xr[k] = l.re;
                 xi[k] = l.im;
-                let (xr, xi) = (&mut xr[k + 1..n], &mut xi[k + 1..n]);
+                let (xr, xi) = (&mut xr[k + 1..m], &mut xi[k + 1..m]);
                 for j in 0..ur.len().min(xr.len()).min(xi.len()).min(ui.len()) {
                     xr[j] -= l.re * ur[j] - l.im * ui[j];
                     xi[j] -= l.re * ui[j] + l.im * ur[j];
@@ -281,9 +336,11 @@ impl<const N: usize> Lu<N> {
         lo.is_finite() && hi.is_finite()
     }
 
-    /// Solves `B y = b`; `b` is overwritten with `y`.
+    /// Solves `B y = b` (with a border: `[[B, col], [row, corner]] [y; σ] = [b; 0]`, and σ is
+    /// dropped); `b` is overwritten with `y`.
     pub(crate) fn solve(&self, plan: &Plan<N>, b: &mut [Complex; N]) {
         let a = &self.a;
+        let mut bb = Complex::ZERO;
         for k in 0..plan.statics {
             let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
             let br = b[r];
@@ -291,17 +348,25 @@ impl<const N: usize> Lu<N> {
                 let i = plan.rows[k][ii] as usize;
                 b[i] -= a[i][c] * br;
             }
+            if let Some(border) = &self.border {
+                bb -= border.row[c] * br;
+            }
         }
-        let n = plan.rest;
+        let (n, m) = (plan.rest, self.m);
         let (re, im) = (&self.re, &self.im);
         let mut zr = [0.0; N];
         let mut zi = [0.0; N];
-        for i in 0..n {
-            let x = b[plan.rest_rows[self.perm[i] as usize] as usize];
+        for i in 0..m {
+            let p = self.perm[i] as usize;
+            let x = if p == n {
+                bb
+            } else {
+                b[plan.rest_rows[p] as usize]
+            };
             zr[i] = x.re;
             zi[i] = x.im;
         }
-        for i in 1..n {
+        for i in 1..m {
             let (lr, li) = (&re[i][..i], &im[i][..i]);
             let (mut sr, mut si) = (0.0, 0.0);
             for j in 0..i.min(lr.len()).min(li.len()) {
@@ -311,9 +376,9 @@ impl<const N: usize> Lu<N> {
             zr[i] -= sr;
             zi[i] -= si;
         }
-        for i in (0..n).rev() {
-            let (ur, ui) = (&re[i][i + 1..n], &im[i][i + 1..n]);
-            let (yr, yi) = (&zr[i + 1..n], &zi[i + 1..n]);
+        for i in (0..m).rev() {
+            let (ur, ui) = (&re[i][i + 1..m], &im[i][i + 1..m]);
+            let (yr, yi) = (&zr[i + 1..m], &zi[i + 1..m]);
             let (mut sr, mut si) = (0.0, 0.0);
             for j in 0..ur.len().min(ui.len()).min(yr.len()).min(yi.len()) {
                 sr += ur[j] * yr[j] - ui[j] * yi[j];
@@ -327,12 +392,20 @@ impl<const N: usize> Lu<N> {
         for j in 0..n {
             y[plan.rest_cols[j] as usize] = Complex::new(zr[j], zi[j]);
         }
+        let sigma = if m > n {
+            Complex::new(zr[n], zi[n])
+        } else {
+            Complex::ZERO
+        };
         for k in (0..plan.statics).rev() {
             let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
             let mut s = b[r];
             for jj in 0..plan.n_cols[k] as usize {
                 let j = plan.cols[k][jj] as usize;
                 s -= a[r][j] * y[j];
+            }
+            if let Some(border) = &self.border {
+                s -= border.col[r] * sigma;
             }
             y[c] = s * self.inv_static[k];
         }
@@ -374,7 +447,7 @@ mod tests {
             Complex::new(0.0, 1.0),
         ];
         let mut lu = Lu::<4>::new();
-        assert!(lu.factor(&plan, &pattern, &vals));
+        assert!(lu.factor(&plan, &pattern, &vals, None));
         let x = [
             Complex::new(1.0, 1.0),
             Complex::new(-2.0, 0.5),
@@ -388,6 +461,35 @@ mod tests {
         lu.solve(&plan, &mut rhs);
         for i in 0..4 {
             assert!((rhs[i] - x[i]).abs() < 1e-13, "{i}: {:?}", rhs[i]);
+        }
+        // Bordered: [[B, col], [row, −1]] [x; σ] = [b; 0] with σ = row · x.
+        let border = Border {
+            col: [
+                Complex::new(0.5, 1.0),
+                Complex::real(-2.0),
+                Complex::new(0.0, 3.0),
+                Complex::ONE,
+            ],
+            row: [
+                Complex::new(1.0, -1.0),
+                Complex::real(0.25),
+                Complex::new(0.3, 0.3),
+                Complex::real(-0.7),
+            ],
+            corner: Complex::real(-1.0),
+        };
+        assert!(lu.factor(&plan, &pattern, &vals, Some(&border)));
+        let sigma = (0..4).fold(Complex::ZERO, |s, j| s + border.row[j] * x[j]);
+        let mut rhs = [Complex::ZERO; 4];
+        for (&(r, c), &v) in pattern.iter().zip(&vals) {
+            rhs[r] += v * x[c];
+        }
+        for i in 0..4 {
+            rhs[i] += border.col[i] * sigma;
+        }
+        lu.solve(&plan, &mut rhs);
+        for i in 0..4 {
+            assert!((rhs[i] - x[i]).abs() < 1e-13, "bordered {i}: {:?}", rhs[i]);
         }
     }
 }

@@ -25,6 +25,24 @@ impl<const K: usize> Series<K> {
         self.0[1..].iter().all(|c| c.re == 0.0 && c.im == 0.0)
     }
 
+    /// `1 / self` (the first coefficient must not be zero).
+    pub fn recip(self) -> Self {
+        let mut r = Self::ZERO;
+        if K == 0 {
+            return r;
+        }
+        let inv = self.0[0].recip();
+        r.0[0] = inv;
+        for k in 1..K {
+            let mut s = Complex::ZERO;
+            for j in 1..=k {
+                s += self.0[j] * r.0[k - j];
+            }
+            r.0[k] = -(s * inv);
+        }
+        r
+    }
+
     /// Every coefficient times `c`.
     #[inline(always)]
     pub fn times(self, c: Complex) -> Self {

@@ -24,7 +24,7 @@
 
 use super::complex::Complex;
 use super::path::ParameterPath;
-use super::sparse_lu::{Lu, Plan};
+use super::sparse_lu::{Border, Lu, Plan};
 use super::taylor::Series;
 use crate::Mechanism;
 
@@ -48,9 +48,9 @@ pub(crate) struct Settings {
 
 impl Settings {
     pub(crate) const DEFAULT: Settings = Settings {
-        tol: 1e-9,
-        limit: 1e-7,
-        tau: 1e-3,
+        tol: 1e-8,
+        limit: 1e-6,
+        tau: 1e-2,
         max_error: 5e-2,
         max_steps: 2000,
         max_norm: 1e8,
@@ -97,6 +97,22 @@ pub(crate) struct Model<'a, S, const N: usize> {
     pub(crate) plan: &'a Plan<N>,
     pub(crate) pattern: &'a [(usize, usize)],
     pub(crate) scale: f64,
+    /// Projective coordinates, if the system allows them.
+    pub(crate) chart: Option<&'a Chart<N>>,
+}
+
+/// A projective chart: the tracker works on `z = v / (1 + c·v)`, so `v = z / w` with
+/// `w = 1 − c·z`, and on the homogenised equations `G_i(z) = w^(d_i) F_i(z / w)` (d_i the degree
+/// of F_i in v). Roots far out in v — |v| of 10⁵ times the mechanism's size occur among the
+/// complex roots of a general 6-6 platform — are ordinary points near `w = 0` in z, where the
+/// affine equations are so ill-conditioned that rounding stalls Newton's method. The Jacobian
+/// `∂G/∂z = D (B + r cᵀ)` with `D = diag(w^(d_i − 1))` and `r = B v − d∘F` is factored as the
+/// bordered matrix `[[D B, D r], [cᵀ, −1]]`, which keeps B's sparsity and its static pivots
+/// (D scales whole rows).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Chart<const N: usize> {
+    pub(crate) c: [Complex; N],
+    pub(crate) degree: [u8; N],
 }
 
 impl<S, const N: usize> Clone for Model<'_, S, N> {
@@ -106,7 +122,7 @@ impl<S, const N: usize> Clone for Model<'_, S, N> {
 }
 impl<S, const N: usize> Copy for Model<'_, S, N> {}
 
-/// Scratch space of the tracker: Jacobian values and the factorisation of B.
+/// Scratch space of the tracker: Jacobian values and the factorisation.
 pub(crate) struct Workspace<const N: usize> {
     values: [[Complex; N]; N],
     lu: Lu<N>,
@@ -126,27 +142,106 @@ impl<const N: usize> Workspace<N> {
     }
 }
 
+/// `x^d` for a small power.
+#[inline(always)]
+fn powi(x: Complex, d: u8) -> Complex {
+    let mut r = Complex::ONE;
+    for _ in 0..d {
+        r *= x;
+    }
+    r
+}
+
 impl<S, const N: usize> Model<'_, S, N> {
-    /// The weighted max-norm of a correction `d` at `v`.
-    pub(crate) fn norm(&self, d: &[Complex; N], v: &[Complex; N]) -> f64 {
+    /// The weighted max-norm of a correction `d` at `z` (tracking coordinates).
+    pub(crate) fn norm(&self, d: &[Complex; N], z: &[Complex; N]) -> f64 {
         let mut m = 0.0f64;
         for i in 0..N {
-            m = m.max(d[i].abs_max() / self.scale.max(v[i].abs_max()));
+            m = m.max(d[i].abs_max() / self.scale.max(z[i].abs_max()));
         }
         m
     }
 
-    /// The size of v in units of the scale.
-    pub(crate) fn size(&self, v: &[Complex; N]) -> f64 {
-        v.iter().fold(0.0f64, |m, c| m.max(c.abs_max())) / self.scale
+    /// `w = 1 − c·z` (1 without a chart).
+    pub(crate) fn w(&self, z: &[Complex; N]) -> Complex {
+        match self.chart {
+            Some(ch) => {
+                let mut w = Complex::ONE;
+                for i in 0..N {
+                    w -= ch.c[i] * z[i];
+                }
+                w
+            }
+            None => Complex::ONE,
+        }
+    }
+
+    /// Tracking coordinates of a point v.
+    pub(crate) fn enter(&self, v: &[Complex; N]) -> [Complex; N] {
+        match self.chart {
+            Some(ch) => {
+                let mut d = Complex::ONE;
+                for i in 0..N {
+                    d += ch.c[i] * v[i];
+                }
+                let inv = d.recip();
+                v.map(|x| x * inv)
+            }
+            None => *v,
+        }
+    }
+
+    /// The point v of tracking coordinates z (infinite entries where w = 0).
+    pub(crate) fn leave(&self, z: &[Complex; N]) -> [Complex; N] {
+        match self.chart {
+            Some(_) => {
+                let inv = self.w(z).recip();
+                z.map(|x| x * inv)
+            }
+            None => *z,
+        }
+    }
+
+    /// The size of v in units of the scale (infinite at w = 0).
+    pub(crate) fn size(&self, z: &[Complex; N]) -> f64 {
+        let m = z.iter().fold(0.0f64, |m, c| m.max(c.abs_max())) / self.scale;
+        match self.chart {
+            Some(_) => m / self.w(z).abs(),
+            None => m,
+        }
     }
 }
 
 impl<'a, S, const N: usize> Model<'a, S, N> {
-    /// Evaluates B at (v, p) and factors it into `lu`.
+    /// The equations in tracking coordinates: F(z, p), or G(z, p) with a chart.
+    pub(crate) fn residual<const M: usize>(
+        &self,
+        z: &[Complex; N],
+        p: &[Complex; M],
+    ) -> [Complex; N]
+    where
+        S: Mechanism<N, M>,
+    {
+        let mut f = [Complex::ZERO; N];
+        match self.chart {
+            None => self.sys.residual_in(z, p, &mut f),
+            Some(ch) => {
+                let w = self.w(z);
+                let inv = w.recip();
+                let v = z.map(|x| x * inv);
+                self.sys.residual_in(&v, p, &mut f);
+                for i in 0..N {
+                    f[i] *= powi(w, ch.degree[i]);
+                }
+            }
+        }
+        f
+    }
+
+    /// Evaluates the Jacobian at (z, p) and factors it into `lu`.
     pub(crate) fn factor<const M: usize>(
         &self,
-        v: &[Complex; N],
+        z: &[Complex; N],
         p: &[Complex; M],
         values: &mut [[Complex; N]; N],
         lu: &mut Lu<N>,
@@ -155,22 +250,50 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         S: Mechanism<N, M>,
     {
         let flat = values.as_flattened_mut();
-        self.sys.jacobian_in(v, p, flat);
-        lu.factor(self.plan, self.pattern, flat)
+        let Some(ch) = self.chart else {
+            self.sys.jacobian_in(z, p, flat);
+            return lu.factor(self.plan, self.pattern, flat, None);
+        };
+        let w = self.w(z);
+        let inv = w.recip();
+        let v = z.map(|x| x * inv);
+        self.sys.jacobian_in(&v, p, flat);
+        let mut f = [Complex::ZERO; N];
+        self.sys.residual_in(&v, p, &mut f);
+        // r = B v − d∘F, then rows scaled by w^(d − 1).
+        let mut r = [Complex::ZERO; N];
+        for (&(row, col), &b) in self.pattern.iter().zip(flat.iter()) {
+            r[row] += b * v[col];
+        }
+        let mut scale = [Complex::ONE; N];
+        for i in 0..N {
+            let d = ch.degree[i];
+            r[i] -= f[i].scale(d as f64);
+            scale[i] = powi(w, d.saturating_sub(1));
+            r[i] *= scale[i];
+        }
+        for (&(row, _), b) in self.pattern.iter().zip(flat.iter_mut()) {
+            *b *= scale[row];
+        }
+        let border = Border {
+            col: r,
+            row: ch.c,
+            corner: Complex::real(-1.0),
+        };
+        lu.factor(self.plan, self.pattern, flat, Some(&border))
     }
 
-    /// The Newton correction −B⁻¹ F(v, p) with a factorisation of B.
+    /// The Newton correction −J⁻¹ G(z, p) with a factorisation of J.
     pub(crate) fn newton<const M: usize>(
         &self,
         lu: &Lu<N>,
-        v: &[Complex; N],
+        z: &[Complex; N],
         p: &[Complex; M],
     ) -> [Complex; N]
     where
         S: Mechanism<N, M>,
     {
-        let mut f = [Complex::ZERO; N];
-        self.sys.residual_in(v, p, &mut f);
+        let mut f = self.residual(z, p);
         for x in f.iter_mut() {
             *x = -*x;
         }
@@ -178,13 +301,13 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         f
     }
 
-    /// Taylor coefficients v₁, v₂, v₃ of the path through `v` at `s` (B at v factored in `lu`).
+    /// Taylor coefficients z₁, z₂, z₃ of the path through `z` at `s` (J at z factored in `lu`).
     fn taylor<const M: usize>(
         &self,
         lu: &Lu<N>,
         path: &ParameterPath<M>,
         s: f64,
-        v: &[Complex; N],
+        z: &[Complex; N],
     ) -> [[Complex; N]; 3]
     where
         S: Mechanism<N, M>,
@@ -192,25 +315,43 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         let mut pc = [[Complex::ZERO; M]; 4];
         path.taylor(s, &mut pc);
         let mut out = [[Complex::ZERO; N]; 3];
-        // Order k: the coefficient of h^k in F(v + v₁h + … + v_(k−1)h^(k−1), p(h)) is
-        // B v_k + g_k with g_k from the known coefficients, so v_k = −B⁻¹ g_k.
+        // Order k: the coefficient of h^k in G(z + z₁h + … + z_(k−1)h^(k−1), p(h)) is
+        // J z_k + g_k with g_k from the known coefficients, so z_k = −J⁻¹ g_k.
         macro_rules! order {
             ($k:literal) => {{
-                let mut vs = [Series::<{ $k + 1 }>::ZERO; N];
+                type T = Series<{ $k + 1 }>;
+                let mut zs = [T::ZERO; N];
                 for i in 0..N {
-                    vs[i].0[0] = v[i];
-                    for j in 1..$k {
-                        vs[i].0[j] = out[j - 1][i];
+                    zs[i].0[0] = z[i];
+                    for (j, known) in out.iter().enumerate().take($k - 1) {
+                        zs[i].0[j + 1] = known[i];
                     }
                 }
-                let mut xs = [Series::<{ $k + 1 }>::ZERO; M];
+                let mut xs = [T::ZERO; M];
                 for i in 0..M {
                     for j in 0..=$k {
                         xs[i].0[j] = pc[j][i];
                     }
                 }
-                let mut f = [Series::<{ $k + 1 }>::ZERO; N];
-                self.sys.residual_in(&vs, &xs, &mut f);
+                let mut f = [T::ZERO; N];
+                match self.chart {
+                    None => self.sys.residual_in(&zs, &xs, &mut f),
+                    Some(ch) => {
+                        // w(h) = 1 − c·z(h); v(h) = z(h) / w(h); G = w(h)^d F(v(h)).
+                        let mut w = T::constant(Complex::ONE);
+                        for i in 0..N {
+                            w = w - zs[i].times(ch.c[i]);
+                        }
+                        let inv = w.recip();
+                        let vs = zs.map(|x| x * inv);
+                        self.sys.residual_in(&vs, &xs, &mut f);
+                        for i in 0..N {
+                            for _ in 0..ch.degree[i] {
+                                f[i] = f[i] * w;
+                            }
+                        }
+                    }
+                }
                 let mut g = [Complex::ZERO; N];
                 for i in 0..N {
                     g[i] = -f[i].0[$k];
@@ -225,8 +366,9 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         out
     }
 
-    /// Tracks `v` (a solution at p(0)) to s = 1; on [`Outcome::Reached`] `v` holds the
-    /// solution at p(1) to the path accuracy, otherwise where the path stopped.
+    /// Tracks `v` (a solution at p(0), in tracking coordinates) to s = 1; on
+    /// [`Outcome::Reached`] `v` holds the solution at p(1) to the path accuracy, otherwise where
+    /// the path stopped.
     pub(crate) fn track<const M: usize>(
         &self,
         path: &ParameterPath<M>,
@@ -280,7 +422,8 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
             }
             *v = w;
             s = s1;
-            if self.size(v) > set.max_norm {
+            // In projective coordinates a path may pass far out (or end at infinity) harmlessly.
+            if self.chart.is_none() && self.size(v) > set.max_norm {
                 return end(Outcome::Diverged, s, steps);
             }
             if last {
