@@ -8,6 +8,7 @@ mod front_end_robustness;
 mod general_mechanisms;
 mod generated_systems;
 mod jacobians;
+mod modes;
 mod no_alloc;
 mod other_mechanisms;
 mod properties;
