@@ -341,3 +341,21 @@ fn stored_starts_give_the_same_roots() {
     .err();
     assert_eq!(err, Some(ModesError::BadStart { index: 3 }));
 }
+
+#[test]
+fn the_modes_command_needs_no_start_section() {
+    use linkage_examples::cli::geometry;
+    let joints = "base = [[0,0,0],[1,0,0],[2,0,1],[3,0,0],[4,1,0],[5,0,0]]\nplatform = [[0,0,0],[1,0,0],[2,0,0],[3,1,0],[4,0,0],[5,0,2]]\n";
+    let (base, platform) = geometry::parse_joints(joints).unwrap();
+    assert_eq!(base[2], [2.0, 0.0, 1.0]);
+    assert_eq!(platform[5], [5.0, 0.0, 2.0]);
+    // A `[start]` section is allowed (and ignored), as in the files `solve` reads.
+    let with_start = format!("{joints}[start]\nlegs = [1,1,1,1,1,1]\n");
+    assert!(geometry::parse_joints(&with_start).is_ok());
+    assert!(
+        geometry::parse(joints).is_err(),
+        "`solve` still needs the start"
+    );
+    let err = geometry::parse_joints(&joints.replace("[5,0,2]", "[5,0,nan]")).unwrap_err();
+    assert!(err.contains("finite"), "{err}");
+}

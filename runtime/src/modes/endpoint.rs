@@ -72,16 +72,22 @@ pub(crate) fn classify<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let mut f = [Complex::ZERO; N];
         model.sys.residual_in(&e.v, p, &mut f);
         e.residual = f.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-        // B itself, not the projective Jacobian: what a user means by "near singular".
-        let affine = Model {
-            chart: None,
-            ..*model
-        };
+        // B itself, not the projective Jacobian: what a user means by "near singular". In
+        // affine coordinates polishing left it factored at (or next to) the root.
+        let polished = matches!(e.kind, EndpointKind::Real | EndpointKind::Complex);
         let (values, lu) = ws.scratch();
-        e.pivot_ratio = if affine.factor(&e.v, p, values, lu) {
+        e.pivot_ratio = if model.chart.is_none() && polished {
             lu.pivot_ratio()
         } else {
-            0.0
+            let affine = Model {
+                chart: None,
+                ..*model
+            };
+            if affine.factor(&e.v, p, values, lu) {
+                lu.pivot_ratio()
+            } else {
+                0.0
+            }
         };
     }
     e
@@ -102,13 +108,20 @@ pub(crate) fn real_root<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let start = v.map(|c| c.re);
     let mut w = start;
     let mut f = [0.0; N];
-    let mut b = [[0.0; N]; N];
+    // The generated elimination (fast) and its det B; the dense LU where it declines (its
+    // static pivots can meet an exact zero that partial pivoting avoids).
+    let mut fac = sys.new_factor();
     let mut converged = false;
     for _ in 0..6 {
         sys.residual(&w, x, &mut f);
-        sys.jacobian_dense(&w, x, &mut b);
-        let piv = factor_dense(&mut b)?;
-        solve_dense(&b, &piv, &mut f);
+        if sys.factor(&w, x, &mut fac).is_some() {
+            sys.solve(&fac, &mut f);
+        } else {
+            let mut b = [[0.0; N]; N];
+            sys.jacobian_dense(&w, x, &mut b);
+            let piv = factor_dense(&mut b)?;
+            solve_dense(&b, &piv, &mut f);
+        }
         let mut size = 0.0f64;
         for i in 0..N {
             w[i] -= f[i];
@@ -131,7 +144,10 @@ pub(crate) fn real_root<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     sys.residual(&w, x, &mut f);
     let residual = f.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-    let det = crate::det_b(sys, &w, x);
+    let det = match sys.factor(&w, x, &mut fac) {
+        Some(factored) => factored.det,
+        None => crate::det_b(sys, &w, x),
+    };
     Some((w, residual, det))
 }
 

@@ -57,8 +57,11 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let (values, lu) = ws.scratch();
     let mut previous = f64::INFINITY;
     let mut fast = false;
+    // The factorisation is kept while the corrections contract fast (the chord method); from
+    // the path accuracy one factorisation usually does.
+    let mut refactor = true;
     for it in 0..10 {
-        if !model.factor(v, p, values, lu) {
+        if refactor && !model.factor(v, p, values, lu) {
             return false;
         }
         let d = model.newton(lu, v, p);
@@ -73,10 +76,16 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
             return true;
         }
         if n >= 0.5 * previous {
+            if !refactor {
+                // Stalled with an old factorisation: refresh it before judging.
+                refactor = true;
+                continue;
+            }
             // No progress: the rounding floor (keep the previous iterate) or a singular root.
             return fast && previous <= FLOOR;
         }
         fast |= (it == 0 && n <= 1e-11) || n < 0.1 * previous;
+        refactor = n > 0.1 * previous;
         for i in 0..N {
             v[i] += d[i];
         }

@@ -50,8 +50,8 @@ impl Settings {
     pub(crate) const DEFAULT: Settings = Settings {
         tol: 1e-8,
         limit: 1e-6,
-        tau: 1e-2,
-        max_error: 5e-2,
+        tau: 3e-2,
+        max_error: 1e-1,
         max_steps: 2000,
         max_norm: 1e8,
     };
