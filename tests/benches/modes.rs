@@ -18,8 +18,7 @@ fn all_modes(c: &mut Criterion) {
         .filter_map(Result::ok)
         .collect();
     let sys = StewartGeneral::with_joints(&base, &platform).unwrap();
-    let mut modes =
-        Box::new(AllModes::<_, 18, 6, 64>::new(sys, &ModesOptions::default()).unwrap());
+    let mut modes = Box::new(AllModes::<_, 18, 6, 64>::new(sys, &ModesOptions::default()).unwrap());
     // As `stewart modes` does: the start set moved near the mean of the rows.
     let mut centre = [0.0; 6];
     for x in &rows {
