@@ -3,6 +3,7 @@
 //! ```text
 //! cargo run --release --example stewart -- equations [--json]
 //! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] --input legs.csv|- [--output out.csv]
+//! cargo run --release --example stewart -- modes [--geometry FILE] --input legs.csv [--json]
 //! cargo run --release --example stewart -- table-v [--seed S] [--json]
 //! cargo run --release --example stewart -- map --out DIR
 //! cargo run --release --example stewart -- errors --out DIR
@@ -18,6 +19,8 @@ mod equations;
 mod errors;
 #[path = "stewart_cli/map.rs"]
 mod map;
+#[path = "stewart_cli/modes.rs"]
+mod modes;
 #[path = "stewart_cli/plot.rs"]
 mod plot;
 #[path = "stewart_cli/solve.rs"]
@@ -51,6 +54,20 @@ enum Command {
     },
     /// Solve forward kinematics for every row of a CSV of leg lengths (columns L1…L6).
     Solve(SolveArgs),
+    /// Every assembly mode (all real solutions, from all complex roots) per row of leg lengths.
+    Modes {
+        /// TOML geometry: `base` and `platform` (6 joint centres each); `[start]` may be
+        /// omitted. Default: Table III.
+        #[arg(long)]
+        geometry: Option<PathBuf>,
+        /// CSV with a header containing L1…L6 (mm).
+        #[arg(long)]
+        input: PathBuf,
+        /// One JSON object per row: {"row", "status", "paths", "complex", "real": [{"yaw",
+        /// "pitch", "roll", "x", "y", "z", "det_sign", "residual", "nearest", ...}], ...}.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce Table V: 100 normal and 100 near-singular points solved by PH, NH and NR.
     TableV {
         /// Seed of the test-point generator.
@@ -85,8 +102,12 @@ enum Command {
     },
     /// Time per solve over every row of a leg-length CSV (from the start, or tracking).
     Bench {
-        #[arg(long, value_enum, default_value_t = Method::Nr)]
-        method: Method,
+        /// `all`: every assembly mode per row (`stewart modes`).
+        #[arg(long, value_enum, default_value_t = BenchMethod::Nr)]
+        method: BenchMethod,
+        /// TOML geometry for `--method all` (`[start]` optional). Default: Table III.
+        #[arg(long)]
+        geometry: Option<PathBuf>,
         /// Solve each row from the previous row's solution (PH: the trajectory tracker).
         #[arg(long)]
         track: bool,
@@ -156,6 +177,15 @@ impl Command {
     }
 }
 
+/// The solvers `stewart bench` can time: one of [`Method`], or all modes.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum BenchMethod {
+    Ph,
+    Nh,
+    Nr,
+    All,
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     if cli.command.prints_results() && linkage_examples::cli::stream::stdout_was_closed() {
@@ -174,13 +204,24 @@ fn main() -> ExitCode {
         } => table_v::run(seed, rotation, translation, json, export.as_deref()),
         Command::Trajectory { out, seconds, rate } => trajectory::run(&out, seconds, rate),
         Command::Map { out } => map::run(&out),
+        Command::Modes {
+            geometry,
+            input,
+            json,
+        } => modes::run(geometry.as_deref(), &input, json),
         Command::Bench {
             method,
+            geometry,
             track,
             input,
             json,
             dense,
-        } => bench::run(method, track, &input, json, dense),
+        } => match method {
+            BenchMethod::All => bench::run_all(geometry.as_deref(), &input, json),
+            BenchMethod::Ph => bench::run(Method::Ph, track, &input, json, dense),
+            BenchMethod::Nh => bench::run(Method::Nh, track, &input, json, dense),
+            BenchMethod::Nr => bench::run(Method::Nr, track, &input, json, dense),
+        },
         Command::Errors { out, seed } => errors::run(&out, seed),
     };
     match result {

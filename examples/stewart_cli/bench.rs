@@ -100,3 +100,89 @@ pub fn run(
         ))
     }
 }
+
+/// `stewart bench --method all`: time per row to find every assembly mode (all complex roots,
+/// `linkage::modes`), after the start set is built once (its time reported apart).
+pub fn run_all(geometry: Option<&Path>, input: &Path, json: bool) -> Result<(), String> {
+    use linkage_examples::cli::geometry;
+    use linkage_examples::stewart::{platform_is_coplanar, SixSix, StewartGeneral};
+    let rows = legs_csv::read(input)?;
+    match geometry {
+        None => time_all(Stewart::new(), &rows, input, json),
+        Some(path) => {
+            let (base, platform) = geometry::load_joints(path)?;
+            if platform_is_coplanar(&platform) {
+                let sys = Stewart::with_joints(&base, &platform)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                time_all(sys, &rows, input, json)
+            } else {
+                let sys = StewartGeneral::with_joints(&base, &platform)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                time_all(sys, &rows, input, json)
+            }
+        }
+    }
+}
+
+fn time_all<S: linkage_examples::stewart::SixSix>(
+    sys: S,
+    rows: &[legs_csv::Row],
+    input: &Path,
+    json: bool,
+) -> Result<(), String> {
+    use crate::modes::{solver, CAPACITY};
+    use linkage::modes::Roots;
+    let points: Vec<[f64; 6]> = rows
+        .iter()
+        .filter_map(|r| r.as_ref().ok().copied())
+        .collect();
+    if points.is_empty() {
+        return Err(format!("{}: no valid rows", input.display()));
+    }
+    let began = Instant::now();
+    let modes = solver(sys, rows)?;
+    let setup = began.elapsed().as_secs_f64();
+    let mut roots = Box::new(Roots::<18, CAPACITY>::new());
+    let mut times: Vec<f64> = Vec::new();
+    let (mut incomplete, mut steps, mut real, mut repetitions) = (0usize, 0usize, 0usize, 0usize);
+    let began = Instant::now();
+    while repetitions < 3 || began.elapsed() < Duration::from_secs(1) {
+        repetitions += 1;
+        for x in &points {
+            let t0 = Instant::now();
+            let ok = modes.solve(x, &mut roots).is_ok();
+            times.push(t0.elapsed().as_secs_f64() * 1e6);
+            incomplete += usize::from(!ok || !roots.is_complete());
+            steps += roots.endpoints().iter().map(|e| e.steps).sum::<usize>();
+            real += roots.real().len();
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    let mean = times.iter().sum::<f64>() / times.len() as f64;
+    let pick = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize];
+    let paths = modes.start_count();
+    let solves = times.len() as f64;
+    let steps_per_path = steps as f64 / (solves * paths as f64);
+    if json {
+        let out = serde_json::json!({
+            "method": "all", "points": points.len(), "repetitions": repetitions,
+            "paths": paths, "setup_ms": setup * 1e3,
+            "incomplete_per_pass": incomplete / repetitions,
+            "real_per_point": real as f64 / solves, "steps_per_path": steps_per_path,
+            "mean_us": mean, "median_us": pick(0.5), "p99_us": pick(0.99),
+            "mean_us_per_path": mean / paths as f64,
+        });
+        println!("{out}");
+    } else {
+        println!(
+            "all modes: {} points × {repetitions} passes, {paths} paths (start set {:.0} ms), mean {mean:.1} µs, median {:.1} µs, p99 {:.1} µs per point ({:.2} µs per path, {steps_per_path:.1} steps per path); {} incomplete per pass",
+            points.len(),
+            setup * 1e3,
+            pick(0.5),
+            pick(0.99),
+            mean / paths as f64,
+            incomplete / repetitions
+        );
+    }
+    Ok(())
+}

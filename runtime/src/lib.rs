@@ -48,6 +48,7 @@ mod interval;
 pub mod lu;
 mod math;
 mod mechanism;
+pub mod modes;
 mod newton;
 mod newton_homotopy;
 mod pose;

@@ -8,6 +8,7 @@ mod front_end_robustness;
 mod generated_systems;
 mod jacobians;
 mod mechanisms;
+mod modes;
 mod no_alloc;
 mod other_mechanisms;
 mod properties;

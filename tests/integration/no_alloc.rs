@@ -73,3 +73,31 @@ fn solves_and_tracking_do_not_allocate() {
     assert!(checksum.is_finite());
     assert_eq!(after - before, 0, "heap allocations during solves");
 }
+
+#[test]
+fn all_modes_queries_do_not_allocate() {
+    use linkage::modes::{AllModes, ModesOptions, Roots};
+    let modes = AllModes::<_, 18, 6, 64>::new(Stewart::new(), &ModesOptions::default()).unwrap();
+    // The result storage is the caller's: boxed here only to keep the test's stack small.
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    let targets = [
+        [170.0; 6],
+        [190.0, 200.0, 190.0, 180.0, 190.0, 210.0],
+        [f64::NAN; 6],
+        [-1.0, 170.0, 170.0, 170.0, 170.0, 170.0],
+    ];
+    let before = allocations();
+    let mut found = 0;
+    for x in &targets {
+        if modes.solve(x, &mut roots).is_ok() {
+            found += roots.real().len();
+        }
+    }
+    let after = allocations();
+    assert!(found > 0);
+    assert_eq!(
+        after - before,
+        0,
+        "heap allocations during all-modes queries"
+    );
+}

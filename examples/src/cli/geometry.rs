@@ -65,3 +65,38 @@ pub fn parse(text: &str) -> Result<Geometry, String> {
     }
     Ok(g)
 }
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JointsFile {
+    base: Vec<[f64; 3]>,
+    platform: Vec<[f64; 3]>,
+    #[allow(dead_code)]
+    start: Option<StartSection>,
+}
+
+/// Base and platform joint centres.
+pub type Joints = ([[f64; 3]; 6], [[f64; 3]; 6]);
+
+/// Only the joint centres, base and platform: for commands that need no start configuration
+/// (`stewart modes`), the `[start]` section is optional (and ignored).
+pub fn load_joints(path: &Path) -> Result<Joints, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    parse_joints(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+pub fn parse_joints(text: &str) -> Result<Joints, String> {
+    let f: JointsFile =
+        toml::from_str(text).map_err(|e| e.to_string().trim().replace('\n', " "))?;
+    let (base, platform) = (six(&f.base, "base")?, six(&f.platform, "platform")?);
+    if base
+        .iter()
+        .chain(&platform)
+        .flatten()
+        .any(|x| !x.is_finite())
+    {
+        return Err("every geometry value must be a finite number".into());
+    }
+    Ok((base, platform))
+}

@@ -1,0 +1,159 @@
+//! `stewart modes`: every assembly mode — all real solutions of the forward kinematics — for
+//! each row of a leg-length CSV, from all complex roots (`linkage::modes`).
+
+use linkage::modes::{AllModes, EndpointKind, ModesOptions, Roots};
+use linkage_examples::cli::geometry;
+use linkage_examples::cli::legs_csv;
+use linkage_examples::stewart::{platform_is_coplanar, SixSix, Stewart, StewartGeneral};
+use std::path::Path;
+
+/// The capacity: 40 roots for a general 6-6 platform, with room to report a geometry that
+/// (wrongly) seems to have more.
+pub const CAPACITY: usize = 64;
+
+pub fn run(geometry: Option<&Path>, input: &Path, json: bool) -> Result<(), String> {
+    let rows = legs_csv::read(input)?;
+    match geometry {
+        None => run_on(Stewart::new(), &rows, json),
+        Some(path) => {
+            let (base, platform) = geometry::load_joints(path)?;
+            // Coplanar platforms use Eq. 19's form; others the general, mirror-free form.
+            if platform_is_coplanar(&platform) {
+                let sys = Stewart::with_joints(&base, &platform)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                run_on(sys, &rows, json)
+            } else {
+                let sys = StewartGeneral::with_joints(&base, &platform)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                run_on(sys, &rows, json)
+            }
+        }
+    }
+}
+
+/// The solver for `sys`, its start set moved near the mean of the valid rows (shorter paths).
+pub fn solver<S: SixSix>(
+    sys: S,
+    rows: &[legs_csv::Row],
+) -> Result<Box<AllModes<S, 18, 6, CAPACITY>>, String> {
+    let mut modes = Box::new(
+        AllModes::new(sys, &ModesOptions::default())
+            .map_err(|e| format!("start solutions: {e}"))?,
+    );
+    let valid: Vec<&[f64; 6]> = rows.iter().filter_map(|r| r.as_ref().ok()).collect();
+    if !valid.is_empty() {
+        let mut centre = [0.0; 6];
+        for x in &valid {
+            for i in 0..6 {
+                centre[i] += x[i] / valid.len() as f64;
+            }
+        }
+        // A failure leaves the start set where it was: queries are then longer, not wrong.
+        let _ = modes.recenter(&centre, 0.1, 1);
+    }
+    Ok(modes)
+}
+
+fn run_on<S: SixSix>(sys: S, rows: &[legs_csv::Row], json: bool) -> Result<(), String> {
+    let modes = solver(sys, rows)?;
+    let mut roots = Box::new(Roots::<18, CAPACITY>::new());
+    for (i, row) in rows.iter().enumerate() {
+        let n = i + 1;
+        let result = match row {
+            Ok(x) => modes.solve(x, &mut roots).map_err(|e| match e {
+                linkage::modes::ModesError::InvalidInput { .. } => "invalid_input",
+                _ => "non_finite",
+            }),
+            Err(word) => Err(*word),
+        };
+        match result {
+            Err(word) => {
+                if json {
+                    let out = serde_json::json!({
+                        "row": n, "status": word, "complex": null, "real": [],
+                    });
+                    println!("{out}");
+                } else {
+                    println!("row {n}: {word}");
+                }
+            }
+            Ok(()) if json => println!("{}", row_json(n, &modes, &roots)),
+            Ok(()) => print_row(n, &modes, &roots),
+        }
+    }
+    Ok(())
+}
+
+fn row_json<S: SixSix>(
+    n: usize,
+    modes: &AllModes<S, 18, 6, CAPACITY>,
+    roots: &Roots<18, CAPACITY>,
+) -> serde_json::Value {
+    let real: Vec<serde_json::Value> = roots
+        .real()
+        .iter()
+        .filter_map(|r| {
+            let p = r.pose?;
+            let [yaw, pitch, roll] = p.euler();
+            let t = p.translation;
+            Some(serde_json::json!({
+                "yaw": yaw, "pitch": pitch, "roll": roll, "x": t[0], "y": t[1], "z": t[2],
+                "det_sign": r.det_sign(), "residual": r.residual, "nearest": r.nearest,
+                "nearest_real": finite(r.nearest_real),
+            }))
+        })
+        .collect();
+    serde_json::json!({
+        "row": n,
+        "status": if roots.is_complete() { "ok" } else { "incomplete" },
+        "paths": modes.start_count(),
+        "complex": roots.roots(),
+        "singular": roots.count(EndpointKind::Singular),
+        "diverging": roots.count(EndpointKind::Diverging),
+        "failed": roots.count(EndpointKind::Failed) + roots.count(EndpointKind::Duplicate),
+        "real": real,
+    })
+}
+
+/// JSON has no infinity: no other real root is `null`.
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+fn print_row<S: SixSix>(
+    n: usize,
+    modes: &AllModes<S, 18, 6, CAPACITY>,
+    roots: &Roots<18, CAPACITY>,
+) {
+    println!(
+        "row {n}: {} of {} paths end at roots, {} real{}",
+        roots.roots(),
+        modes.start_count(),
+        roots.real().len(),
+        if roots.is_complete() {
+            String::new()
+        } else {
+            format!(
+                " ({} singular, {} diverging, {} failed)",
+                roots.count(EndpointKind::Singular),
+                roots.count(EndpointKind::Diverging),
+                roots.count(EndpointKind::Failed) + roots.count(EndpointKind::Duplicate)
+            )
+        }
+    );
+    println!("  yaw        pitch      roll       x          y          z          det  residual  nearest");
+    for r in roots.real() {
+        let Some(p) = r.pose else { continue };
+        let [yaw, pitch, roll] = p.euler();
+        let t = p.translation;
+        println!(
+            "  {yaw:<10.6} {pitch:<10.6} {roll:<10.6} {:<10.4} {:<10.4} {:<10.4} {:>3}  {:.1e}   {:.3}",
+            t[0],
+            t[1],
+            t[2],
+            if r.det < 0.0 { "-" } else { "+" },
+            r.residual,
+            r.nearest
+        );
+    }
+}

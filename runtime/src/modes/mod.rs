@@ -1,0 +1,581 @@
+//! Every assembly mode: all isolated complex roots of `F(v, x) = 0` at given inputs, the real
+//! ones with their poses.
+//!
+//! The inputs x are the parameters of a family of systems. [`AllModes::new`] solves the family
+//! once at a random complex parameter point p₀ — a seed made by placing the platform with a
+//! random complex rigid motion and moving (v, x) onto F = 0, then monodromy: loops of parameters
+//! around p₀ that permute the roots, until a number of loops in a row bring nothing new. Each
+//! query ([`AllModes::solve`]) is then a parameter homotopy from p₀ to the real target with the
+//! γ trick, tracked in complex arithmetic by an adaptive predictor–corrector (cubic Taylor
+//! predictor from Taylor-mode derivatives of the generated residual, Newton corrector as the
+//! acceptance test), the endpoints classified as real, complex, singular or diverging, and the
+//! real roots refined in real arithmetic with their pose, the sign of det B, the residual and
+//! the distance to the nearest other root. Two paths that end on the same root are tracked
+//! again with smaller steps.
+//!
+//! A query is `no_std` and allocates nothing: the starts live in the [`AllModes`] value and the
+//! results in a caller's [`Roots`] of fixed capacity `K`.
+//!
+//! ```
+//! use linkage::modes::{AllModes, ModesOptions, EndpointKind};
+//! # linkage::mechanism! {
+//! #     pub struct Rps;
+//! #     base {
+//! #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+//! #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+//! #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+//! #     }
+//! #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+//! #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+//! #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+//! #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+//! # }
+//! // A 3-RPS: 16 complex assembly modes for generic leg lengths.
+//! let modes = AllModes::<Rps, 9, 3, 32>::new(Rps::new(), &ModesOptions::default()).unwrap();
+//! assert_eq!(modes.start_count(), 16);
+//! let mut roots = linkage::modes::Roots::new();
+//! modes.solve(&[150.0, 160.0, 155.0], &mut roots).unwrap();
+//! assert!(roots.is_complete());
+//! for mode in roots.real() {
+//!     assert!(mode.residual < 1e-9 && mode.pose.is_some());
+//! }
+//! assert_eq!(roots.real().len(), roots.count(EndpointKind::Real));
+//! ```
+
+mod complex;
+mod dense;
+mod endpoint;
+mod monodromy;
+mod path;
+mod rng;
+mod roots;
+mod seed;
+mod sparse_lu;
+mod taylor;
+mod track;
+
+pub use complex::Complex;
+pub use roots::{Endpoint, EndpointKind, RealRoot, Roots};
+pub use taylor::Series;
+
+use crate::Mechanism;
+use monodromy::{contains, Stopping, SAME};
+use path::ParameterPath;
+use rng::Rng;
+use sparse_lu::Plan;
+use track::{Chart, Model, Settings, Workspace};
+
+/// A random γ = e^(iθ) with π/6 ≤ |θ| ≤ π/2: a real bend of the path, but far from −1, where
+/// the rational path (see `path.rs`) would pass near a pole and blow every solution up.
+fn gamma(rng: &mut Rng) -> Complex {
+    let t = core::f64::consts::PI * (1.0 / 6.0 + rng.uniform() / 3.0);
+    let t = if rng.uniform() < 0.5 { -t } else { t };
+    Complex::new(libm::cos(t), libm::sin(t))
+}
+
+/// The degree of each equation in v, from F at two points far out along a random direction
+/// (`F_i(t z) ≈ t^(d_i) P_i(z)` for large t); `None` unless every one is a whole number from 1
+/// to 4 (then no projective chart is used).
+fn degrees<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    scale: f64,
+    rng: &mut Rng,
+) -> Option<[u8; N]> {
+    let z = [0; N].map(|_| rng.uniform() - 0.5);
+    let x = [0; M].map(|_| scale * (rng.uniform() + 0.5));
+    let t = 1e6 * scale;
+    let (mut f1, mut f2) = ([0.0; N], [0.0; N]);
+    sys.residual(&z.map(|c| t * c), &x, &mut f1);
+    sys.residual(&z.map(|c| 2.0 * t * c), &x, &mut f2);
+    let mut out = [0u8; N];
+    for i in 0..N {
+        let d = libm::log2((f2[i] / f1[i]).abs());
+        let r = libm::round(d);
+        if !(d.is_finite() && (d - r).abs() < 0.01 && (1.0..=4.0).contains(&r)) {
+            return None;
+        }
+        out[i] = r as u8;
+    }
+    Some(out)
+}
+
+/// How the start solutions are computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModesOptions {
+    /// Seed of every random choice (seed point, loops, γ): the same seed gives the same starts.
+    pub seed: u64,
+    /// Monodromy stops after this many consecutive loops that bring no new solution.
+    pub stable_loops: usize,
+    /// After the loops settle, fresh random solutions are tracked to the base point until this
+    /// many in a row bring nothing new (they reach components that loops cannot).
+    pub stable_seeds: usize,
+    /// Monodromy stops after this many loops in any case.
+    pub max_loops: usize,
+    /// A generic root count known in advance (40 for a general 6-6 platform): monodromy stops
+    /// as soon as it has this many. `None`: count stability alone decides.
+    pub expected: Option<usize>,
+    /// Length scale of the mechanism (tolerances are relative to it below it); 0 takes the
+    /// largest platform pivot coordinate.
+    pub scale: f64,
+    /// Track in projective coordinates (see [`AllModes`]): needed for roots very far out (a
+    /// general 6-6 platform has complex roots 10⁶ times its size away), about a third slower
+    /// per step. Ignored if the equations are not polynomial in v of degree 1 to 4.
+    pub projective: bool,
+}
+
+impl Default for ModesOptions {
+    fn default() -> Self {
+        ModesOptions {
+            seed: 2015,
+            stable_loops: 10,
+            stable_seeds: 8,
+            max_loops: 200,
+            expected: None,
+            scale: 0.0,
+            projective: true,
+        }
+    }
+}
+
+/// Why no start set could be made or a query could not be run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ModesError {
+    /// An input or option is NaN or infinite.
+    NonFinite,
+    /// Input `input` is out of its range (e.g. a negative leg length).
+    InvalidInput { input: usize },
+    /// ∂F/∂v was singular at every configuration the seeding reached: the geometry is
+    /// architecture-singular (or has a self-motion everywhere), so the family has no isolated
+    /// roots to count.
+    Degenerate,
+    /// Monodromy found more than `K` solutions.
+    Capacity { capacity: usize },
+    /// More than 255 unknowns.
+    TooLarge,
+    /// A given start solution is not a nonsingular root at the given parameters.
+    BadStart { index: usize },
+}
+
+impl core::fmt::Display for ModesError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ModesError::NonFinite => write!(f, "non-finite input"),
+            ModesError::InvalidInput { input } => write!(f, "joint input {input} is out of range"),
+            ModesError::Degenerate => write!(
+                f,
+                "∂F/∂v is singular at every configuration tried: the geometry is architecture-singular"
+            ),
+            ModesError::Capacity { capacity } => {
+                write!(f, "more than {capacity} solutions: raise the capacity K")
+            }
+            ModesError::TooLarge => write!(f, "more than 255 unknowns"),
+            ModesError::BadStart { index } => {
+                write!(f, "start solution {index} is not a nonsingular root")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for ModesError {}
+
+/// How the start set was found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct StartReport {
+    /// Seeds tried (random solutions at random parameters: the first, and later ones that
+    /// look for components the loops cannot reach).
+    pub seeds: usize,
+    /// Monodromy loops run.
+    pub loops: usize,
+    /// Paths that failed during monodromy (harmless: their solutions are found another way).
+    pub failed_paths: usize,
+}
+
+/// The solver for every assembly mode of a mechanism: its start solutions at a generic
+/// complex parameter point, ready for queries. `K` is the capacity (at least the generic root
+/// count: 40 for a general 6-6 Stewart–Gough platform).
+#[derive(Clone, Debug)]
+pub struct AllModes<S, const N: usize, const M: usize, const K: usize> {
+    sys: S,
+    plan: Plan<N>,
+    chart: Option<Chart<N>>,
+    scale: f64,
+    p0: [Complex; M],
+    gamma: Complex,
+    /// The start solutions in tracking coordinates (see `track::Chart`).
+    starts: [[Complex; N]; K],
+    count: usize,
+    report: StartReport,
+}
+
+impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllModes<S, N, M, K> {
+    /// Computes the start solutions of `sys` (its geometry as it is now) by monodromy. Takes
+    /// milliseconds to a fraction of a second; allocation-free.
+    pub fn new(sys: S, options: &ModesOptions) -> Result<Self, ModesError> {
+        let mut me = Self::prepare(sys, options)?;
+        let mut rng = Rng::new(options.seed);
+        me.gamma = gamma(&mut rng);
+        let mut first = None;
+        for attempt in 1..=12 {
+            if let Some(found) = seed::seed(&me.model(), &mut rng) {
+                first = Some((found, attempt));
+                break;
+            }
+        }
+        let ((v, p0), seeds) = first.ok_or(ModesError::Degenerate)?;
+        let model = me.model();
+        let mut starts = [[Complex::ZERO; N]; K];
+        if K == 0 {
+            return Err(ModesError::Capacity { capacity: K });
+        }
+        starts[0] = model.enter(&v);
+        let stop = Stopping {
+            stable_loops: options.stable_loops.max(1),
+            stable_seeds: options.stable_seeds,
+            max_loops: options.max_loops.max(1),
+            expected: options.expected,
+        };
+        let found = monodromy::monodromy(&model, &p0, &mut starts, &mut rng, &stop);
+        if found.overflow {
+            return Err(ModesError::Capacity { capacity: K });
+        }
+        let report = StartReport {
+            seeds: seeds + found.seeds,
+            loops: found.loops,
+            failed_paths: found.failed_paths,
+        };
+        me.report = report;
+        me.starts = starts;
+        me.count = found.count;
+        me.p0 = p0;
+        Ok(me)
+    }
+
+    /// Moves the start set to a parameter point near the real inputs `center` (each input
+    /// perturbed by a random complex number of size `spread` × the scale), so that queries near
+    /// `center` follow short paths. Every start is tracked there; if one fails, another random
+    /// point is tried (four in all); if all fail, nothing changes and the error names the start
+    /// that failed last.
+    pub fn recenter(
+        &mut self,
+        center: &[f64; M],
+        spread: f64,
+        seed: u64,
+    ) -> Result<(), ModesError> {
+        if !center.iter().all(|c| c.is_finite()) || !spread.is_finite() {
+            return Err(ModesError::NonFinite);
+        }
+        let mut rng = Rng::new(seed);
+        let mut error = ModesError::BadStart { index: 0 };
+        for _ in 0..4 {
+            let p1: [Complex; M] = core::array::from_fn(|i| {
+                Complex::real(center[i]) + rng.complex_normal().scale(spread * self.scale)
+            });
+            match self.moved_to(&p1) {
+                Ok(moved) => {
+                    self.starts = moved;
+                    self.p0 = p1;
+                    return Ok(());
+                }
+                Err(e) => error = e,
+            }
+        }
+        Err(error)
+    }
+
+    /// The start set tracked from p₀ to `p1`, each path tried with the default and the careful
+    /// settings; all distinct.
+    fn moved_to(&self, p1: &[Complex; M]) -> Result<[[Complex; N]; K], ModesError> {
+        let path = ParameterPath::new(self.p0, *p1, Complex::ONE);
+        let model = self.model();
+        let mut ws = Workspace::new();
+        let mut moved = self.starts;
+        for (index, v) in moved[..self.count].iter_mut().enumerate() {
+            let from = *v;
+            let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
+                *v = from;
+                model.track(&path, v, &mut ws, set).outcome == track::Outcome::Reached
+                    && monodromy::polish(&model, v, p1, &mut ws)
+                    && model.size(v) <= 1e8
+            });
+            if !reached {
+                return Err(ModesError::BadStart { index });
+            }
+        }
+        for index in 1..self.count {
+            if contains(&model, &moved[..index], &moved[index], SAME) {
+                return Err(ModesError::BadStart { index });
+            }
+        }
+        Ok(moved)
+    }
+
+    /// Takes start solutions computed before (e.g. by [`AllModes::new`] and stored): each
+    /// is checked to be a nonsingular root at `p0` and refined.
+    pub fn from_starts(
+        sys: S,
+        p0: [Complex; M],
+        gamma: Complex,
+        starts: &[[Complex; N]],
+        options: &ModesOptions,
+    ) -> Result<Self, ModesError> {
+        if starts.len() > K {
+            return Err(ModesError::Capacity { capacity: K });
+        }
+        if !p0.iter().all(|c| c.is_finite()) || !gamma.is_finite() || gamma.abs() == 0.0 {
+            return Err(ModesError::NonFinite);
+        }
+        let mut me = Self::prepare(sys, options)?;
+        me.p0 = p0;
+        me.gamma = gamma;
+        let mut ws = Workspace::new();
+        for (index, s) in starts.iter().enumerate() {
+            let model = me.model();
+            let mut z = model.enter(s);
+            if !monodromy::polish(&model, &mut z, &p0, &mut ws)
+                || !(model.size(&z) <= 1e8)
+                || contains(&model, &me.starts[..me.count], &z, SAME)
+            {
+                return Err(ModesError::BadStart { index });
+            }
+            me.starts[me.count] = z;
+            me.count += 1;
+        }
+        Ok(me)
+    }
+
+    fn prepare(sys: S, options: &ModesOptions) -> Result<Self, ModesError> {
+        if !options.scale.is_finite() || options.scale < 0.0 {
+            return Err(ModesError::NonFinite);
+        }
+        let scale = if options.scale > 0.0 {
+            options.scale
+        } else {
+            let s = (0..S::POINTS.len())
+                .flat_map(|p| sys.point_local(p))
+                .filter(|c| c.is_finite())
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            if s > 0.0 {
+                s
+            } else {
+                1.0
+            }
+        };
+        // Two unrelated real points tell constant Jacobian entries from variable ones.
+        let mut rng = Rng::new(options.seed ^ 0xA5A5);
+        let mut samples = [[[0.0f64; N]; N]; 2];
+        for sample in samples.iter_mut() {
+            let v = [0; N].map(|_| scale * (rng.uniform() - 0.5));
+            let x = [0; M].map(|_| scale * (rng.uniform() + 0.5));
+            sys.jacobian_in(&v, &x, sample.as_flattened_mut());
+        }
+        let (a, b) = (samples[0].as_flattened(), samples[1].as_flattened());
+        let plan = Plan::new(S::PATTERN, a, b).map_err(|_| ModesError::TooLarge)?;
+        // The border of the projective Jacobian needs one static pivot (room in the compact
+        // remainder).
+        let chart = degrees(&sys, scale, &mut rng)
+            .filter(|_| options.projective && plan.shape().0 > 0)
+            .map(|degree| Chart {
+                c: [0; N].map(|_| rng.complex_normal().scale(1.0 / (scale * N as f64))),
+                degree,
+            });
+        Ok(AllModes {
+            sys,
+            plan,
+            chart,
+            scale,
+            p0: [Complex::ZERO; M],
+            gamma: Complex::ONE,
+            starts: [[Complex::ZERO; N]; K],
+            count: 0,
+            report: StartReport::default(),
+        })
+    }
+
+    fn model(&self) -> Model<'_, S, N> {
+        Model {
+            sys: &self.sys,
+            plan: &self.plan,
+            pattern: S::PATTERN,
+            scale: self.scale,
+            chart: self.chart.as_ref(),
+        }
+    }
+
+    /// The mechanism.
+    pub fn mechanism(&self) -> &S {
+        &self.sys
+    }
+
+    /// Number of start solutions: the generic number of complex roots.
+    pub fn start_count(&self) -> usize {
+        self.count
+    }
+
+    /// The start parameters p₀ and γ (to store and pass to [`AllModes::from_starts`]).
+    pub fn base_point(&self) -> (&[Complex; M], Complex) {
+        (&self.p0, self.gamma)
+    }
+
+    /// Start solution `i` (v at p₀), `None` past [`AllModes::start_count`].
+    pub fn start(&self, i: usize) -> Option<[Complex; N]> {
+        (i < self.count).then(|| self.model().leave(&self.starts[i]))
+    }
+
+    /// How the start set was found.
+    pub fn report(&self) -> StartReport {
+        self.report
+    }
+
+    /// The length scale of the tolerances.
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// Every root at inputs `x`, into `out`. No heap, no panic; NaN, infinite or out-of-range
+    /// inputs are errors. Each of the [`AllModes::start_count`] paths gets an endpoint; a
+    /// target with fewer isolated roots than generic shows diverging or singular endpoints.
+    pub fn solve(&self, x: &[f64; M], out: &mut Roots<N, K>) -> Result<(), ModesError> {
+        if !x.iter().all(|c| c.is_finite()) {
+            return Err(ModesError::NonFinite);
+        }
+        self.sys
+            .validate_inputs(x)
+            .map_err(|input| ModesError::InvalidInput { input })?;
+        let target = x.map(Complex::real);
+        let path = ParameterPath::new(self.p0, target, self.gamma);
+        let model = self.model();
+        // First pass in affine coordinates: a third cheaper per step, and enough for every path
+        // that stays within reach of double precision.
+        let affine = Model {
+            chart: None,
+            ..model
+        };
+        let mut ws = Workspace::new();
+        out.paths = self.count;
+        out.n_real = 0;
+        for i in 0..self.count {
+            out.endpoints[i] =
+                self.endpoint(&affine, &path, i, &target, &Settings::DEFAULT, &mut ws);
+        }
+        // Paths that did not end at a regular root: again in projective coordinates, then with
+        // small steps. (At a target with fewer roots than generic they end as they did.)
+        for i in 0..self.count {
+            for (m, set) in [(&model, &Settings::DEFAULT), (&model, &Settings::CAREFUL)] {
+                if out.endpoints[i].is_root() {
+                    break;
+                }
+                let steps = out.endpoints[i].steps;
+                out.endpoints[i] = self.endpoint(m, &path, i, &target, set, &mut ws);
+                out.endpoints[i].steps += steps;
+            }
+        }
+        // Two paths on one nonsingular root: one of them jumped. Track both again carefully.
+        for i in 0..self.count {
+            for j in i + 1..self.count {
+                if !(out.endpoints[i].is_root() && out.endpoints[j].is_root()) {
+                    continue;
+                }
+                let (a, b) = (out.endpoints[i].z, out.endpoints[j].z);
+                if !contains(&model, &[a], &b, SAME) {
+                    continue;
+                }
+                for k in [i, j] {
+                    let steps = out.endpoints[k].steps;
+                    out.endpoints[k] =
+                        self.endpoint(&model, &path, k, &target, &Settings::CAREFUL, &mut ws);
+                    out.endpoints[k].steps += steps;
+                }
+                let (a, b) = (out.endpoints[i].z, out.endpoints[j].z);
+                if out.endpoints[i].is_root() && contains(&model, &[a], &b, SAME) {
+                    out.endpoints[j].kind = EndpointKind::Duplicate;
+                }
+            }
+        }
+        self.finish(x, out);
+        Ok(())
+    }
+
+    /// Tracks start `i` along `path` with `model` and classifies where it ends; the endpoint's
+    /// `z` is in the solver's own tracking coordinates whichever model tracked it.
+    fn endpoint(
+        &self,
+        model: &Model<'_, S, N>,
+        path: &ParameterPath<M>,
+        i: usize,
+        target: &[Complex; M],
+        settings: &Settings,
+        ws: &mut Workspace<N>,
+    ) -> Endpoint<N> {
+        let own = self.model();
+        let mut z = model.enter(&own.leave(&self.starts[i]));
+        let tracked = model.track(path, &mut z, ws, settings);
+        let mut e = endpoint::classify(model, target, &tracked, &z, ws);
+        if model.chart.is_none() && e.v.iter().all(|c| c.is_finite()) {
+            e.z = own.enter(&e.v);
+        }
+        e
+    }
+
+    /// Distances between roots and the real roots' refinement.
+    fn finish(&self, x: &[f64; M], out: &mut Roots<N, K>) {
+        let n = out.paths;
+        for i in 0..n {
+            out.endpoints[i].nearest = f64::INFINITY;
+        }
+        for i in 0..n {
+            if !out.endpoints[i].is_root() {
+                continue;
+            }
+            for j in i + 1..n {
+                if !out.endpoints[j].is_root() {
+                    continue;
+                }
+                let d = endpoint::distance(&out.endpoints[i].v, &out.endpoints[j].v);
+                let e = &mut out.endpoints;
+                e[i].nearest = e[i].nearest.min(d);
+                e[j].nearest = e[j].nearest.min(d);
+            }
+        }
+        for i in 0..n {
+            if out.endpoints[i].kind != EndpointKind::Real {
+                continue;
+            }
+            let refined = endpoint::real_root(&self.sys, self.scale, &out.endpoints[i].v, x);
+            let Some((v, residual, det)) = refined else {
+                // Tiny imaginary parts but no real root next to them: a complex pair
+                // close to the real space (near a fold).
+                out.endpoints[i].kind = EndpointKind::Complex;
+                continue;
+            };
+            let seen = out.real[..out.n_real].iter().any(|r| {
+                (0..N).all(|k| (r.v[k] - v[k]).abs() <= 1e-9 * self.scale.max(v[k].abs()))
+            });
+            if seen {
+                // Both members of a complex pair with tiny imaginary parts refined to one
+                // real point: a double root, not two modes.
+                out.endpoints[i].kind = EndpointKind::Complex;
+                continue;
+            }
+            out.real[out.n_real] = RealRoot {
+                v,
+                pose: crate::pose_from_unknowns(&self.sys, &v),
+                det,
+                residual,
+                nearest: out.endpoints[i].nearest,
+                nearest_real: f64::INFINITY,
+                path: i,
+            };
+            out.n_real += 1;
+        }
+        for i in 0..out.n_real {
+            for j in i + 1..out.n_real {
+                let d = crate::math::norm(&core::array::from_fn::<f64, N, _>(|k| {
+                    out.real[i].v[k] - out.real[j].v[k]
+                }));
+                out.real[i].nearest_real = out.real[i].nearest_real.min(d);
+                out.real[j].nearest_real = out.real[j].nearest_real.min(d);
+            }
+        }
+    }
+}

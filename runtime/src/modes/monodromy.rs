@@ -1,0 +1,226 @@
+//! All solutions at the base parameter point by monodromy: carry every known solution around a
+//! random loop of parameters (p₀ → a → b → p₀); where it comes back as a solution not yet known,
+//! keep it; stop when loops stop producing new ones.
+//!
+//! Each loop permutes the solutions on the component of the seed, and random loops generate
+//! the monodromy group, which acts transitively on them: while some are missing, a random
+//! loop maps a known one to a missing one with high probability. The stopping rule is count
+//! stability (a number of consecutive loops that bring nothing new), or a count known in
+//! advance.
+
+use super::complex::Complex;
+use super::path::ParameterPath;
+use super::rng::Rng;
+use super::track::{Model, Outcome, Settings, Workspace};
+use crate::Mechanism;
+
+/// The loop points' size relative to p₀'s, alternating: loops as small as p₀ itself leave many
+/// roots fixed (their branch points lie further out), so that monodromy on a general 6-6
+/// platform stalled at 34 or 35 of its 40 roots; three times as large found all 40 in trials
+/// but stalled at 38 on a planar one, which loops ten times as large completed.
+const LOOP_SIZES: [f64; 2] = [3.0, 10.0];
+
+/// When monodromy stops.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Stopping {
+    pub(crate) stable_loops: usize,
+    pub(crate) stable_seeds: usize,
+    pub(crate) max_loops: usize,
+    pub(crate) expected: Option<usize>,
+}
+
+/// What monodromy found.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Found {
+    pub(crate) count: usize,
+    pub(crate) loops: usize,
+    /// Seeds tried after the first.
+    pub(crate) seeds: usize,
+    /// Paths that failed on some segment (their solutions are simply not used).
+    pub(crate) failed_paths: usize,
+    /// A solution would not fit the capacity.
+    pub(crate) overflow: bool,
+}
+
+/// Newton at fixed parameters to full precision. `true` if it converges as at a nonsingular
+/// root: the correction falls below 1e-13 (weighted), or it stalls at the floor rounding sets
+/// for an ill-conditioned root (below [`FLOOR`]) after contracting quadratically or starting
+/// there.
+/// At a singular root Newton converges only linearly (ratio ½ at a double root) from the path
+/// accuracy, and this is `false`.
+pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    model: &Model<'_, S, N>,
+    v: &mut [Complex; N],
+    p: &[Complex; M],
+    ws: &mut Workspace<N>,
+) -> bool {
+    let (values, lu) = ws.scratch();
+    let mut previous = f64::INFINITY;
+    let mut fast = false;
+    // The factorisation is kept while the corrections contract fast (the chord method); from
+    // the path accuracy one factorisation usually does.
+    let mut refactor = true;
+    for it in 0..10 {
+        if refactor && !model.factor(v, p, values, lu) {
+            return false;
+        }
+        let d = model.newton(lu, v, p);
+        let n = model.norm(&d, v);
+        if !n.is_finite() {
+            return false;
+        }
+        if n <= 1e-13 {
+            for i in 0..N {
+                v[i] += d[i];
+            }
+            return true;
+        }
+        if n >= 0.5 * previous {
+            if !refactor {
+                // Stalled with an old factorisation: refresh it before judging.
+                refactor = true;
+                continue;
+            }
+            // No progress: the rounding floor (keep the previous iterate) or a singular root.
+            return fast && previous <= FLOOR;
+        }
+        fast |= (it == 0 && n <= 1e-11) || n < 0.1 * previous;
+        refactor = n > 0.1 * previous;
+        for i in 0..N {
+            v[i] += d[i];
+        }
+        previous = n;
+    }
+    fast && previous <= FLOOR
+}
+
+/// The largest rounding floor [`polish`] accepts (weighted): roots 10⁶ times the mechanism's
+/// size away, which a general 6-6 platform can have, stall near 1e-7 in double precision.
+pub(crate) const FLOOR: f64 = 1e-6;
+
+/// Two roots closer than this (weighted, in tracking coordinates) are one: ten times the worst
+/// accuracy [`polish`] accepts, and far below the distance between distinct roots at a generic
+/// parameter point.
+pub(crate) const SAME: f64 = 1e-5;
+
+/// Whether `v` is within `tol` (weighted) of one of `known`.
+pub(crate) fn contains<S, const N: usize>(
+    model: &Model<'_, S, N>,
+    known: &[[Complex; N]],
+    v: &[Complex; N],
+    tol: f64,
+) -> bool {
+    known.iter().any(|w| {
+        let mut d = *v;
+        for i in 0..N {
+            d[i] -= w[i];
+        }
+        model.norm(&d, w) <= tol
+    })
+}
+
+/// Fills `out` with the solutions at `p0` in tracking coordinates, starting from `out[0]`
+/// (already a solution):
+/// rounds of loops until `stable_loops` in a row bring nothing new, then fresh seeds (random
+/// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
+/// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
+/// component of the seed's solution; seeds land on every component (the 3-RPS example's
+/// solutions split into two components of eight over its leg lengths).
+pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
+    model: &Model<'_, S, N>,
+    p0: &[Complex; M],
+    out: &mut [[Complex; N]; K],
+    rng: &mut Rng,
+    stop: &Stopping,
+) -> Found {
+    let mut ws = Workspace::new();
+    let mut found = Found {
+        count: 1,
+        loops: 0,
+        seeds: 0,
+        failed_paths: 0,
+        overflow: false,
+    };
+    let done = |found: &Found| {
+        found.overflow
+            || found.loops >= stop.max_loops
+            || stop.expected.is_some_and(|e| found.count >= e)
+    };
+    // Loop points as far from zero as p₀'s entries, times LOOP_SIZE.
+    let size = libm::sqrt(p0.iter().map(|p| p.norm_sqr()).sum::<f64>() / M.max(1) as f64);
+    loop {
+        let mut stale = 0;
+        while stale < stop.stable_loops && !done(&found) {
+            found.loops += 1;
+            let ls = LOOP_SIZES[found.loops % LOOP_SIZES.len()];
+            let a = [0; M].map(|_| rng.complex_normal().scale(ls * size));
+            let b = [0; M].map(|_| rng.complex_normal().scale(ls * size));
+            let legs = [
+                ParameterPath::new(*p0, a, Complex::ONE),
+                ParameterPath::new(a, b, Complex::ONE),
+                ParameterPath::new(b, *p0, Complex::ONE),
+            ];
+            let mut new = false;
+            let mut i = 0;
+            while i < found.count && !done(&found) {
+                let mut v = out[i];
+                i += 1;
+                let ok = legs.iter().all(|leg| {
+                    model
+                        .track(leg, &mut v, &mut ws, &Settings::DEFAULT)
+                        .outcome
+                        == Outcome::Reached
+                });
+                if !ok || !polish(model, &mut v, p0, &mut ws) {
+                    found.failed_paths += 1;
+                    continue;
+                }
+                new |= add(model, out, &mut found, v);
+            }
+            stale = if new { 0 } else { stale + 1 };
+        }
+        let mut new = false;
+        let mut stale_seeds = 0;
+        while !new && stale_seeds < stop.stable_seeds && !done(&found) {
+            found.seeds += 1;
+            stale_seeds += 1;
+            let Some((v, p)) = super::seed::seed(model, rng) else {
+                continue;
+            };
+            let mut v = model.enter(&v);
+            let path = ParameterPath::new(p, *p0, Complex::ONE);
+            let reached = model
+                .track(&path, &mut v, &mut ws, &Settings::DEFAULT)
+                .outcome
+                == Outcome::Reached;
+            if !reached || !polish(model, &mut v, p0, &mut ws) {
+                found.failed_paths += 1;
+                continue;
+            }
+            new = add(model, out, &mut found, v);
+        }
+        if !new || done(&found) {
+            return found;
+        }
+    }
+}
+
+/// Adds `v` (tracking coordinates) to the known solutions if it is new and finite; `true` if
+/// it was. Compared in tracking coordinates: far-out roots are accurate there, not in v.
+fn add<S, const N: usize, const K: usize>(
+    model: &Model<'_, S, N>,
+    out: &mut [[Complex; N]; K],
+    found: &mut Found,
+    v: [Complex; N],
+) -> bool {
+    if !(model.size(&v) <= 1e8) || contains(model, &out[..found.count], &v, SAME) {
+        return false;
+    }
+    if found.count == K {
+        found.overflow = true;
+        return false;
+    }
+    out[found.count] = v;
+    found.count += 1;
+    true
+}

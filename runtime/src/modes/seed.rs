@@ -1,0 +1,158 @@
+//! A first solution of the family at a random complex parameter point: the seed of monodromy.
+//!
+//! The inputs are the parameters, so a solution can be made rather than searched for: place
+//! the platform by a random complex rigid motion, take random complex inputs, and move the
+//! pair (v, x) onto the solution variety F(v, x) = 0 by Gauss–Newton steps of least norm
+//! (`Δ = −Jᴴ (J Jᴴ)⁻¹ F` with `J = [∂F/∂v  ∂F/∂x]`, N equations in N + M unknowns). Starting from
+//! a rigid placement keeps the walk on the component of proper rigid motions; the point it
+//! lands on has random complex inputs, which makes them a generic parameter point.
+
+use super::complex::Complex;
+use super::dense;
+use super::rng::Rng;
+use super::sparse_lu::Lu;
+use super::taylor::Series;
+use super::track::Model;
+use crate::Mechanism;
+
+/// A complex rotation matrix from a quaternion with complex entries: `Rᵀ R = I`, det R = 1
+/// whenever `q·q ≠ 0`.
+fn rotation(q: [Complex; 4]) -> Option<[[Complex; 3]; 3]> {
+    let [a, b, c, d] = q;
+    let n = a * a + b * b + c * c + d * d;
+    if !(n.abs_max() > 1e-3) {
+        return None;
+    }
+    let two = Complex::real(2.0);
+    let r = [
+        [
+            a * a + b * b - c * c - d * d,
+            two * (b * c - a * d),
+            two * (b * d + a * c),
+        ],
+        [
+            two * (b * c + a * d),
+            a * a - b * b + c * c - d * d,
+            two * (c * d - a * b),
+        ],
+        [
+            two * (b * d - a * c),
+            two * (c * d + a * b),
+            a * a - b * b - c * c + d * d,
+        ],
+    ];
+    let inv = n.recip();
+    Some(r.map(|row| row.map(|x| x * inv)))
+}
+
+/// A random complex point (v, x) with F(v, x) = 0 and B = ∂F/∂v regular there, or `None`
+/// if this attempt did not reach one.
+pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    model: &Model<'_, S, N>,
+    rng: &mut Rng,
+) -> Option<([Complex; N], [Complex; M])> {
+    let scale = model.scale;
+    let r = rotation([0; 4].map(|_| rng.complex_normal()))?;
+    let t = [0; 3].map(|_| rng.complex_normal().scale(scale));
+    let k = S::POINTS.len();
+    let mut v = [Complex::ZERO; N];
+    for x in v.iter_mut() {
+        *x = rng.complex_normal().scale(scale);
+    }
+    for p in 0..k {
+        let local = model.sys.point_local(p);
+        if !local.iter().all(|c| c.is_finite()) {
+            continue;
+        }
+        for axis in 0..3 {
+            if axis * k + p < N {
+                let mut q = t[axis];
+                for j in 0..3 {
+                    q += r[axis][j].scale(local[j]);
+                }
+                v[axis * k + p] = q;
+            }
+        }
+    }
+    let mut x = [0; M].map(|_| rng.complex_normal().scale(scale));
+    let mut converged = false;
+    for _ in 0..80 {
+        // F and the columns of A = ∂F/∂x, one directional derivative per input.
+        let mut f = [Complex::ZERO; N];
+        let mut a = [[Complex::ZERO; M]; N];
+        let vs = v.map(Series::<2>::constant);
+        for j in 0..M {
+            let mut xs = x.map(Series::<2>::constant);
+            xs[j].0[1] = Complex::ONE;
+            let mut out = [Series::<2>::ZERO; N];
+            model.sys.residual_in(&vs, &xs, &mut out);
+            for i in 0..N {
+                f[i] = out[i].0[0];
+                a[i][j] = out[i].0[1];
+            }
+        }
+        let mut values = [[Complex::ZERO; N]; N];
+        model.sys.jacobian_in(&v, &x, values.as_flattened_mut());
+        let mut b = [[Complex::ZERO; N]; N];
+        for (&(row, col), &val) in S::PATTERN.iter().zip(values.as_flattened()) {
+            b[row][col] = val;
+        }
+        // G = B Bᴴ + A Aᴴ.
+        let mut g = [[Complex::ZERO; N]; N];
+        for i in 0..N {
+            for j in 0..N {
+                let mut s = Complex::ZERO;
+                for l in 0..N {
+                    s += b[i][l] * b[j][l].conj();
+                }
+                for l in 0..M {
+                    s += a[i][l] * a[j][l].conj();
+                }
+                g[i][j] = s;
+            }
+        }
+        let mut y = f;
+        if !dense::solve(&mut g, &mut y) {
+            return None;
+        }
+        let mut dv = [Complex::ZERO; N];
+        let mut dx = [Complex::ZERO; M];
+        for i in 0..N {
+            for l in 0..N {
+                dv[l] -= b[i][l].conj() * y[i];
+            }
+            for l in 0..M {
+                dx[l] -= a[i][l].conj() * y[i];
+            }
+        }
+        let mut size = model.norm(&dv, &v);
+        for l in 0..M {
+            size = size.max(dx[l].abs_max() / scale.max(x[l].abs_max()));
+        }
+        if !size.is_finite() {
+            return None;
+        }
+        // Damped far from the variety: at most half the scale per step.
+        let damp = if size > 0.5 { 0.5 / size } else { 1.0 };
+        for l in 0..N {
+            v[l] += dv[l].scale(damp);
+        }
+        for l in 0..M {
+            x[l] += dx[l].scale(damp);
+        }
+        if size <= 1e-13 {
+            converged = true;
+            break;
+        }
+    }
+    if !converged {
+        return None;
+    }
+    let mut values = [[Complex::ZERO; N]; N];
+    let mut lu = Lu::new();
+    let affine = Model {
+        chart: None,
+        ..*model
+    };
+    (affine.factor(&v, &x, &mut values, &mut lu) && lu.pivot_ratio() > 1e-9).then_some((v, x))
+}

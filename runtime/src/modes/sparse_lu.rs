@@ -1,0 +1,495 @@
+//! LU factorisation of the complex Jacobian B = ∂F/∂v, planned once from the generated
+//! sparsity pattern.
+//!
+//! The constraint systems the DSL generates have many linear rows (rigid-body combinations with
+//! a constant −1 per eliminated pivot). The plan first eliminates on such constant entries in
+//! a fixed order (Markowitz: fewest updates first), which needs no pivot search and cannot meet
+//! a small pivot; what remains, the Schur complement on the other rows and columns, is factored
+//! densely with partial pivoting. For the Stewart platform that is 9 static pivots and a 9×9
+//! complement instead of an 18×18 dense factorisation: about six times less work per step of
+//! the path tracker, which is where the time of a query goes.
+
+use super::complex::Complex;
+
+/// The elimination order and the update lists, computed from the pattern.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Plan<const N: usize> {
+    /// Number of static pivots.
+    statics: usize,
+    /// `(row, column)` of each static pivot, in elimination order.
+    pivot: [(u8, u8); N],
+    /// Rows updated by static pivot k (structural nonzeros of its column below it).
+    rows: [[u8; N]; N],
+    n_rows: [u8; N],
+    /// The other structural nonzeros of static pivot k's row, in columns not yet eliminated.
+    cols: [[u8; N]; N],
+    n_cols: [u8; N],
+    /// Per row, the columns where static elimination creates an entry the pattern lacks
+    /// (zeroed before each factorisation).
+    fill: [[u8; N]; N],
+    n_fill: [u8; N],
+    /// Rows and columns of the dense remainder.
+    rest_rows: [u8; N],
+    rest_cols: [u8; N],
+    rest: usize,
+}
+
+/// Why no plan could be made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PlanError {
+    /// More than 255 unknowns (the plan indexes with bytes).
+    TooLarge,
+    /// A pattern entry lies outside the matrix.
+    BadPattern,
+}
+
+impl<const N: usize> Plan<N> {
+    /// Plans the factorisation of matrices with nonzeros at `pattern`. `a` and `b` are the
+    /// values at two unrelated points: an entry equal in both is taken as constant, and only
+    /// constant entries at least a tenth of the largest magnitude in their row serve as static
+    /// pivots (a constant pivot cannot become small relative to its row, and the bound keeps
+    /// growth modest). Scaling a row by a common factor, as the projective formulation does,
+    /// keeps that property.
+    pub(crate) fn new(pattern: &[(usize, usize)], a: &[f64], b: &[f64]) -> Result<Self, PlanError> {
+        if N > 255 {
+            return Err(PlanError::TooLarge);
+        }
+        let mut nz = [[false; N]; N];
+        // A constant, never-updated entry's value; NaN otherwise.
+        let mut fixed = [[f64::NAN; N]; N];
+        let mut row_max = [0.0f64; N];
+        for (k, &(r, c)) in pattern.iter().enumerate() {
+            if r >= N || c >= N || k >= a.len() || k >= b.len() {
+                return Err(PlanError::BadPattern);
+            }
+            nz[r][c] = true;
+            if a[k] == b[k] && a[k] != 0.0 && a[k].is_finite() {
+                fixed[r][c] = a[k];
+            }
+            row_max[r] = row_max[r].max(a[k].abs()).max(b[k].abs());
+        }
+        let mut plan = Plan {
+            statics: 0,
+            pivot: [(0, 0); N],
+            rows: [[0; N]; N],
+            n_rows: [0; N],
+            cols: [[0; N]; N],
+            n_cols: [0; N],
+            fill: [[0; N]; N],
+            n_fill: [0; N],
+            rest_rows: [0; N],
+            rest_cols: [0; N],
+            rest: 0,
+        };
+        let mut row_done = [false; N];
+        let mut col_done = [false; N];
+        loop {
+            // The constant pivot with the smallest Markowitz count.
+            let mut best: Option<(usize, usize, usize)> = None;
+            for r in (0..N).filter(|&r| !row_done[r]) {
+                let rc = (0..N).filter(|&j| !col_done[j] && nz[r][j]).count();
+                for c in (0..N).filter(|&c| !col_done[c]) {
+                    let v = fixed[r][c];
+                    if !(v.abs() >= 0.1 * row_max[r]) {
+                        continue;
+                    }
+                    let cc = (0..N).filter(|&i| !row_done[i] && nz[i][c]).count();
+                    let cost = (rc - 1) * (cc - 1);
+                    if best.is_none_or(|(_, _, b)| cost < b) {
+                        best = Some((r, c, cost));
+                    }
+                }
+            }
+            let Some((r, c, _)) = best else { break };
+            let k = plan.statics;
+            plan.pivot[k] = (r as u8, c as u8);
+            row_done[r] = true;
+            col_done[c] = true;
+            for i in (0..N).filter(|&i| !row_done[i] && nz[i][c]) {
+                plan.rows[k][plan.n_rows[k] as usize] = i as u8;
+                plan.n_rows[k] += 1;
+            }
+            for j in (0..N).filter(|&j| !col_done[j] && nz[r][j]) {
+                plan.cols[k][plan.n_cols[k] as usize] = j as u8;
+                plan.n_cols[k] += 1;
+            }
+            // Updated entries fill in and are no longer constant.
+            for ii in 0..plan.n_rows[k] as usize {
+                let i = plan.rows[k][ii] as usize;
+                for jj in 0..plan.n_cols[k] as usize {
+                    let j = plan.cols[k][jj] as usize;
+                    if !nz[i][j] {
+                        plan.fill[i][plan.n_fill[i] as usize] = j as u8;
+                        plan.n_fill[i] += 1;
+                    }
+                    nz[i][j] = true;
+                    fixed[i][j] = f64::NAN;
+                }
+            }
+            plan.statics += 1;
+        }
+        let (mut nr, mut nc) = (0, 0);
+        for i in 0..N {
+            if !row_done[i] {
+                plan.rest_rows[nr] = i as u8;
+                nr += 1;
+            }
+            if !col_done[i] {
+                plan.rest_cols[nc] = i as u8;
+                nc += 1;
+            }
+        }
+        plan.rest = nr;
+        Ok(plan)
+    }
+
+    /// Number of pivots taken on constant entries, and the size of the dense remainder.
+    pub(crate) fn shape(&self) -> (usize, usize) {
+        (self.statics, self.rest)
+    }
+}
+
+/// The border of a bordered matrix `[[B, col], [row, corner]]` (see [`Lu::factor`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Border<const N: usize> {
+    pub(crate) col: [Complex; N],
+    pub(crate) row: [Complex; N],
+    pub(crate) corner: Complex,
+}
+
+/// A factorisation of B (or of B bordered by one row and column): the static phase in place in
+/// `a` (and in the border vectors); the dense remainder — the Schur complement on the other
+/// rows and columns, with the border as its last row and column — compacted, rows in pivot
+/// order, real and imaginary parts in separate arrays so that the row updates and substitutions
+/// run on plain vectors of f64 (no shuffles of interleaved complex numbers); reciprocal pivots
+/// for the substitutions.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lu<const N: usize> {
+    a: [[Complex; N]; N],
+    border: Option<Border<N>>,
+    re: [[f64; N]; N],
+    im: [[f64; N]; N],
+    /// Size of the compact remainder (the plan's plus one with a border).
+    m: usize,
+    /// Original row of each row of the remainder: an index into the plan's rest rows, or the
+    /// plan's rest count for the border row.
+    perm: [u8; N],
+    inv_static: [Complex; N],
+    inv_dense: [Complex; N],
+    /// Smallest and largest |pivot| (max-norm of the complex value).
+    pub(crate) min_pivot: f64,
+    pub(crate) max_pivot: f64,
+}
+
+impl<const N: usize> Lu<N> {
+    pub(crate) const fn new() -> Self {
+        Lu {
+            a: [[Complex::ZERO; N]; N],
+            border: None,
+            re: [[0.0; N]; N],
+            im: [[0.0; N]; N],
+            m: 0,
+            perm: [0; N],
+            inv_static: [Complex::ZERO; N],
+            inv_dense: [Complex::ZERO; N],
+            min_pivot: 0.0,
+            max_pivot: 0.0,
+        }
+    }
+
+    /// Smallest over largest |pivot|: a cheap indicator of how near B is to singular.
+    pub(crate) fn pivot_ratio(&self) -> f64 {
+        if self.max_pivot > 0.0 {
+            self.min_pivot / self.max_pivot
+        } else {
+            0.0
+        }
+    }
+
+    /// Factors the matrix whose nonzeros are `values` at `pattern` (the plan's pattern),
+    /// bordered by `border` if given. A border needs at least one static pivot (the compact
+    /// remainder has room for N rows). `false` if a pivot is zero or not finite.
+    pub(crate) fn factor(
+        &mut self,
+        plan: &Plan<N>,
+        pattern: &[(usize, usize)],
+        values: &[Complex],
+        border: Option<&Border<N>>,
+    ) -> bool {
+        let n = plan.rest;
+        if border.is_some() && n >= N {
+            return false;
+        }
+        self.border = border.copied();
+        let a = &mut self.a;
+        for i in 0..N {
+            for jj in 0..plan.n_fill[i] as usize {
+                a[i][plan.fill[i][jj] as usize] = Complex::ZERO;
+            }
+        }
+        for (&(r, c), &x) in pattern.iter().zip(values) {
+            a[r][c] = x;
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for k in 0..plan.statics {
+            let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
+            let p = a[r][c];
+            let m = p.abs_max();
+            if !(m > 0.0) || !p.is_finite() {
+                return false;
+            }
+            lo = lo.min(m);
+            hi = hi.max(m);
+            let inv = p.recip();
+            self.inv_static[k] = inv;
+            for ii in 0..plan.n_rows[k] as usize {
+                let i = plan.rows[k][ii] as usize;
+                let l = a[i][c] * inv;
+                a[i][c] = l;
+                for jj in 0..plan.n_cols[k] as usize {
+                    let j = plan.cols[k][jj] as usize;
+                    let u = a[r][j];
+                    a[i][j] -= l * u;
+                }
+                if let Some(b) = self.border.as_mut() {
+                    let u = b.col[r];
+                    b.col[i] -= l * u;
+                }
+            }
+            if let Some(b) = self.border.as_mut() {
+                // The border row has an entry in every column.
+                let l = b.row[c] * inv;
+                b.row[c] = l;
+                for jj in 0..plan.n_cols[k] as usize {
+                    let j = plan.cols[k][jj] as usize;
+                    b.row[j] -= l * a[r][j];
+                }
+                let u = b.col[r];
+                b.corner -= l * u;
+            }
+        }
+        let m = n + self.border.is_some() as usize;
+        self.m = m;
+        let (re, im) = (&mut self.re, &mut self.im);
+        for i in 0..n {
+            let r = plan.rest_rows[i] as usize;
+            for j in 0..n {
+                let x = a[r][plan.rest_cols[j] as usize];
+                re[i][j] = x.re;
+                im[i][j] = x.im;
+            }
+            if let Some(b) = &self.border {
+                re[i][n] = b.col[r].re;
+                im[i][n] = b.col[r].im;
+            }
+            self.perm[i] = i as u8;
+        }
+        if let Some(b) = &self.border {
+            for j in 0..n {
+                let x = b.row[plan.rest_cols[j] as usize];
+                re[n][j] = x.re;
+                im[n][j] = x.im;
+            }
+            re[n][n] = b.corner.re;
+            im[n][n] = b.corner.im;
+            self.perm[n] = n as u8;
+        }
+        for k in 0..m {
+            let mut best = k;
+            let mut bm = re[k][k].abs().max(im[k][k].abs());
+            for i in k + 1..m {
+                let v = re[i][k].abs().max(im[i][k].abs());
+                if v > bm {
+                    bm = v;
+                    best = i;
+                }
+            }
+            if !(bm > 0.0) || !bm.is_finite() {
+                return false;
+            }
+            re.swap(k, best);
+            im.swap(k, best);
+            self.perm.swap(k, best);
+            lo = lo.min(bm);
+            hi = hi.max(bm);
+            let inv = Complex::new(re[k][k], im[k][k]).recip();
+            self.inv_dense[k] = inv;
+            let (rtop, rbottom) = re.split_at_mut(k + 1);
+            let (itop, ibottom) = im.split_at_mut(k + 1);
+            let (ur, ui) = (&rtop[k][k + 1..m], &itop[k][k + 1..m]);
+            for (xr, xi) in rbottom[..m - k - 1]
+                .iter_mut()
+                .zip(ibottom[..m - k - 1].iter_mut())
+            {
+                let l = Complex::new(xr[k], xi[k]) * inv;
+                xr[k] = l.re;
+                xi[k] = l.im;
+                let (xr, xi) = (&mut xr[k + 1..m], &mut xi[k + 1..m]);
+                for j in 0..ur.len().min(xr.len()).min(xi.len()).min(ui.len()) {
+                    xr[j] -= l.re * ur[j] - l.im * ui[j];
+                    xi[j] -= l.re * ui[j] + l.im * ur[j];
+                }
+            }
+        }
+        self.min_pivot = lo;
+        self.max_pivot = hi;
+        lo.is_finite() && hi.is_finite()
+    }
+
+    /// Solves `B y = b` (with a border: `[[B, col], [row, corner]] [y; σ] = [b; 0]`, and σ is
+    /// dropped); `b` is overwritten with `y`.
+    pub(crate) fn solve(&self, plan: &Plan<N>, b: &mut [Complex; N]) {
+        let a = &self.a;
+        let mut bb = Complex::ZERO;
+        for k in 0..plan.statics {
+            let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
+            let br = b[r];
+            for ii in 0..plan.n_rows[k] as usize {
+                let i = plan.rows[k][ii] as usize;
+                b[i] -= a[i][c] * br;
+            }
+            if let Some(border) = &self.border {
+                bb -= border.row[c] * br;
+            }
+        }
+        let (n, m) = (plan.rest, self.m);
+        let (re, im) = (&self.re, &self.im);
+        let mut zr = [0.0; N];
+        let mut zi = [0.0; N];
+        for i in 0..m {
+            let p = self.perm[i] as usize;
+            let x = if p == n {
+                bb
+            } else {
+                b[plan.rest_rows[p] as usize]
+            };
+            zr[i] = x.re;
+            zi[i] = x.im;
+        }
+        for i in 1..m {
+            let (lr, li) = (&re[i][..i], &im[i][..i]);
+            let (mut sr, mut si) = (0.0, 0.0);
+            for j in 0..i.min(lr.len()).min(li.len()) {
+                sr += lr[j] * zr[j] - li[j] * zi[j];
+                si += lr[j] * zi[j] + li[j] * zr[j];
+            }
+            zr[i] -= sr;
+            zi[i] -= si;
+        }
+        for i in (0..m).rev() {
+            let (ur, ui) = (&re[i][i + 1..m], &im[i][i + 1..m]);
+            let (yr, yi) = (&zr[i + 1..m], &zi[i + 1..m]);
+            let (mut sr, mut si) = (0.0, 0.0);
+            for j in 0..ur.len().min(ui.len()).min(yr.len()).min(yi.len()) {
+                sr += ur[j] * yr[j] - ui[j] * yi[j];
+                si += ur[j] * yi[j] + ui[j] * yr[j];
+            }
+            let z = Complex::new(zr[i] - sr, zi[i] - si) * self.inv_dense[i];
+            zr[i] = z.re;
+            zi[i] = z.im;
+        }
+        let mut y = [Complex::ZERO; N];
+        for j in 0..n {
+            y[plan.rest_cols[j] as usize] = Complex::new(zr[j], zi[j]);
+        }
+        let sigma = if m > n {
+            Complex::new(zr[n], zi[n])
+        } else {
+            Complex::ZERO
+        };
+        for k in (0..plan.statics).rev() {
+            let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
+            let mut s = b[r];
+            for jj in 0..plan.n_cols[k] as usize {
+                let j = plan.cols[k][jj] as usize;
+                s -= a[r][j] * y[j];
+            }
+            if let Some(border) = &self.border {
+                s -= border.col[r] * sigma;
+            }
+            y[c] = s * self.inv_static[k];
+        }
+        *b = y;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn static_and_dense_pivots_solve_a_sparse_system() {
+        // Rows 0 and 1 are "linear" with constant −1 on columns 2 and 3; rows 2, 3 vary.
+        let pattern = [
+            (0, 0),
+            (0, 2),
+            (1, 1),
+            (1, 3),
+            (2, 0),
+            (2, 2),
+            (3, 1),
+            (3, 3),
+            (3, 0),
+        ];
+        let a = [0.5, -1.0, 0.3, -1.0, 1.0, 2.0, 3.0, 1.0, 0.7];
+        let b = [0.5, -1.0, 0.3, -1.0, 4.0, -2.0, 1.5, 2.5, 0.1];
+        let plan = Plan::<4>::new(&pattern, &a, &b).unwrap();
+        assert_eq!(plan.shape(), (2, 2));
+        let vals = [
+            Complex::real(0.5),
+            Complex::real(-1.0),
+            Complex::real(0.3),
+            Complex::real(-1.0),
+            Complex::new(1.0, 2.0),
+            Complex::new(-3.0, 0.5),
+            Complex::new(0.2, 0.1),
+            Complex::new(2.0, -1.0),
+            Complex::new(0.0, 1.0),
+        ];
+        let mut lu = Lu::<4>::new();
+        assert!(lu.factor(&plan, &pattern, &vals, None));
+        let x = [
+            Complex::new(1.0, 1.0),
+            Complex::new(-2.0, 0.5),
+            Complex::new(0.25, 0.0),
+            Complex::new(0.0, -3.0),
+        ];
+        let mut rhs = [Complex::ZERO; 4];
+        for (&(r, c), &v) in pattern.iter().zip(&vals) {
+            rhs[r] += v * x[c];
+        }
+        lu.solve(&plan, &mut rhs);
+        for i in 0..4 {
+            assert!((rhs[i] - x[i]).abs() < 1e-13, "{i}: {:?}", rhs[i]);
+        }
+        // Bordered: [[B, col], [row, −1]] [x; σ] = [b; 0] with σ = row · x.
+        let border = Border {
+            col: [
+                Complex::new(0.5, 1.0),
+                Complex::real(-2.0),
+                Complex::new(0.0, 3.0),
+                Complex::ONE,
+            ],
+            row: [
+                Complex::new(1.0, -1.0),
+                Complex::real(0.25),
+                Complex::new(0.3, 0.3),
+                Complex::real(-0.7),
+            ],
+            corner: Complex::real(-1.0),
+        };
+        assert!(lu.factor(&plan, &pattern, &vals, Some(&border)));
+        let sigma = (0..4).fold(Complex::ZERO, |s, j| s + border.row[j] * x[j]);
+        let mut rhs = [Complex::ZERO; 4];
+        for (&(r, c), &v) in pattern.iter().zip(&vals) {
+            rhs[r] += v * x[c];
+        }
+        for i in 0..4 {
+            rhs[i] += border.col[i] * sigma;
+        }
+        lu.solve(&plan, &mut rhs);
+        for i in 0..4 {
+            assert!((rhs[i] - x[i]).abs() < 1e-13, "bordered {i}: {:?}", rhs[i]);
+        }
+    }
+}
