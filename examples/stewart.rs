@@ -170,7 +170,10 @@ impl Command {
     /// Whether the command's results go to standard output.
     fn prints_results(&self) -> bool {
         match self {
-            Command::Equations { .. } | Command::TableV { .. } | Command::Bench { .. } => true,
+            Command::Equations { .. }
+            | Command::TableV { .. }
+            | Command::Bench { .. }
+            | Command::Modes { .. } => true,
             Command::Solve(args) => args.output.is_none(),
             Command::Trajectory { .. } | Command::Map { .. } | Command::Errors { .. } => false,
         }

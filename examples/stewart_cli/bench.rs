@@ -3,7 +3,7 @@
 
 use crate::Method;
 use linkage::{Options, Start, Tracker};
-use linkage_examples::cli::legs_csv::LegRows;
+use linkage_examples::cli::legs_csv::{self, LegRows};
 use linkage_examples::cli::stream::{open_input, print};
 use linkage_examples::stewart::{home_start, Stewart};
 use std::path::Path;
@@ -172,9 +172,9 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
             "mean_us": mean, "median_us": pick(0.5), "p99_us": pick(0.99),
             "mean_us_per_path": mean / paths as f64,
         });
-        println!("{out}");
+        print(&format!("{out}\n"))
     } else {
-        println!(
+        print(&format!(
             "all modes: {} points × {repetitions} passes, {paths} paths (start set {:.0} ms), mean {mean:.1} µs, median {:.1} µs, p99 {:.1} µs per point ({:.2} µs per path, {steps_per_path:.1} steps per path); {} incomplete per pass",
             points.len(),
             setup * 1e3,
@@ -182,7 +182,6 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
             pick(0.99),
             mean / paths as f64,
             incomplete / repetitions
-        );
+        ))
     }
-    Ok(())
 }

@@ -4,6 +4,7 @@
 use linkage::modes::{AllModes, EndpointKind, ModesOptions, Roots};
 use linkage_examples::cli::geometry;
 use linkage_examples::cli::legs_csv;
+use linkage_examples::cli::stream::print;
 use linkage_examples::stewart::{platform_is_coplanar, SixSix, Stewart, StewartGeneral};
 use std::path::Path;
 
@@ -72,13 +73,13 @@ fn run_on<S: SixSix>(sys: S, rows: &[legs_csv::Row], json: bool) -> Result<(), S
                     let out = serde_json::json!({
                         "row": n, "status": word, "complex": null, "real": [],
                     });
-                    println!("{out}");
+                    print(&format!("{out}\n"))?;
                 } else {
-                    println!("row {n}: {word}");
+                    print(&format!("row {n}: {word}\n"))?;
                 }
             }
-            Ok(()) if json => println!("{}", row_json(n, &modes, &roots)),
-            Ok(()) => print_row(n, &modes, &roots),
+            Ok(()) if json => print(&format!("{}\n", row_json(n, &modes, &roots)))?,
+            Ok(()) => print_row(n, &modes, &roots)?,
         }
     }
     Ok(())
@@ -124,9 +125,9 @@ fn print_row<S: SixSix>(
     n: usize,
     modes: &AllModes<S, 18, 6, CAPACITY>,
     roots: &Roots<18, CAPACITY>,
-) {
-    println!(
-        "row {n}: {} of {} paths end at roots, {} real{}",
+) -> Result<(), String> {
+    let mut text = format!(
+        "row {n}: {} of {} paths end at roots, {} real{}\n",
         roots.roots(),
         modes.start_count(),
         roots.real().len(),
@@ -141,19 +142,20 @@ fn print_row<S: SixSix>(
             )
         }
     );
-    println!("  yaw        pitch      roll       x          y          z          det  residual  nearest");
+    text.push_str("  yaw        pitch      roll       x          y          z          det  residual  nearest\n");
     for r in roots.real() {
         let Some(p) = r.pose else { continue };
         let [yaw, pitch, roll] = p.euler();
         let t = p.translation;
-        println!(
-            "  {yaw:<10.6} {pitch:<10.6} {roll:<10.6} {:<10.4} {:<10.4} {:<10.4} {:>3}  {:.1e}   {:.3}",
+        text.push_str(&format!(
+            "  {yaw:<10.6} {pitch:<10.6} {roll:<10.6} {:<10.4} {:<10.4} {:<10.4} {:>3}  {:.1e}   {:.3}\n",
             t[0],
             t[1],
             t[2],
             if r.det < 0.0 { "-" } else { "+" },
             r.residual,
             r.nearest
-        );
+        ));
     }
+    print(&text)
 }
