@@ -108,7 +108,7 @@ pub fn stewart_pose_samples(
     use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
     let s = Stewart::new();
     let st = home_start(&s).unwrap();
-    let home = linkage::pose_from_unknowns(&s, &st.v).unwrap();
+    let home = linkage::pose_from_unknowns(&s, st.v()).unwrap();
     let [hy, hp, hr] = home.euler();
     let ht = home.translation;
     let mut rng = Rng::new(seed);
@@ -132,7 +132,7 @@ pub fn stewart_pose_samples(
         let valid = (0..=checks).all(|k| {
             let p = at(k as f64 / checks as f64);
             legs_for_pose(&s, &p).is_some_and(|(x, v)| {
-                x.iter().all(|l| *l > 20.0) && linkage::det_b(&s, &v, &x) * st.det > 0.0
+                x.iter().all(|l| *l > 20.0) && linkage::det_b(&s, &v, &x) * st.det() > 0.0
             })
         });
         if valid {
@@ -155,13 +155,13 @@ pub fn check_factorization<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     let dense = b;
-    let piv = linkage::lu::factor::<N, _>(&mut b).expect("nonsingular");
+    let lu = linkage::lu::Lu::new(b).expect("nonsingular");
     assert!(
-        (info.det - piv.det).abs() <= 1e-9 * piv.det.abs(),
+        (info.det - lu.det()).abs() <= 1e-9 * lu.det().abs(),
         "{}: det {} vs {}",
         S::NAME,
         info.det,
-        piv.det
+        lu.det()
     );
     let rhs: [f64; N] = std::array::from_fn(|i| (i as f64 * 0.7).sin() * 100.0);
     let mut y = rhs;

@@ -17,21 +17,21 @@ pub fn straight_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     steps: usize,
 ) -> ([f64; N], usize) {
-    let mut v = start.v;
-    let mut prev = start.det;
+    let mut v = *start.v();
+    let mut prev = start.det();
     let mut flips = 0;
     for k in 1..=steps {
         let l = k as f64 / steps as f64;
-        let x: [f64; M] = std::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
+        let x: [f64; M] = std::array::from_fn(|j| start.x()[j] + l * (target[j] - start.x()[j]));
         for _ in 0..if k == steps { 30 } else { 6 } {
             let mut f = [0.0; N];
             sys.residual(&v, &x, &mut f);
             let mut b = [[0.0; N]; N];
             sys.jacobian_dense(&v, &x, &mut b);
-            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else {
+            let Some(lu) = linkage::lu::Lu::new(b) else {
                 return (v, flips + 1);
             };
-            linkage::lu::solve(&b, &piv, &mut f);
+            lu.solve(&mut f);
             for i in 0..N {
                 v[i] -= f[i];
             }

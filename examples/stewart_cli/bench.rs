@@ -53,11 +53,9 @@ pub fn run(
                 match solver.solve(&sys, &current, x, &options) {
                     Ok(sol) if sol.is_ok() => {
                         if track {
-                            current = Start {
-                                v: sol.v,
-                                x: *x,
-                                det: start.det,
-                            };
+                            if let Ok(next) = Start::new(&sys, sol.v, *x) {
+                                current = next;
+                            }
                         }
                         true
                     }

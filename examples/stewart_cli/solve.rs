@@ -105,11 +105,9 @@ fn solve_all<S: SixSix>(
                     steps,
                 )?;
                 if args.track {
-                    current = Start {
-                        v: sol.v,
-                        x: *x,
-                        det: start.det,
-                    };
+                    if let Ok(next) = Start::new(&sys, sol.v, *x) {
+                        current = next;
+                    }
                 }
             }
             Ok(sol) => out.row(

@@ -41,6 +41,7 @@ pub use linkage_macros::mechanism;
 
 mod arc_length;
 mod certify;
+mod convergence;
 mod correction;
 mod detour;
 mod error;
@@ -50,6 +51,7 @@ mod math;
 mod mechanism;
 mod newton;
 mod newton_homotopy;
+mod outcome;
 mod pose;
 mod scalar;
 mod solution;

@@ -11,6 +11,7 @@ mod jacobians;
 mod no_alloc;
 mod other_mechanisms;
 mod properties;
+mod regressions;
 mod solvers;
 mod stewart_cli;
 mod tracking;

@@ -71,7 +71,7 @@ pub fn solve_point(
     let seconds = t0.elapsed().as_secs_f64();
     let (status, v) = match result {
         Ok(sol) => (sol.status, sol.v),
-        Err(_) => (Status::Singular { lambda: 0.0 }, sampler.start.v),
+        Err(_) => (Status::Singular { lambda: 0.0 }, *sampler.start.v()),
     };
     let relative_error = rel_error(&v, &p.v);
     let off_truth = status == Status::Converged && relative_error >= 1e-3;
@@ -207,13 +207,12 @@ fn polyline_confirms(sampler: &Sampler, corners: &[[f64; 6]], v: &[f64; 18]) -> 
         if flips > 0 {
             return false;
         }
-        here = linkage::Start {
-            v: next,
-            x: *corner,
-            det: sampler.start.det,
+        let Ok(next) = linkage::Start::new(&sampler.sys, next, *corner) else {
+            return false;
         };
+        here = next;
     }
-    rel_error(&here.v, v) < 1e-6
+    rel_error(here.v(), v) < 1e-6
 }
 
 fn detour_all(sampler: &Sampler, points: &[&TestPoint], ph: &[Outcome]) -> Detours {
