@@ -201,12 +201,12 @@ impl std::fmt::Display for StartError {
 fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f64; 18]> {
     let mut v = v;
     let scale = v.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+    let mut fac = sys.new_factor();
     for _ in 0..60 {
         let mut f = [0.0; 18];
         sys.residual(&v, x, &mut f);
-        let mut b = [[0.0; 18]; 18];
-        sys.jacobian_dense(&v, x, &mut b);
-        linkage::lu::Lu::new(b)?.solve(&mut f);
+        sys.factor(&v, x, &mut fac)?;
+        sys.solve(&fac, &mut f);
         let size = f.iter().fold(0.0f64, |m, d| m.max(d.abs()));
         if !size.is_finite() {
             return None;

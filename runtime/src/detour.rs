@@ -20,7 +20,9 @@ use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Detoured<const N: usize, const M: usize> {
     pub solution: Solution<N>,
-    /// The waypoint of the detour, if the straight segment was not the way.
+    /// The waypoint of the detour, if the straight segment was not the way: the solution is
+    /// then the detour's, `Converged` or, where rounding near the singular surface stopped the
+    /// last Newton run short of the tolerance, `ToleranceNotMet`.
     pub via: Option<[f64; M]>,
     /// Where the detour left the straight segment (the last point before the fold): the path
     /// taken is start → `left_at` → `via` → target.
@@ -57,7 +59,8 @@ fn surface_normal<S: Mechanism<N, M>, const N: usize, const M: usize>(
 
 /// [`arc_length`], and where the straight segment ends in a fold, detours through waypoints
 /// offset from the fold along the singular surface's normal by 10 %, 25 %, 50 % and 100 % of
-/// the remaining distance.
+/// the remaining distance. The first detour that converges is taken; failing that, one that
+/// reached the target short of the tolerance; failing that, the straight segment's result.
 pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
@@ -104,6 +107,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         });
     }
     let here = Start::accepted(straight.v, x_fold, det_here);
+    let mut near = None;
     for share in [0.1, 0.25, 0.5, 1.0] {
         let via: [f64; M] = core::array::from_fn(|j| x_fold[j] + side * share * remaining * n[j]);
         if sys.validate_inputs(&via).is_err() {
@@ -112,10 +116,12 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let Ok(first) = arc_length(sys, &here, &via, options) else {
             continue;
         };
-        if !first.is_ok() {
+        // The waypoint only leads on: reached by continuation, on the branch (det B checked
+        // below), it serves even where rounding near the singular surface stopped its final
+        // Newton run just short of the tolerance.
+        if !(first.is_ok() || matches!(first.status, Status::ToleranceNotMet { .. })) {
             continue;
         }
-        // A converged solve from `here`: det B at it has `here`'s sign.
         let det_mid = det_b(sys, &first.v, &via);
         if !(det_mid * start.det() > 0.0) {
             continue;
@@ -124,7 +130,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let Ok(second) = arc_length(sys, &mid, target, options) else {
             continue;
         };
-        if second.is_ok() {
+        if second.is_ok() || matches!(second.status, Status::ToleranceNotMet { .. }) {
             let solution = Solution {
                 steps_accepted: straight.steps_accepted
                     + first.steps_accepted
@@ -142,16 +148,22 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     .min(second.min_det_ratio * (det_mid / start.det()).abs()),
                 ..second
             };
-            return Ok(Detoured {
+            let detoured = Detoured {
                 solution,
                 via: Some(via),
                 left_at: Some(x_fold),
-            });
+            };
+            if second.is_ok() {
+                return Ok(detoured);
+            }
+            // Reached, but short of the tolerance: better than the fold unless a wider detour
+            // meets it.
+            near.get_or_insert(detoured);
         }
     }
-    Ok(Detoured {
+    Ok(near.unwrap_or(Detoured {
         solution: straight,
         via: None,
         left_at: None,
-    })
+    }))
 }

@@ -2,7 +2,7 @@
 //! Fast, and with no notion of branch: near a singularity it may converge to another
 //! assembly mode. The det B sign check catches some of those, not all.
 
-use crate::correction::{newton, Rule};
+use crate::correction::{newton, Ending, Rule};
 use crate::outcome::{conclude, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start};
 
@@ -40,8 +40,12 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    crate::start::check_target(sys, start, x, options)?;
+    // F at the start is Newton's first residual: its overflow shows there, not in a check.
+    crate::start::check_sample(sys, start, x, options)?;
     let run = newton(sys, *start.v(), x, options, Rule::Final);
+    if run.ending == Ending::NonFinite && run.iterations == 0 {
+        return Err(SolveError::NonFinite);
+    }
     let account = Account {
         iterations: run.iterations,
         ..Account::at(1.0)
