@@ -11,6 +11,13 @@ use crate::{Mechanism, Options, SolveError, Start, Status};
 const MAX_CORRECTIONS: u32 = 8;
 /// A chord correction (B kept from the last sample) is taken while the corrections shrink at
 /// least this fast; slower, B is factored afresh.
+///
+/// The chords also make the fast path stricter than Newton from the predicted point: the first
+/// corrections use B at the last accepted sample, so they pass the contraction test only when
+/// the step is short against the curvature of the branch there (the chord's rate grows like
+/// ω h). At coarse sampling Newton from the predicted point alone would contract to roots that
+/// the straight joint segment from the last sample does not reach without crossing det B = 0
+/// (seen at 5 Hz); such steps go to continuation, which shows the connection or refuses.
 const CHORD_RATIO: f64 = 0.1;
 
 /// One tracked sample.
