@@ -44,7 +44,7 @@ fn main() -> Result<(), String> {
         "nr-rps" => {
             let r = rps::Rps3::new();
             let start = rps::home_start(&r).map_err(|e| e.to_string())?;
-            let rows = around(&start.x, 10.0);
+            let rows = around(start.x(), 10.0);
             let (ok, iterations) = measure_nr(&r, &start, &rows);
             println!(
                 "rps NR from home, legs within 10 mm of home: {} solves, {ok} ok, {iterations} iterations",
@@ -54,7 +54,7 @@ fn main() -> Result<(), String> {
         "nr-rss_hexapod" => {
             let h = rss_hexapod::RssHexapod::new();
             let start = rss_hexapod::home_start(&h).map_err(|e| e.to_string())?;
-            let rows = around(&start.x, 0.15);
+            let rows = around(start.x(), 0.15);
             let (ok, iterations) = measure_nr(&h, &start, &rows);
             println!(
                 "rss_hexapod NR from home, cranks within 0.15 rad of home: {} solves, {ok} ok, {iterations} iterations",
@@ -191,7 +191,7 @@ fn kernels<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) {
     let mut fac = sys.new_factor();
     let singular = measure_factor(sys, start, &mut fac);
-    let y = measure_solve(sys, &fac, &start.v);
+    let y = measure_solve(sys, &fac, start.v());
     let f = measure_residual(sys, start);
     println!(
         "{name}: {CALLS} factorisations ({singular} singular), solves and residuals (checksums {:.3e} {:.3e})",
@@ -208,7 +208,7 @@ fn measure_factor<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> usize {
     (0..CALLS)
         .filter(|_| {
-            sys.factor(black_box(&start.v), black_box(&start.x), fac)
+            sys.factor(black_box(start.v()), black_box(start.x()), fac)
                 .is_none()
         })
         .count()
@@ -236,7 +236,7 @@ fn measure_residual<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> [f64; N] {
     let mut f = [0.0; N];
     for _ in 0..CALLS {
-        sys.residual(black_box(&start.v), black_box(&start.x), &mut f);
+        sys.residual(black_box(start.v()), black_box(start.x()), &mut f);
         black_box(&mut f);
     }
     f

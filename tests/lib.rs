@@ -108,7 +108,7 @@ pub fn stewart_pose_samples(
     use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
     let s = Stewart::new();
     let st = home_start(&s).unwrap();
-    let home = linkage::pose_from_unknowns(&s, &st.v).unwrap();
+    let home = linkage::pose_from_unknowns(&s, st.v()).unwrap();
     let [hy, hp, hr] = home.euler();
     let ht = home.translation;
     let mut rng = Rng::new(seed);
@@ -132,7 +132,7 @@ pub fn stewart_pose_samples(
         let valid = (0..=checks).all(|k| {
             let p = at(k as f64 / checks as f64);
             legs_for_pose(&s, &p).is_some_and(|(x, v)| {
-                x.iter().all(|l| *l > 20.0) && linkage::det_b(&s, &v, &x) * st.det > 0.0
+                x.iter().all(|l| *l > 20.0) && linkage::det_b(&s, &v, &x) * st.det() > 0.0
             })
         });
         if valid {
@@ -158,7 +158,7 @@ pub fn check_factorization<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     let dense = b;
-    let piv = linkage::lu::factor_dense(&mut b)?;
+    let lu = linkage::lu::Lu::new(b)?;
     let inf_norm = |m: &[[f64; N]; N]| {
         m.iter()
             .map(|row| row.iter().map(|a| a.abs()).sum::<f64>())
@@ -168,7 +168,7 @@ pub fn check_factorization<S: Mechanism<N, M>, const N: usize, const M: usize>(
     for j in 0..N {
         let mut e = [0.0; N];
         e[j] = 1.0;
-        linkage::lu::solve_dense(&b, &piv, &mut e);
+        lu.solve(&mut e);
         for i in 0..N {
             inverse[i][j] = e[i];
         }
@@ -186,16 +186,16 @@ pub fn check_factorization<S: Mechanism<N, M>, const N: usize, const M: usize>(
         return None;
     };
     assert!(
-        (info.det - piv.det).abs() <= bound.max(1e-12) * piv.det.abs(),
+        (info.det - lu.det()).abs() <= bound.max(1e-12) * lu.det().abs(),
         "{}: det {:e} vs {:e} (κ∞ {kappa:e})",
         S::NAME,
         info.det,
-        piv.det
+        lu.det()
     );
     if bound < 0.5 {
         assert_eq!(
             info.det.signum(),
-            piv.det.signum(),
+            lu.det().signum(),
             "{}: det sign (κ∞ {kappa:e})",
             S::NAME
         );
@@ -311,9 +311,9 @@ where
     S::Factor: std::ops::Index<usize, Output = f64>,
 {
     let d: [f64; N] = std::array::from_fn(|i| by * dv[i]);
-    let x: [f64; M] = std::array::from_fn(|j| start.x[j] + dx * dv[31 - j]);
+    let x: [f64; M] = std::array::from_fn(|j| start.x()[j] + dx * dv[31 - j]);
     let (mut fixed, mut fallback) = (0, 0);
-    for v in toward_singular(sys, &start.v, &d, &x, 48) {
+    for v in toward_singular(sys, start.v(), &d, &x, 48) {
         // Entry 0 of the generated storage says which factors are valid (0: the fixed order).
         match check_factorization(sys, &v, &x) {
             Some(f) if f[0] == 0.0 => fixed += 1,

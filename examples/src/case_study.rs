@@ -17,7 +17,7 @@ pub fn straight_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     steps: usize,
 ) -> ([f64; N], usize) {
-    straight_segment_from(sys, (&start.v, &start.x), start.det, target, steps)
+    straight_segment_from(sys, (start.v(), start.x()), start.det(), target, steps)
 }
 
 /// [`straight_segment`] from any point `(v, x)` of the branch whose det B has the sign of
@@ -40,10 +40,10 @@ pub fn straight_segment_from<S: Mechanism<N, M>, const N: usize, const M: usize>
             sys.residual(&v, &x, &mut f);
             let mut b = [[0.0; N]; N];
             sys.jacobian_dense(&v, &x, &mut b);
-            let Some(piv) = linkage::lu::factor::<N, _>(&mut b) else {
+            let Some(lu) = linkage::lu::Lu::new(b) else {
                 return (v, flips + 1);
             };
-            linkage::lu::solve(&b, &piv, &mut f);
+            lu.solve(&mut f);
             for i in 0..N {
                 v[i] -= f[i];
             }

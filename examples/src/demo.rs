@@ -19,7 +19,7 @@ pub fn show<S: Mechanism<N, M>, const N: usize, const M: usize>(
             return std::process::ExitCode::FAILURE;
         }
     };
-    let target = start.x.map(|q| q + step);
+    let target = start.x().map(|q| q + step);
     match arc_length(sys, &start, &target, &Options::TIGHT) {
         Ok(sol) => {
             let pose = pose_from_unknowns(sys, &sol.v);

@@ -1,6 +1,6 @@
 //! The general 6-6 Stewart platform of Gao & Wu (2015), Table III: six S–P–S legs.
 
-use linkage::{newton_raphson, GeometryError, Mechanism, Options, Pose, SolveError, Start, Status};
+use linkage::{GeometryError, Mechanism, Pose, SolveError, Start};
 
 /// Declares a Stewart platform type with Table III's geometry and the given rigid-body form.
 macro_rules! stewart {
@@ -196,24 +196,29 @@ impl std::fmt::Display for StartError {
     }
 }
 
-/// Polishes a guess `v` for legs `x` by Newton's method (no branch guarantee: a guess).
+/// Polishes a guess `v` for legs `x` by Newton's method (no branch guarantee: a guess, which
+/// `Start::new` then checks).
 fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f64; 18]> {
-    let det = linkage::det_b(sys, &v, x);
-    if det == 0.0 || !det.is_finite() {
-        return None;
+    let mut v = v;
+    let scale = v.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+    let mut fac = sys.new_factor();
+    for _ in 0..60 {
+        let mut f = [0.0; 18];
+        sys.residual(&v, x, &mut f);
+        sys.factor(&v, x, &mut fac)?;
+        sys.solve(&fac, &mut f);
+        let size = f.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        if !size.is_finite() {
+            return None;
+        }
+        for i in 0..18 {
+            v[i] -= f[i];
+        }
+        if size <= 1e-12 * scale {
+            return Some(v);
+        }
     }
-    let guess = Start { v, x: *x, det };
-    let sol = newton_raphson(
-        sys,
-        &guess,
-        x,
-        &Options {
-            max_iterations: 60,
-            ..Options::TIGHT
-        },
-    )
-    .ok()?;
-    matches!(sol.status, Status::Converged | Status::BranchChanged).then_some(sol.v)
+    None
 }
 
 /// The start configuration for legs `x`: at `pose` if given (it must match the legs), else
@@ -230,6 +235,11 @@ pub fn find_start<S: SixSix>(
         .fold(1.0f64, |m, c| m.max(c.abs()));
     if let Some(pose) = pose {
         let guess = linkage::unknowns_from_pose(sys, &pose);
+        // The pose as given, if it is (nearly) exact: a singular start is reported as such.
+        match Start::new(sys, guess, x) {
+            Err(SolveError::InconsistentStart { .. }) => {}
+            other => return other.map_err(StartError::Solve),
+        }
         let v = polish(sys, guess, &x).ok_or(StartError::PoseMismatch)?;
         let moved = v
             .iter()

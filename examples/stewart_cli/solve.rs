@@ -153,7 +153,7 @@ impl<S: SixSix> RowSolver<S> {
             _ => sol.steps_accepted + sol.steps_rejected,
         };
         // Ratios are against the start's det B, also when tracking from another row.
-        let min_det_ratio = sol.min_det_ratio * (self.current.det / self.start.det).abs();
+        let min_det_ratio = sol.min_det_ratio * (self.current.det() / self.start.det()).abs();
         let record = Record {
             row: n,
             status: sol.status.word(),

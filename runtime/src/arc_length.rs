@@ -17,16 +17,18 @@
 //!
 //! Near a fold B is nearly singular and bordering on it loses accuracy; there the step falls
 //! back to a dense LU of the whole bordered matrix, which stays regular through the fold. The
-//! last step lands on λ = 1 exactly, and Newton's method polishes the result to the requested
-//! tolerance.
+//! last step lands on λ = 1 exactly (a step whose corrector ends past it is taken again as
+//! that last step), and Newton's method polishes the result to the requested tolerance by the
+//! final rule every solver shares.
 
-use crate::lu::{factor, solve, Bordered, Extended};
+use crate::convergence::Contraction;
+use crate::correction::{newton, Rule};
+use crate::lu::{Bordered, BorderedLu, Extended, Lu};
 use crate::math::norm;
-use crate::newton::{finish, Account};
+use crate::outcome::{conclude, finish, Account};
 use crate::{Linear, Mechanism, Options, Solution, SolveError, Start, Status};
 
 const MAX_CORRECTOR: usize = 5;
-const CONTRACTION: f64 = 0.25;
 const MIN_TANGENT_COS: f64 = 0.8;
 /// Below this pivot ratio the generated factorisation is not trusted for bordering.
 const MIN_PIVOT_RATIO: f64 = 1e-10;
@@ -69,7 +71,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         let l = mu / self.length;
         let mut x = [0.0; M];
         for j in 0..M {
-            x[j] = self.start.x[j] + l * self.dx[j];
+            x[j] = self.start.x()[j] + l * self.dx[j];
         }
         x
     }
@@ -160,15 +162,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         }) {
             Some(t) => t,
             None => {
-                let (_, mut m) = self.bordered(p, prev);
-                let mut b = m.block;
-                let det = crate::lu::factor_dense(&mut b).map_or(0.0, |piv| piv.det);
-                let piv = factor::<N, _>(&mut m)?;
+                let (_, m) = self.bordered(p, prev);
+                let det = Lu::new(m.block).map_or(0.0, |lu| lu.det());
+                let lu = BorderedLu::new(m)?;
                 let mut z = Extended {
                     head: [0.0; N],
                     tail: 1.0,
                 };
-                solve(&m, &piv, &mut z);
+                lu.solve(&mut z);
                 (z.head, z.tail, det)
             }
         };
@@ -185,19 +186,19 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         ))
     }
 
-    /// Corrects `pred` on `[H; t·(y − pred)] = 0` (or on H at fixed μ), with the contraction
-    /// test. With a frame the iteration is the chord method of Eq. 11; without, full Newton on
-    /// the dense bordered matrix.
+    /// Corrects `pred`, predicted by a step of length `step`, on `[H; t·(y − pred)] = 0` (or on
+    /// H at fixed μ), under the [`Contraction`] test. With a frame the iteration is the chord
+    /// method of Eq. 11; without, full Newton on the dense bordered matrix.
     fn correct(
         &self,
         pred: &Point<N>,
         t: &Tangent<N>,
         fixed_mu: bool,
-        first_max: f64,
+        step: f64,
         frame: Option<&Frame<S::Factor, N>>,
     ) -> Result<(Point<N>, u32, f64), u32> {
         let mut p = *pred;
-        let mut prev = f64::INFINITY;
+        let mut contraction = Contraction::new(step, self.tol);
         let mut first = 0.0;
         for k in 0..MAX_CORRECTOR {
             let its = k as u32 + 1;
@@ -209,15 +210,20 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
                     Some((d, 0.0))
                 }
                 (Some(fr), false) => self.border(fr, t, self.residual(&p), g),
-                (None, true) => {
-                    crate::correction::correction_with(self.sys, &p.v, &self.x(p.mu), self.linear)
-                        .map(|(d, _, _)| (d, 0.0))
-                }
+                (None, true) => crate::correction::correction_in(
+                    self.sys,
+                    &p.v,
+                    &self.x(p.mu),
+                    self.linear,
+                    &mut self.sys.new_factor(),
+                )
+                .ok()
+                .map(|c| (c.delta, 0.0)),
                 (None, false) => {
-                    let (f, mut m) = self.bordered(&p, t);
-                    factor::<N, _>(&mut m).map(|piv| {
+                    let (f, m) = self.bordered(&p, t);
+                    BorderedLu::new(m).map(|lu| {
                         let mut rhs = Extended { head: f, tail: g };
-                        solve(&m, &piv, &mut rhs);
+                        lu.solve(&mut rhs);
                         (rhs.head, rhs.tail)
                     })
                 }
@@ -239,10 +245,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
             if size <= self.tol {
                 return Ok((p, its, first));
             }
-            if (k == 0 && size > first_max) || (k > 0 && size > CONTRACTION * prev) {
+            if !contraction.admits(size) {
                 return Err(its);
             }
-            prev = size;
         }
         Err(MAX_CORRECTOR as u32)
     }
@@ -284,31 +289,15 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    crate::start::check_target(sys, target, options)?;
+    crate::start::check_target(sys, start, target, options)?;
     let mut dx = [0.0; M];
     for j in 0..M {
-        dx[j] = target[j] - start.x[j];
-    }
-    if norm(&dx) == 0.0 {
-        return Ok(finish(
-            sys,
-            start,
-            start.v,
-            target,
-            Status::Converged,
-            Account {
-                lambda: 1.0,
-                accepted: 0,
-                rejected: 0,
-                iterations: 0,
-                min_det_ratio: 1.0,
-            },
-        ));
+        dx[j] = target[j] - start.x()[j];
     }
     // Scale λ by how far v moves over the whole path to first order, ‖B⁻¹(∂F/∂x)(x* − x0)‖,
     // so that λ and v weigh alike in the arc length whatever the inputs' units (mm, rad).
     let length = first_order_travel(sys, start, &dx).unwrap_or_else(|| norm(&dx));
-    let scale = norm(&start.v).max(length).max(1.0);
+    let scale = norm(start.v()).max(length).max(1.0);
     let path = Path {
         sys,
         start,
@@ -317,8 +306,23 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         tol: 1e-6 * scale,
         linear: options.linear,
     };
+    // A path shorter than the accuracy its points are computed to (a target within rounding of
+    // the start, such as home legs printed as 170.00000000000003) has nothing for continuation
+    // to resolve: its steps would fall below the resolution of v. The target's root is within
+    // the corrector's tolerance of the start, so the final Newton run is the whole path, as it
+    // is the last step of every longer one.
+    if !(length > path.tol) {
+        return Ok(polish(
+            sys,
+            start,
+            *start.v(),
+            target,
+            options,
+            Account::at(1.0),
+        ));
+    }
     let mut p = Point {
-        v: start.v,
+        v: *start.v(),
         mu: 0.0,
     };
     let e_mu = Tangent {
@@ -331,18 +335,12 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
             sys,
             start,
             p.v,
-            &start.x,
+            start.x(),
             Status::Singular { lambda: 0.0 },
-            Account {
-                lambda: 0.0,
-                accepted: 0,
-                rejected: 0,
-                iterations: 0,
-                min_det_ratio: 1.0,
-            },
+            Account::at(0.0),
         ));
     };
-    let mut det_prev = start.det;
+    let mut det_prev = start.det();
     let mut previous: Option<(Point<N>, Tangent<N>, f64)> = None;
     let mut just_rejected = false;
     let (h_max, h_min) = (length / 2.0, 1e-10 * length);
@@ -403,7 +401,21 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 }
             }
         }
-        match path.correct(&pred, &t, end, 0.5 * step + path.tol, frame.as_ref()) {
+        match path.correct(&pred, &t, end, step, frame.as_ref()) {
+            // A step that is not the last may still end past λ = 1: the corrector moves μ too.
+            // Land on λ = 1 from p instead (the next step is the last, and shorter).
+            Ok((q, its, _)) if !end && q.mu > length => {
+                iterations += its;
+                rejected += 1;
+                // λ = 1 is about a step away (this one, plus what the corrector added to μ):
+                // the next step lands on it.
+                h = if t.mu > 0.0 {
+                    to_end.max(step)
+                } else {
+                    0.5 * step
+                };
+                just_rejected = true;
+            }
             Ok((q, its, first)) => {
                 iterations += its;
                 let next_frame = path.frame(&q);
@@ -444,7 +456,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     t = t1;
                     frame = next_frame;
                     det_prev = det1;
-                    min_ratio = min_ratio.min((det1 / start.det).abs());
+                    min_ratio = min_ratio.min((det1 / start.det()).abs());
                     if end {
                         let account = Account {
                             lambda: 1.0,
@@ -504,9 +516,9 @@ fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: usize>(
     dx: &[f64; M],
 ) -> Option<f64> {
     let mut fac = sys.new_factor();
-    sys.factor(&start.v, &start.x, &mut fac)?;
+    sys.factor(start.v(), start.x(), &mut fac)?;
     let mut a = [[0.0; M]; N];
-    sys.input_jacobian(&start.v, &start.x, &mut a);
+    sys.input_jacobian(start.v(), start.x(), &mut a);
     let mut y = [0.0; N];
     for i in 0..N {
         y[i] = (0..M).map(|j| a[i][j] * dx[j]).sum();
@@ -525,7 +537,7 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
     mut account: Account,
 ) -> Solution<N> {
-    let run = crate::correction::newton(sys, v, x, options);
+    let run = newton(sys, v, x, options, Rule::Final);
     account.iterations += run.iterations;
-    crate::newton::conclude(sys, start, &run, x, account)
+    conclude(sys, start, &run, x, account)
 }

@@ -15,7 +15,7 @@
 //! of I − Y B.
 
 use crate::interval::Interval;
-use crate::lu::{factor_dense, solve_dense};
+use crate::lu::Lu;
 use crate::Mechanism;
 
 /// A proven statement about the roots near a point.
@@ -70,19 +70,19 @@ fn approximate_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let generated = sys
         .factor(c, x, &mut fac)
         .is_some_and(|info| info.pivot_ratio > 1e-10);
-    let mut b = [[0.0; N]; N];
-    let piv = if generated {
+    let dense = if generated {
         None
     } else {
+        let mut b = [[0.0; N]; N];
         sys.jacobian_dense(c, x, &mut b);
-        Some(factor_dense(&mut b)?)
+        Some(Lu::new(b)?)
     };
     for j in 0..N {
         let mut e = [0.0; N];
         e[j] = 1.0;
-        match &piv {
+        match &dense {
             None => sys.solve(&fac, &mut e),
-            Some(piv) => solve_dense(&b, piv, &mut e),
+            Some(lu) => lu.solve(&mut e),
         }
         for i in 0..N {
             y[i][j] = e[i];

@@ -1,58 +1,129 @@
-//! One Newton correction `Δ = B⁻¹F` and Newton's method at fixed inputs, with the stopping
-//! rule every solver shares.
+//! One Newton correction `Δ = B⁻¹F`, and Newton's method at fixed inputs ending by the rule
+//! every solver shares.
 
-use crate::lu::factor;
+use crate::convergence::Convergence;
+use crate::lu::Lu;
 use crate::math::norm;
 use crate::{Linear, Mechanism, Options};
 
-/// When a Newton iteration has converged: the correction is below the tolerance; or the
-/// next one, extrapolated from the contraction so far (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≤ 0.1), would be; or
-/// the correction has stopped decreasing while already below 1e-6 of the scale — the floor that
-/// rounding sets near a singularity, where a tighter tolerance cannot be met. Linear
-/// convergence (ratio ½, as at a double root) keeps iterating.
+/// A Newton correction at a point, with what factoring B there told.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Convergence {
-    tolerance: f64,
-    floor: f64,
-    previous: f64,
-    /// The estimated distance to the solution after the last correction.
-    pub(crate) estimate: f64,
+pub(crate) struct Correction<const N: usize> {
+    /// `Δ = B⁻¹ F`: the point minus Δ is the next Newton iterate.
+    pub delta: [f64; N],
+    /// det B at the point.
+    pub det: f64,
+    /// ‖Δ‖, finite.
+    pub size: f64,
 }
 
-impl Convergence {
-    pub(crate) fn new(tolerance: f64, v: &[f64]) -> Self {
-        Convergence {
-            tolerance,
-            floor: 1e-6 * norm(v).max(1.0),
-            previous: f64::INFINITY,
-            estimate: f64::INFINITY,
-        }
-    }
+/// Why no correction could be computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Failure {
+    /// B is singular (or so near it that Δ overflows) at finite values.
+    Singular,
+    /// The point, the inputs or F there are not finite: the values have overflowed.
+    NonFinite,
+}
 
-    pub(crate) fn reached(&mut self, size: f64) -> bool {
-        // No contraction is known before the second correction.
-        let theta = if self.previous.is_finite() {
-            (size / self.previous).min(1.0)
-        } else {
-            1.0
-        };
-        let stalled = size <= self.floor && size >= 0.9 * self.previous;
-        self.estimate = size * theta;
-        self.previous = size;
-        size <= self.tolerance || (theta <= 0.1 && self.estimate <= self.tolerance) || stalled
+/// A Newton correction at `(v, x)` with the generated factorisation.
+pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Result<Correction<N>, Failure> {
+    correction_in(sys, v, x, Linear::Generated, &mut sys.new_factor())
+}
+
+/// [`correction`] with the chosen linear solver, reusing the factorisation storage of a loop.
+pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    linear: Linear,
+    fac: &mut S::Factor,
+) -> Result<Correction<N>, Failure> {
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    let factored = match linear {
+        Linear::Generated => sys.factor(v, x, fac).map(|info| {
+            sys.solve(fac, &mut f);
+            info.det
+        }),
+        Linear::Dense => {
+            let mut b = [[0.0; N]; N];
+            sys.jacobian_dense(v, x, &mut b);
+            Lu::new(b).map(|lu| {
+                lu.solve(&mut f);
+                lu.det()
+            })
+        }
+    };
+    // One pass gives the size callers need and rejects NaN or infinite corrections.
+    let size = norm(&f);
+    match factored {
+        Some(det) if size.is_finite() => Ok(Correction {
+            delta: f,
+            det,
+            size,
+        }),
+        // Only on failure: tell overflow from singularity.
+        _ => Err(failure(sys, v, x)),
     }
+}
+
+fn failure<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Failure {
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    if norm(v).is_finite() && norm(x).is_finite() && norm(&f).is_finite() {
+        Failure::Singular
+    } else {
+        Failure::NonFinite
+    }
+}
+
+/// How a Newton run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Ending {
+    /// Final rule: the correction measured at the returned point is within the tolerance.
+    /// Intermediate rule: the point is within it as far as the contraction predicts.
+    Converged,
+    /// The corrections stopped decreasing at the rounding floor, above the tolerance.
+    Stalled,
+    /// B was singular at an iterate.
+    Singular,
+    /// The iterates overflowed.
+    NonFinite,
+    /// The iteration limit came first.
+    Exhausted,
+}
+
+/// Which stopping rule a Newton run follows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Rule {
+    /// For an answer: stop at a point whose own correction is within the tolerance and return
+    /// that point, so that its error estimate and det B are measured there, not extrapolated.
+    Final,
+    /// For a point on the way (a homotopy step): the extrapolated estimate suffices, and a
+    /// stall at the rounding floor is good enough to go on from.
+    Intermediate,
 }
 
 /// Newton's method at fixed `x` from `v`.
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Newton<const N: usize> {
+    /// The point reached: with the final rule, the last point B was factored at (or the best
+    /// one, for a stall); never a non-finite point.
     pub v: [f64; N],
-    pub converged: bool,
-    /// B was singular at an iterate.
-    pub singular: bool,
+    pub ending: Ending,
     pub iterations: u32,
-    /// Estimated distance to the solution (see [`Convergence`]).
+    /// ‖B⁻¹F‖ at `v` (final rule), or its extrapolation (intermediate rule).
     pub estimate: f64,
-    /// det B at the last iterate factored.
+    /// det B at `v` (final rule), or at the iterate before the last correction (intermediate).
     pub det: f64,
 }
 
@@ -61,99 +132,99 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: [f64; N],
     x: &[f64; M],
     options: &Options,
+    rule: Rule,
 ) -> Newton<N> {
     let mut out = Newton {
         v,
-        converged: false,
-        singular: false,
+        ending: Ending::Exhausted,
         iterations: 0,
         estimate: f64::INFINITY,
         det: 0.0,
     };
+    // The best point factored so far: what a stall or an exhausted final run returns.
+    let mut best: Option<([f64; N], f64, f64)> = None;
+    let mut current = v;
+    let mut previous = f64::INFINITY;
     let mut convergence = Convergence::new(options.tolerance, &v);
     let mut fac = sys.new_factor();
     while out.iterations < options.max_iterations {
-        let Some((d, det, size)) = correction_in(sys, &out.v, x, options.linear, &mut fac) else {
-            out.singular = true;
-            break;
+        let c = match correction_in(sys, &current, x, options.linear, &mut fac) {
+            Ok(c) => c,
+            Err(Failure::Singular) => {
+                out.ending = Ending::Singular;
+                out.v = current;
+                return out;
+            }
+            Err(Failure::NonFinite) => {
+                out.ending = Ending::NonFinite;
+                break;
+            }
         };
         out.iterations += 1;
-        out.det = det;
-        for i in 0..N {
-            out.v[i] -= d[i];
+        match rule {
+            Rule::Final => {
+                if c.size <= options.tolerance {
+                    out.v = current;
+                    out.ending = Ending::Converged;
+                    out.estimate = c.size;
+                    out.det = c.det;
+                    return out;
+                }
+                if !matches!(best, Some((_, size, _)) if size <= c.size) {
+                    best = Some((current, c.size, c.det));
+                }
+                if convergence.stalled(c.size, previous) {
+                    out.ending = Ending::Stalled;
+                    break;
+                }
+                for i in 0..N {
+                    current[i] -= c.delta[i];
+                }
+            }
+            Rule::Intermediate => {
+                for i in 0..N {
+                    current[i] -= c.delta[i];
+                }
+                let stalled = convergence.stalled(c.size, previous);
+                if convergence.reached(c.size) || stalled {
+                    out.v = current;
+                    out.det = c.det;
+                    out.estimate = convergence.estimate;
+                    out.ending = Ending::Converged;
+                    return out;
+                }
+            }
         }
-        if convergence.reached(size) {
-            out.converged = true;
-            break;
+        previous = c.size;
+    }
+    match (rule, best) {
+        (Rule::Final, Some((v, size, det))) => {
+            out.v = v;
+            out.estimate = size;
+            out.det = det;
+        }
+        // The last iterate if finite, else the start point.
+        _ => {
+            if norm(&current).is_finite() {
+                out.v = current;
+            }
         }
     }
-    out.estimate = convergence.estimate;
     out
 }
 
-/// A Newton correction `Δ = B⁻¹ F` at `(v, x)` with the generated factorisation, and det B;
-/// `None` if B is singular.
-pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-) -> Option<([f64; N], f64, f64)> {
-    correction_with(sys, v, x, Linear::Generated)
-}
-
-/// [`correction`] with the chosen linear solver.
-pub(crate) fn correction_with<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-    linear: Linear,
-) -> Option<([f64; N], f64, f64)> {
-    correction_in(sys, v, x, linear, &mut sys.new_factor())
-}
-
-/// [`correction_with`] reusing the factorisation storage of a loop.
-pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-    linear: Linear,
-    fac: &mut S::Factor,
-) -> Option<([f64; N], f64, f64)> {
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
-    let det = match linear {
-        Linear::Generated => {
-            let info = sys.factor(v, x, fac)?;
-            sys.solve(fac, &mut f);
-            info.det
-        }
-        Linear::Dense => {
-            let mut b = [[0.0; N]; N];
-            sys.jacobian_dense(v, x, &mut b);
-            let piv = crate::lu::factor_dense(&mut b)?;
-            crate::lu::solve_dense(&b, &piv, &mut f);
-            piv.det
-        }
-    };
-    // One pass gives the size callers need and rejects NaN or infinite corrections.
-    let size = norm(&f);
-    if !size.is_finite() {
-        return None;
-    }
-    Some((f, det, size))
-}
-
 /// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the
-/// distance to the exact solution (the practical form of Eq. 13). Infinite where B is singular.
+/// distance to the exact solution (the practical form of Eq. 13). Infinite where B is singular
+/// or the values are not finite.
 pub fn error_estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
     x: &[f64; M],
 ) -> f64 {
-    correction(sys, v, x).map_or(f64::INFINITY, |(_, _, size)| size)
+    correction(sys, v, x).map_or(f64::INFINITY, |c| c.size)
 }
 
-/// det B at `(v, x)`; 0 where B is singular.
+/// det B at `(v, x)`; 0 where B is singular or not finite.
 pub fn det_b<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
@@ -161,46 +232,5 @@ pub fn det_b<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> f64 {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
-    factor::<N, _>(&mut b).map_or(0.0, |p| p.det)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::Convergence;
-
-    #[test]
-    fn a_first_large_correction_never_converges() {
-        let mut c = Convergence::new(1e-10, &[100.0]);
-        assert!(!c.reached(1e-9), "no contraction is known yet");
-        assert!(c.estimate >= 1e-9);
-    }
-
-    #[test]
-    fn quadratic_convergence_stops_one_step_early() {
-        let mut c = Convergence::new(1e-10, &[100.0]);
-        for size in [10.0, 1.0, 1e-2] {
-            assert!(!c.reached(size));
-        }
-        assert!(
-            c.reached(1e-6),
-            "θ = 1e-4 predicts the next correction at 1e-10"
-        );
-        assert!(c.estimate <= 1e-10);
-    }
-
-    #[test]
-    fn linear_convergence_keeps_going_and_rounding_floors_stop() {
-        let mut c = Convergence::new(1e-12, &[100.0]);
-        for k in 0..20 {
-            assert!(
-                !c.reached(0.5f64.powi(k)),
-                "ratio ½ must not count as stalled"
-            );
-        }
-        let mut c = Convergence::new(1e-14, &[100.0]);
-        assert!(!c.reached(1e-3));
-        assert!(!c.reached(2e-8));
-        assert!(c.reached(1.9e-8), "stalled below 1e-6 of the scale");
-        assert!(c.estimate > 1e-9);
-    }
+    Lu::new(b).map_or(0.0, |lu| lu.det())
 }

@@ -11,7 +11,8 @@
 //! README on path dependence).
 
 use crate::arc_length::arc_length;
-use crate::lu::factor_dense;
+use crate::correction::det_b;
+use crate::lu::Lu;
 use crate::math::norm;
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
@@ -19,29 +20,13 @@ use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Detoured<const N: usize, const M: usize> {
     pub solution: Solution<N>,
-    /// The waypoint of the detour, if the straight segment was not the way.
+    /// The waypoint of the detour, if the straight segment was not the way: the solution is
+    /// then the detour's, `Converged` or, where rounding near the singular surface stopped the
+    /// last Newton run short of the tolerance, `ToleranceNotMet`.
     pub via: Option<[f64; M]>,
     /// Where the detour left the straight segment (the last point before the fold): the path
     /// taken is start → `left_at` → `via` → target.
     pub left_at: Option<[f64; M]>,
-}
-
-/// Solves `Aᵀ y = b` with the factors and row swaps from [`factor_dense`].
-fn solve_transposed<const N: usize>(a: &[[f64; N]; N], swaps: &[usize; N], b: &mut [f64; N]) {
-    // Uᵀ z = b (forward), Lᵀ y = z (backward), then undo the row swaps in reverse.
-    for i in 0..N {
-        let s: f64 = (0..i).map(|j| a[j][i] * b[j]).sum();
-        b[i] = (b[i] - s) / a[i][i];
-    }
-    for i in (0..N).rev() {
-        let s: f64 = (i + 1..N).map(|j| a[j][i] * b[j]).sum();
-        b[i] -= s;
-    }
-    for k in (0..N).rev() {
-        if swaps[k] != k {
-            b.swap(k, swaps[k]);
-        }
-    }
 }
 
 /// The joint-space normal of the singular surface near (v, x), unit length.
@@ -52,11 +37,10 @@ fn surface_normal<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Option<[f64; M]> {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
-    let piv = factor_dense(&mut b)?;
-    let swaps = piv.swaps();
+    let lu = Lu::new(b)?;
     let mut w = [1.0; N];
     for _ in 0..3 {
-        solve_transposed(&b, &swaps, &mut w);
+        lu.solve_transposed(&mut w);
         let nw = norm(&w);
         if !(nw > 0.0 && nw.is_finite()) {
             return None;
@@ -75,7 +59,8 @@ fn surface_normal<S: Mechanism<N, M>, const N: usize, const M: usize>(
 
 /// [`arc_length`], and where the straight segment ends in a fold, detours through waypoints
 /// offset from the fold along the singular surface's normal by 10 %, 25 %, 50 % and 100 % of
-/// the remaining distance.
+/// the remaining distance. The first detour that converges is taken; failing that, one that
+/// reached the target short of the tolerance; failing that, the straight segment's result.
 pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
@@ -92,7 +77,8 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     // The last accepted point before the fold, on the start's branch.
     let l = straight.lambda.min(lambda);
-    let x_fold: [f64; M] = core::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]));
+    let x0 = start.x();
+    let x_fold: [f64; M] = core::array::from_fn(|j| x0[j] + l * (target[j] - x0[j]));
     let Some(n) = surface_normal(sys, &straight.v, &x_fold) else {
         return Ok(Detoured {
             solution: straight,
@@ -100,7 +86,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
             left_at: None,
         });
     };
-    let dx: [f64; M] = core::array::from_fn(|j| target[j] - start.x[j]);
+    let dx: [f64; M] = core::array::from_fn(|j| target[j] - x0[j]);
     // Inward: against the direction in which the straight segment approached the surface.
     let side = if (0..M).map(|j| n[j] * dx[j]).sum::<f64>() > 0.0 {
         -1.0
@@ -110,11 +96,18 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let remaining: f64 = norm(&core::array::from_fn::<f64, M, _>(|j| {
         target[j] - x_fold[j]
     }));
-    let here = Start {
-        v: straight.v,
-        x: x_fold,
-        det: start.det,
-    };
+    // The last point continuation accepted before the fold: on the start's branch (det B is
+    // measured here, and must still have the start's sign).
+    let det_here = det_b(sys, &straight.v, &x_fold);
+    if !(det_here * start.det() > 0.0) {
+        return Ok(Detoured {
+            solution: straight,
+            via: None,
+            left_at: None,
+        });
+    }
+    let here = Start::accepted(straight.v, x_fold, det_here);
+    let mut near = None;
     for share in [0.1, 0.25, 0.5, 1.0] {
         let via: [f64; M] = core::array::from_fn(|j| x_fold[j] + side * share * remaining * n[j]);
         if sys.validate_inputs(&via).is_err() {
@@ -123,18 +116,21 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let Ok(first) = arc_length(sys, &here, &via, options) else {
             continue;
         };
-        if !first.is_ok() {
+        // The waypoint only leads on: reached by continuation, on the branch (det B checked
+        // below), it serves even where rounding near the singular surface stopped its final
+        // Newton run just short of the tolerance.
+        if !(first.is_ok() || matches!(first.status, Status::ToleranceNotMet { .. })) {
             continue;
         }
-        let mid = Start {
-            v: first.v,
-            x: via,
-            det: start.det,
-        };
+        let det_mid = det_b(sys, &first.v, &via);
+        if !(det_mid * start.det() > 0.0) {
+            continue;
+        }
+        let mid = Start::accepted(first.v, via, det_mid);
         let Ok(second) = arc_length(sys, &mid, target, options) else {
             continue;
         };
-        if second.is_ok() {
+        if second.is_ok() || matches!(second.status, Status::ToleranceNotMet { .. }) {
             let solution = Solution {
                 steps_accepted: straight.steps_accepted
                     + first.steps_accepted
@@ -145,22 +141,29 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 newton_iterations: straight.newton_iterations
                     + first.newton_iterations
                     + second.newton_iterations,
+                // Each leg's ratios are to det B at its own start.
                 min_det_ratio: straight
                     .min_det_ratio
-                    .min(first.min_det_ratio)
-                    .min(second.min_det_ratio),
+                    .min(first.min_det_ratio * (det_here / start.det()).abs())
+                    .min(second.min_det_ratio * (det_mid / start.det()).abs()),
                 ..second
             };
-            return Ok(Detoured {
+            let detoured = Detoured {
                 solution,
                 via: Some(via),
                 left_at: Some(x_fold),
-            });
+            };
+            if second.is_ok() {
+                return Ok(detoured);
+            }
+            // Reached, but short of the tolerance: better than the fold unless a wider detour
+            // meets it.
+            near.get_or_insert(detoured);
         }
     }
-    Ok(Detoured {
+    Ok(near.unwrap_or(Detoured {
         solution: straight,
         via: None,
         left_at: None,
-    })
+    }))
 }

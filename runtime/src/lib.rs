@@ -41,6 +41,7 @@ pub use linkage_macros::mechanism;
 
 mod arc_length;
 mod certify;
+mod convergence;
 mod correction;
 mod detour;
 mod error;
@@ -51,6 +52,7 @@ mod mechanism;
 pub mod modes;
 mod newton;
 mod newton_homotopy;
+mod outcome;
 mod pose;
 mod scalar;
 mod solution;

@@ -2,10 +2,9 @@
 //! Fast, and with no notion of branch: near a singularity it may converge to another
 //! assembly mode. The det B sign check catches some of those, not all.
 
-use crate::correction::{correction, det_b};
-use crate::math::norm;
-use crate::start::all_finite;
-use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
+use crate::correction::{newton, Ending, Rule};
+use crate::outcome::{conclude, Account};
+use crate::{Mechanism, Options, Solution, SolveError, Start};
 
 /// Solves F(v, x) = 0 by Newton's method from `start.v`.
 ///
@@ -41,112 +40,15 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    crate::start::check_target(sys, x, options)?;
-    let run = crate::correction::newton(sys, start.v, x, options);
-    Ok(conclude(
-        sys,
-        start,
-        &run,
-        x,
-        Account {
-            lambda: 1.0,
-            accepted: 0,
-            rejected: 0,
-            iterations: run.iterations,
-            min_det_ratio: 1.0,
-        },
-    ))
-}
-
-/// What a solve met on its way, for its [`Solution`].
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Account {
-    pub lambda: f64,
-    pub accepted: u32,
-    pub rejected: u32,
-    pub iterations: u32,
-    pub min_det_ratio: f64,
-}
-
-impl Account {
-    fn into_solution<const N: usize>(
-        self,
-        v: [f64; N],
-        status: Status,
-        error_estimate: f64,
-        det_ratio: f64,
-    ) -> Solution<N> {
-        Solution {
-            v,
-            status,
-            lambda: self.lambda,
-            steps_accepted: self.accepted,
-            steps_rejected: self.rejected,
-            newton_iterations: self.iterations,
-            error_estimate,
-            min_det_ratio: self.min_det_ratio.min(det_ratio),
-        }
+    // F at the start is Newton's first residual: its overflow shows there, not in a check.
+    crate::start::check_sample(sys, start, x, options)?;
+    let run = newton(sys, *start.v(), x, options, Rule::Final);
+    if run.ending == Ending::NonFinite && run.iterations == 0 {
+        return Err(SolveError::NonFinite);
     }
-}
-
-/// The solution after a final Newton run: its own estimate and det B when it converged,
-/// re-evaluated otherwise.
-pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    start: &Start<N, M>,
-    run: &crate::correction::Newton<N>,
-    x: &[f64; M],
-    account: Account,
-) -> Solution<N> {
-    let lambda = account.lambda;
-    if !run.converged {
-        let status = if run.singular {
-            Status::Singular { lambda }
-        } else {
-            not_converged(sys, &run.v, x)
-        };
-        let v = if all_finite(&run.v) { run.v } else { start.v };
-        return finish(sys, start, v, x, status, account);
-    }
-    // The last factorisation was at the iterate before the last (small) correction; det B
-    // cannot change sign over it unless B is singular to rounding there.
-    let ratio = (run.det / start.det).abs();
-    let status = if run.det * start.det > 0.0 {
-        Status::Converged
-    } else {
-        Status::BranchChanged
+    let account = Account {
+        iterations: run.iterations,
+        ..Account::at(1.0)
     };
-    account.into_solution(run.v, status, run.estimate, ratio)
-}
-
-pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-) -> Status {
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
-    Status::NotConverged {
-        residual_norm: norm(&f),
-    }
-}
-
-/// Fills in the error estimate and checks the branch by the sign of det B.
-pub(crate) fn finish<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    start: &Start<N, M>,
-    v: [f64; N],
-    x: &[f64; M],
-    mut status: Status,
-    account: Account,
-) -> Solution<N> {
-    let (error_estimate, det) = match correction(sys, &v, x) {
-        Some((_, det, size)) => (size, det),
-        None => (f64::INFINITY, det_b(sys, &v, x)),
-    };
-    let ratio = (det / start.det).abs();
-    if status == Status::Converged && det * start.det <= 0.0 {
-        status = Status::BranchChanged;
-    }
-    account.into_solution(v, status, error_estimate, ratio)
+    Ok(conclude(sys, start, &run, x, account))
 }

@@ -3,7 +3,8 @@
 //! iteration fails is halved. It follows the start's branch while steps are small compared with
 //! the distance to a singularity, and it cannot pass a fold.
 
-use crate::newton::{conclude, finish, not_converged, Account};
+use crate::correction::{newton, Ending, Rule};
+use crate::outcome::{conclude, finish, not_converged, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.
@@ -13,19 +14,13 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
-    crate::start::check_target(sys, target, options)?;
-    let mut v = start.v;
+    crate::start::check_target(sys, start, target, options)?;
+    let mut v = *start.v();
     let nominal = 1.0 / options.homotopy_steps as f64;
     let mut step = nominal;
-    let mut account = Account {
-        lambda: 0.0,
-        accepted: 0,
-        rejected: 0,
-        iterations: 0,
-        min_det_ratio: 1.0,
-    };
+    let mut account = Account::at(0.0);
     let at = |l: f64| -> [f64; M] {
-        core::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]))
+        core::array::from_fn(|j| start.x()[j] + l * (target[j] - start.x()[j]))
     };
     loop {
         let mut failure = None;
@@ -34,23 +29,33 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
         } else {
             let next = (account.lambda + step).min(1.0);
             let x = at(next);
-            let run = crate::correction::newton(sys, v, &x, options);
+            // The last step answers, by the final rule; the others only lead there.
+            let rule = if next >= 1.0 {
+                Rule::Final
+            } else {
+                Rule::Intermediate
+            };
+            let run = newton(sys, v, &x, options, rule);
             account.iterations += run.iterations;
-            if run.converged {
+            // At the target a stall is the answer (the target itself is near a singularity);
+            // a smaller step would not change it.
+            if run.ending == Ending::Converged
+                || (rule == Rule::Final && run.ending == Ending::Stalled)
+            {
                 account.accepted += 1;
-                v = run.v;
                 account.lambda = next;
-                account.min_det_ratio = account.min_det_ratio.min((run.det / start.det).abs());
-                if next >= 1.0 {
+                account.min_det_ratio = account.min_det_ratio.min((run.det / start.det()).abs());
+                if rule == Rule::Final {
                     return Ok(conclude(sys, start, &run, &x, account));
                 }
+                v = run.v;
                 step = (step * 2.0).min(nominal);
             } else {
                 account.rejected += 1;
                 step *= 0.5;
                 if step < 1e-6 {
                     let lambda = account.lambda;
-                    failure = Some(if run.singular {
+                    failure = Some(if run.ending == Ending::Singular {
                         Status::Singular { lambda }
                     } else {
                         Status::StepTooSmall { lambda }

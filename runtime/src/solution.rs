@@ -6,7 +6,8 @@ use core::fmt;
 /// as the method can tell; every other variant says why not.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Status {
-    /// Converged to the requested tolerance.
+    /// Converged to the requested tolerance: the returned v is finite, the Newton correction
+    /// measured there is within the tolerance, and det B there has the start's sign.
     Converged,
     /// The straight joint-space path from the start to the target turns back in λ at this λ:
     /// it leaves the valid joint space through a fold (a direct singularity). Continuing
@@ -15,8 +16,11 @@ pub enum Status {
     /// The sign of det B differs from the start's: the result lies across a singular
     /// surface, on another branch.
     BranchChanged,
-    /// Newton did not converge within the iteration limit.
+    /// Newton did not converge within the iteration limit, or its iterates overflowed.
     NotConverged { residual_norm: f64 },
+    /// Newton stopped improving at the floor rounding sets near a singularity before the
+    /// requested tolerance was met: `achieved` is the error estimate (‖B⁻¹F‖) at the result.
+    ToleranceNotMet { achieved: f64 },
     /// The step size fell below its minimum before reaching λ = 1.
     StepTooSmall { lambda: f64 },
     /// B (or the bordered matrix) became singular and the method cannot go on.
@@ -31,6 +35,7 @@ impl Status {
             Status::Fold { .. } => "fold",
             Status::BranchChanged => "branch_changed",
             Status::NotConverged { .. } => "not_converged",
+            Status::ToleranceNotMet { .. } => "tolerance_not_met",
             Status::StepTooSmall { .. } => "step_too_small",
             Status::Singular { .. } => "singular",
         }
@@ -51,6 +56,10 @@ impl fmt::Display for Status {
             Status::NotConverged { residual_norm } => {
                 write!(f, "not converged (‖F‖ = {residual_norm:.3e})")
             }
+            Status::ToleranceNotMet { achieved } => write!(
+                f,
+                "the tolerance was not met: rounding near a singularity stops Newton at an error estimate of {achieved:.3e}"
+            ),
             Status::StepTooSmall { lambda } => write!(f, "step size underflow at λ = {lambda:.4}"),
             Status::Singular { lambda } => write!(f, "singular Jacobian at λ = {lambda:.4}"),
         }
@@ -68,9 +77,9 @@ pub struct Solution<const N: usize> {
     pub steps_accepted: u32,
     pub steps_rejected: u32,
     pub newton_iterations: u32,
-    /// Estimated distance to the exact solution: the next Newton correction ‖B⁻¹F‖ at the
-    /// result, measured, or extrapolated from the contraction of the last two corrections
-    /// when Newton stopped early (the practical form of Eq. 13).
+    /// Estimated distance to the exact solution: the Newton correction ‖B⁻¹F‖ measured at the
+    /// returned v, with B factored there (the practical form of Eq. 13); infinite where B is
+    /// singular.
     pub error_estimate: f64,
     /// The smallest |det B| / |det B at the start| met at accepted points.
     pub min_det_ratio: f64,
@@ -86,8 +95,11 @@ impl<const N: usize> Solution<N> {
 /// Input that cannot be solved at all: nothing was attempted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SolveError {
-    /// A start, target or option value is NaN or infinite.
+    /// A start or target value is NaN or infinite, or so large that the constraint equations
+    /// overflow at it.
     NonFinite,
+    /// An [`Options`] value is out of range: `reason` says which and why.
+    InvalidOptions { reason: &'static str },
     /// Joint input `input` is out of its physical range (e.g. a negative leg length).
     InvalidInput { input: usize },
     /// B is singular at the start configuration.
@@ -101,6 +113,7 @@ impl SolveError {
     pub fn word(&self) -> &'static str {
         match self {
             SolveError::NonFinite => "non_finite",
+            SolveError::InvalidOptions { .. } => "invalid_options",
             SolveError::InvalidInput { .. } => "invalid_input",
             SolveError::SingularStart => "singular_start",
             SolveError::InconsistentStart { .. } => "inconsistent_start",
@@ -111,7 +124,10 @@ impl SolveError {
 impl fmt::Display for SolveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SolveError::NonFinite => write!(f, "non-finite input"),
+            SolveError::NonFinite => {
+                write!(f, "non-finite input (or one so large that F overflows)")
+            }
+            SolveError::InvalidOptions { reason } => write!(f, "invalid options: {reason}"),
             SolveError::InvalidInput { input } => write!(f, "joint input {input} is out of range"),
             SolveError::SingularStart => write!(f, "the start configuration is singular"),
             SolveError::InconsistentStart { residual_norm } => {
@@ -127,9 +143,12 @@ impl std::error::Error for SolveError {}
 /// Solver settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
-    /// Converged when the Newton correction ‖Δv‖ falls below this (same units as v) — or,
-    /// near a singularity where rounding forbids it, when the correction stops decreasing below
-    /// 1e-6 of ‖v‖; `Solution::error_estimate` then says what was reached.
+    /// Converged when the Newton correction ‖Δv‖ at the result is at most this (same units as
+    /// v). Finite, positive and at most 1e-3 of the start's ‖v‖ (or of 1, if larger): a looser
+    /// tolerance would call answers ok that are visibly off. Where rounding forbids it — near a
+    /// singularity, or below the floor the equations' rounding sets (about 1e-13 mm for the
+    /// Table III platform, 1e-10 to 2e-9 mm for the general model's rows) — the solve ends
+    /// [`Status::ToleranceNotMet`] with what was achieved.
     pub tolerance: f64,
     /// Newton iterations allowed for the final correction (and for NR altogether).
     pub max_iterations: u32,
@@ -169,12 +188,25 @@ impl Options {
         linear: Linear::Generated,
     };
 
-    pub(crate) fn is_valid(&self) -> bool {
-        self.tolerance.is_finite()
-            && self.tolerance > 0.0
-            && self.max_iterations > 0
-            && self.max_steps > 0
-            && self.homotopy_steps > 0
+    /// Largest tolerance, as a share of the problem's scale max(‖v0‖, 1).
+    pub const MAX_RELATIVE_TOLERANCE: f64 = 1e-3;
+
+    /// Checks the options for a problem whose start has `‖v0‖ = scale`.
+    pub(crate) fn check(&self, scale: f64) -> Result<(), SolveError> {
+        let reason = if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+            "the tolerance must be a positive number"
+        } else if !(self.tolerance <= Self::MAX_RELATIVE_TOLERANCE * scale.max(1.0)) {
+            "the tolerance exceeds 1e-3 of the mechanism's scale (‖v0‖)"
+        } else if self.max_iterations == 0 {
+            "max_iterations must be positive"
+        } else if self.max_steps == 0 {
+            "max_steps must be positive"
+        } else if self.homotopy_steps == 0 {
+            "homotopy_steps must be positive"
+        } else {
+            return Ok(());
+        };
+        Err(SolveError::InvalidOptions { reason })
     }
 }
 

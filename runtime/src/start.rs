@@ -1,76 +1,201 @@
 //! The initial configuration every solve starts from, checked once.
 
-use crate::correction::correction;
+use crate::correction::{correction, Failure};
+use crate::lu::Lu;
 use crate::math::norm;
-use crate::{Mechanism, SolveError};
+use crate::{Mechanism, Options, SolveError};
+
+/// Below this reciprocal condition number of the equilibrated B a start is singular to
+/// working precision. Near a fold the two roots that meet there lie about `rcond · ‖v‖`
+/// apart, while rounding leaves v uncertain by about `ε ‖v‖ / rcond`; the sign of det B — the
+/// start's branch — is only meaningful while the first is well above the second, i.e. while
+/// rcond is well above √ε ≈ 1.5e-8.
+const MIN_RCOND: f64 = 1e-7;
 
 /// A consistent, nonsingular start configuration `(v0, x0)` and the sign of det B there,
 /// which marks its branch: det B keeps its sign throughout the valid joint space.
+///
+/// Only checked constructors make one ([`Start::new`]), so every solve can rely on it:
+///
+/// ```compile_fail
+/// let start: linkage::Start<1, 1> = linkage::Start { v: [0.0], x: [1.0], det: 1.0 };
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Start<const N: usize, const M: usize> {
-    pub v: [f64; N],
-    pub x: [f64; M],
-    /// det B at the start.
-    pub det: f64,
+    v: [f64; N],
+    x: [f64; M],
+    det: f64,
 }
 
 pub(crate) fn all_finite(a: &[f64]) -> bool {
     a.iter().all(|x| x.is_finite())
 }
 
-/// Rejects non-finite or out-of-range targets and invalid options before any work.
+/// Rejects invalid options and non-finite, out-of-range or overflowing targets before any
+/// work.
 pub(crate) fn check_target<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
+    start: &Start<N, M>,
     x: &[f64; M],
-    options: &crate::Options,
+    options: &Options,
 ) -> Result<(), SolveError> {
-    if !all_finite(x) || !options.is_valid() {
+    check_sample(sys, start, x, options)?;
+    // Inputs so large that F overflows at the start (a leg of 1e300 mm) cannot be solved for.
+    let mut f = [0.0; N];
+    sys.residual(&start.v, x, &mut f);
+    if !all_finite(&f) {
+        return Err(SolveError::NonFinite);
+    }
+    Ok(())
+}
+
+/// [`check_target`] without evaluating F: for the tracker, whose fast path evaluates it anyway.
+pub(crate) fn check_sample<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    x: &[f64; M],
+    options: &Options,
+) -> Result<(), SolveError> {
+    options.check(norm(&start.v))?;
+    if !all_finite(x) {
         return Err(SolveError::NonFinite);
     }
     sys.validate_inputs(x)
         .map_err(|input| SolveError::InvalidInput { input })
 }
 
+/// Whether B at (v, x) is singular to working precision, judged without regard to units: the
+/// rows and the columns of B are scaled to unit largest entry, then the reciprocal condition
+/// number is estimated from an LU factorisation.
+pub(crate) fn singular_to_rounding<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> bool {
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    for row in b.iter_mut() {
+        let m = row.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+        if !(m > 0.0) || !m.is_finite() {
+            return true;
+        }
+        row.iter_mut().for_each(|e| *e /= m);
+    }
+    for j in 0..N {
+        let m = b.iter().fold(0.0f64, |m, row| m.max(row[j].abs()));
+        if !(m > 0.0) {
+            return true;
+        }
+        b.iter_mut().for_each(|row| row[j] /= m);
+    }
+    Lu::new(b).is_none_or(|lu| !(lu.reciprocal_condition() >= MIN_RCOND))
+}
+
 impl<const N: usize, const M: usize> Start<N, M> {
     /// Checks `(v, x)`: finite, valid inputs, F(v, x) ≈ 0 (refined by Newton to full
-    /// precision; `v` may be approximate) and B nonsingular.
+    /// precision; `v` may be approximate) and B regular to working precision, judged by a
+    /// scale-free condition estimate (a start singular to rounding has no definite branch).
+    ///
+    /// Errors: [`SolveError::NonFinite`], [`SolveError::InvalidInput`],
+    /// [`SolveError::SingularStart`] (B singular to working precision at the given or the
+    /// refined point) and [`SolveError::InconsistentStart`] (`v` is not near a solution for `x`).
+    ///
+    /// ```
+    /// use linkage::{Mechanism, Pose, SolveError, Start};
+    /// # linkage::mechanism! {
+    /// #     pub struct Rps;
+    /// #     base {
+    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+    /// #     }
+    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+    /// # }
+    /// let rps = Rps::new();
+    /// let v = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    /// let x = rps.inverse(&v, &[0.0; 3]).unwrap();
+    /// let start = Start::new(&rps, v, x).unwrap();
+    /// assert!(start.det() != 0.0 && start.x() == &x);
+    /// // The platform in the base plane: B is singular there.
+    /// let flat = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 0.0]));
+    /// let legs = rps.inverse(&flat, &[0.0; 3]).unwrap();
+    /// assert_eq!(Start::new(&rps, flat, legs), Err(SolveError::SingularStart));
+    /// ```
     pub fn new<S: Mechanism<N, M>>(sys: &S, v: [f64; N], x: [f64; M]) -> Result<Self, SolveError> {
         if !all_finite(&v) || !all_finite(&x) {
             return Err(SolveError::NonFinite);
         }
         sys.validate_inputs(&x)
             .map_err(|input| SolveError::InvalidInput { input })?;
+        let mut f0 = [0.0; N];
+        sys.residual(&v, &x, &mut f0);
+        if !all_finite(&f0) {
+            return Err(SolveError::NonFinite);
+        }
+        let inconsistent = SolveError::InconsistentStart {
+            residual_norm: norm(&f0),
+        };
+        // B singular to rounding at the given point: Newton cannot be trusted to refine it (it
+        // may slide along the near-null direction and look merely inconsistent).
+        if singular_to_rounding(sys, &v, &x) {
+            return Err(SolveError::SingularStart);
+        }
         let scale = norm(&v).max(1.0);
         let given = v;
         let mut v = v;
+        let refined = |v: &[f64; N]| match correction(sys, v, &x) {
+            Ok(c) => Ok(c),
+            Err(Failure::Singular) => Err(SolveError::SingularStart),
+            Err(Failure::NonFinite) => Err(inconsistent),
+        };
+        let mut c = refined(&v)?;
         for _ in 0..8 {
-            let (d, _, _) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
-            for i in 0..N {
-                v[i] -= d[i];
-            }
-            if norm(&d) <= 1e-12 * scale {
+            if c.size <= 1e-12 * scale {
                 break;
             }
+            for i in 0..N {
+                v[i] -= c.delta[i];
+            }
+            c = refined(&v)?;
         }
-        let mut f = [0.0; N];
-        sys.residual(&v, &x, &mut f);
-        let (d, det, _) = correction(sys, &v, &x).ok_or(SolveError::SingularStart)?;
         // Refinement may polish rounding, not move the start: a large move could land on
         // another assembly mode.
-        let mut moved = [0.0; N];
-        for i in 0..N {
-            moved[i] = v[i] - given[i];
+        let moved: [f64; N] = core::array::from_fn(|i| v[i] - given[i]);
+        if norm(&moved) > 1e-3 * scale {
+            return Err(inconsistent);
         }
-        if norm(&d) > 1e-6 * scale || norm(&moved) > 1e-3 * scale {
-            let mut f0 = [0.0; N];
-            sys.residual(&given, &x, &mut f0);
-            return Err(SolveError::InconsistentStart {
-                residual_norm: norm(&f0),
-            });
-        }
-        if det == 0.0 || !det.is_finite() {
+        if singular_to_rounding(sys, &v, &x) || c.det == 0.0 || !c.det.is_finite() {
             return Err(SolveError::SingularStart);
         }
-        Ok(Start { v, x, det })
+        if c.size > 1e-6 * scale {
+            return Err(inconsistent);
+        }
+        // `c` was computed at `v` itself: det B belongs to the stored point.
+        Ok(Start { v, x, det: c.det })
+    }
+
+    /// A point the crate has itself accepted on a start's branch (a tracked sample, a
+    /// converged solve, a point of a continuation path): consistent and regular as far as
+    /// that acceptance showed, with det B measured at `v`. Not for unchecked input.
+    pub(crate) fn accepted(v: [f64; N], x: [f64; M], det: f64) -> Self {
+        Start { v, x, det }
+    }
+
+    /// The pivot coordinates v0, refined to full precision.
+    pub fn v(&self) -> &[f64; N] {
+        &self.v
+    }
+
+    /// The joint inputs x0.
+    pub fn x(&self) -> &[f64; M] {
+        &self.x
+    }
+
+    /// det B at `(v0, x0)`: its sign marks the start's branch.
+    pub fn det(&self) -> f64 {
+        self.det
     }
 }

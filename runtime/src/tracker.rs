@@ -2,10 +2,23 @@
 //! solution, never leaving the start's branch.
 
 use crate::arc_length::arc_length;
-use crate::correction::{correction_in, Convergence};
+use crate::convergence::Contraction;
+use crate::correction::{correction_in, det_b};
 use crate::math::norm;
-
 use crate::{Mechanism, Options, SolveError, Start, Status};
+
+/// Corrections the fast path may take before it gives the sample to continuation.
+const MAX_CORRECTIONS: u32 = 8;
+/// A chord correction (B kept from the last sample) is taken while the corrections shrink at
+/// least this fast; slower, B is factored afresh.
+///
+/// The chords also make the fast path stricter than Newton from the predicted point: the first
+/// corrections use B at the last accepted sample, so they pass the contraction test only when
+/// the step is short against the curvature of the branch there (the chord's rate grows like
+/// ω h). At coarse sampling Newton from the predicted point alone would contract to roots that
+/// the straight joint segment from the last sample does not reach without crossing det B = 0
+/// (seen at 5 Hz); such steps go to continuation, which shows the connection or refuses.
+const CHORD_RATIO: f64 = 0.1;
 
 /// One tracked sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,11 +53,17 @@ impl core::fmt::Display for TrackError {
 /// Follows one branch through a stream of joint vectors.
 ///
 /// Each update predicts with the linearisation `B Δv = −(∂F/∂x) Δx` (Eq. 5), reusing the
-/// factorisation of B kept from the previous update, corrects with Newton under the same
-/// contraction test as [`arc_length`](crate::arc_length) (the predictor step counts as the
-/// zeroth correction, so a single Newton step can confirm convergence), and falls back to full
-/// pseudo-arc-length continuation from the last sample when that test fails. A sample is
-/// accepted only if det B keeps the start's sign.
+/// factorisation of B kept from the last accepted sample, corrects first with that same B (chord
+/// steps: no new factorisation) while they contract fast, then with Newton, all under the
+/// contraction test of [`arc_length`](crate::arc_length). A sample is accepted by the rule every
+/// solver shares: at the returned point itself the Newton correction is within the tolerance
+/// and det B has the start's sign (B is factored there, and kept for the next prediction).
+/// When the test fails the sample goes to full pseudo-arc-length continuation from the last
+/// accepted sample along the joint segment, which refuses to pass a fold.
+///
+/// After a refused sample the fast path is not used again until a sample has been accepted:
+/// the next sample may lie far from the last accepted one, and only continuation along the
+/// segment between them shows that it is connected to it without a singularity.
 ///
 /// ```
 /// use linkage::{Mechanism, Options, Tracker};
@@ -82,20 +101,26 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     start: Start<N, M>,
     v: [f64; N],
     x: [f64; M],
+    /// det B at (v, x).
+    det: f64,
     options: Options,
-    /// B factored near (v, x), for the next predictor; `None` until first needed.
+    /// B factored at (v, x), for the next predictor; `None` until first needed.
     factor: Option<S::Factor>,
+    /// The last sample was refused: the next must be reached by continuation.
+    refused: bool,
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     pub fn new(sys: S, start: Start<N, M>, options: Options) -> Self {
         Tracker {
-            v: start.v,
-            x: start.x,
+            v: *start.v(),
+            x: *start.x(),
+            det: start.det(),
             sys,
             start,
             options,
             factor: None,
+            refused: false,
         }
     }
 
@@ -108,36 +133,44 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         &self.sys
     }
 
-    /// Solves the next sample. On error nothing changes.
+    /// Solves the next sample. On error the state is kept, and the next sample is reached
+    /// from it by continuation only.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
-        crate::start::check_target(&self.sys, x, &self.options).map_err(TrackError::Input)?;
+        let result = self.step(x);
+        self.refused = result.is_err();
+        result
+    }
+
+    fn step(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
+        crate::start::check_sample(&self.sys, &self.start, x, &self.options)
+            .map_err(TrackError::Input)?;
         let mut iterations = 0;
-        if let Some((v, det, factor)) = self.fast(x, &mut iterations) {
-            if det * self.start.det > 0.0 {
-                self.factor = Some(factor);
-                return Ok(self.accept(v, x, det, iterations, false));
+        if !self.refused {
+            if let Some((v, det, factor)) = self.fast(x, &mut iterations) {
+                if det * self.start.det() > 0.0 {
+                    self.factor = Some(factor);
+                    return Ok(self.accept(v, x, det, iterations, false));
+                }
             }
         }
-        // Fallback: continuation from the last sample, whose branch is the start's.
-        let here = Start {
-            v: self.v,
-            x: self.x,
-            det: self.start.det,
-        };
+        // Continuation from the last accepted sample, whose branch is the start's.
+        let here = Start::accepted(self.v, self.x, self.det);
         let sol = arc_length(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
         }
-        let det = crate::correction::det_b(&self.sys, &sol.v, x);
-        if det * self.start.det <= 0.0 {
+        let det = det_b(&self.sys, &sol.v, x);
+        if det * self.start.det() <= 0.0 {
             return Err(TrackError::Lost(Status::BranchChanged));
         }
         self.factor = None;
         Ok(self.accept(sol.v, x, det, iterations + sol.newton_iterations, true))
     }
 
-    /// Predictor and Newton corrector; `(v, det B at the last iterate, its factorisation)`.
+    /// Predictor, chord and Newton corrections; `(v, det B at v, B factored at v)`, with the
+    /// Newton correction at v within the tolerance.
     fn fast(&mut self, x: &[f64; M], iterations: &mut u32) -> Option<([f64; N], f64, S::Factor)> {
+        let tol = self.options.tolerance;
         let mut fac = match self.factor {
             Some(f) => f,
             None => {
@@ -154,30 +187,53 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         }
         self.sys.solve(&fac, &mut dv);
         let step = norm(&dv);
+        if !step.is_finite() {
+            return None;
+        }
         let mut v = self.v;
         for i in 0..N {
             v[i] += dv[i];
         }
-        let mut convergence = Convergence::new(self.options.tolerance, &v);
-        // The predictor step is the zeroth correction: it seeds the contraction estimate.
-        convergence.reached(step.max(f64::MIN_POSITIVE));
-        let mut prev = step;
-        for k in 0..6 {
-            let (d, det, size) = correction_in(&self.sys, &v, x, self.options.linear, &mut fac)?;
+        let mut contraction = Contraction::new(step, tol);
+        // The chord's rate: at first as the predictor's error suggests (it grows like ω h²,
+        // the chord's rate like ω h), then measured.
+        let mut previous = f64::INFINITY;
+        let mut chord = true;
+        while *iterations < MAX_CORRECTIONS {
             *iterations += 1;
-            for i in 0..N {
-                v[i] -= d[i];
+            if chord {
+                let mut d = [0.0; N];
+                self.sys.residual(&v, x, &mut d);
+                self.sys.solve(&fac, &mut d);
+                let size = norm(&d);
+                let admitted = contraction.admits(size);
+                if !size.is_finite() || !(admitted || size <= tol) {
+                    return None;
+                }
+                for i in 0..N {
+                    v[i] -= d[i];
+                }
+                let rate = if previous.is_finite() {
+                    size / previous
+                } else {
+                    2.0 * size / step.max(f64::MIN_POSITIVE)
+                };
+                // Factor at v once the next correction is predicted within the tolerance (to
+                // confirm it there), or when chords have become slow.
+                chord = rate <= CHORD_RATIO && rate * size > tol;
+                previous = size;
+            } else {
+                let c = correction_in(&self.sys, &v, x, self.options.linear, &mut fac).ok()?;
+                if c.size <= tol {
+                    return Some((v, c.det, fac));
+                }
+                if !contraction.admits(c.size) {
+                    return None;
+                }
+                for i in 0..N {
+                    v[i] -= c.delta[i];
+                }
             }
-            if !size.is_finite()
-                || (k == 0 && size > 0.5 * step + self.options.tolerance)
-                || (k > 0 && size > 0.25 * prev)
-            {
-                return None;
-            }
-            if convergence.reached(size) {
-                return Some((v, det, fac));
-            }
-            prev = size;
         }
         None
     }
@@ -192,9 +248,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     ) -> Sample<N> {
         self.v = v;
         self.x = *x;
+        self.det = det;
         Sample {
             v,
-            proximity: (det / self.start.det).abs(),
+            proximity: (det / self.start.det()).abs(),
             newton_iterations,
             fell_back,
         }

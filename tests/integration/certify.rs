@@ -51,8 +51,7 @@ fn newton(s: &Stewart, mut v: [f64; 18], x: &[f64; 6]) -> Option<[f64; 18]> {
         linkage::Mechanism::residual(s, &v, x, &mut f);
         let mut b = [[0.0; 18]; 18];
         linkage::Mechanism::jacobian_dense(s, &v, x, &mut b);
-        let piv = linkage::lu::factor_dense(&mut b)?;
-        linkage::lu::solve_dense(&b, &piv, &mut f);
+        linkage::lu::Lu::new(b)?.solve(&mut f);
         for i in 0..18 {
             v[i] -= f[i];
         }
@@ -73,7 +72,7 @@ fn near_a_fold_the_certified_box_never_holds_the_other_root() {
     let (mut checked, mut certified) = (0, 0);
     for dir in 0..6 {
         // Stretch one leg until the straight segment meets the workspace boundary (a fold).
-        let mut target = start.x;
+        let mut target = *start.x();
         target[dir] += 200.0;
         let sol = arc_length(&s, &start, &target, &Options::TIGHT).unwrap();
         let Status::Fold { .. } = sol.status else {
@@ -82,7 +81,7 @@ fn near_a_fold_the_certified_box_never_holds_the_other_root() {
         // The fold's joint value, then points ever nearer to it on both branches.
         let l = sol.lambda;
         let x_at = |l: f64| -> [f64; 6] {
-            std::array::from_fn(|j| start.x[j] + l * (target[j] - start.x[j]))
+            std::array::from_fn(|j| start.x()[j] + l * (target[j] - start.x()[j]))
         };
         // Bisect for the fold along the segment: below it two roots (the start's branch and the
         // one it turns into), above it none nearby. Each side's root from the last pair's, the

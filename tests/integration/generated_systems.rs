@@ -235,11 +235,11 @@ fn every_equation_is_at_most_quadratic_in_the_unknowns() {
     }
     let s = Stewart::new();
     let st = linkage_examples::stewart::home_start(&s).unwrap();
-    check(&s, &st.v, &st.x);
+    check(&s, st.v(), st.x());
     let h = RssHexapod::new();
     let hs = linkage_examples::rss_hexapod::home_start(&h).unwrap();
-    check(&h, &hs.v, &hs.x);
+    check(&h, hs.v(), hs.x());
     let r = Rps3::new();
     let rs = linkage_examples::rps::home_start(&r).unwrap();
-    check(&r, &rs.v, &rs.x);
+    check(&r, rs.v(), rs.x());
 }

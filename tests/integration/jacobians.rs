@@ -31,21 +31,21 @@ fn check_around<S: Mechanism<N, M>, const N: usize, const M: usize>(
 fn stewart_jacobians_match_finite_differences() {
     let s = stewart::Stewart::new();
     let st = stewart::home_start(&s).unwrap();
-    check_around(&s, &st.v, &st.x, 20.0);
+    check_around(&s, st.v(), st.x(), 20.0);
 }
 
 #[test]
 fn rss_hexapod_jacobians_match_finite_differences() {
     let s = rss_hexapod::RssHexapod::new();
     let st = rss_hexapod::home_start(&s).unwrap();
-    check_around(&s, &st.v, &st.x, 1.0);
+    check_around(&s, st.v(), st.x(), 1.0);
 }
 
 #[test]
 fn rps_jacobians_match_finite_differences() {
     let s = rps::Rps3::new();
     let st = rps::home_start(&s).unwrap();
-    check_around(&s, &st.v, &st.x, 20.0);
+    check_around(&s, st.v(), st.x(), 20.0);
 }
 
 /// Near a singularity of B the pivot order fixed at generation time meets large multipliers
@@ -121,18 +121,18 @@ fn a_vanishing_fixed_pivot_hands_over_to_partial_pivoting() {
         };
         add(
             &mut total[0],
-            vanishing_entries(&s, &st.v, &direction(300.0), &st.x),
+            vanishing_entries(&s, st.v(), &direction(300.0), st.x()),
         );
         add(
             &mut total[1],
-            vanishing_entries(&g, &gs.v, &direction(300.0), &gs.x),
+            vanishing_entries(&g, gs.v(), &direction(300.0), gs.x()),
         );
         add(
             &mut total[2],
-            vanishing_entries(&h, &hs.v, &direction(300.0), &hs.x),
+            vanishing_entries(&h, hs.v(), &direction(300.0), hs.x()),
         );
         let d: [f64; 9] = std::array::from_fn(|i| direction(200.0)[i]);
-        add(&mut total[3], vanishing_entries(&r, &rs.v, &d, &rs.x));
+        add(&mut total[3], vanishing_entries(&r, rs.v(), &d, rs.x()));
     }
     for (name, (fixed, fallback)) in ["stewart", "stewart general", "rss hexapod", "rps"]
         .iter()
@@ -175,14 +175,14 @@ fn non_finite_is_refused<S: Mechanism<N, M>, const N: usize, const M: usize>(
 fn non_finite_jacobians_are_never_factored() {
     let s = stewart::Stewart::new();
     let st = stewart::home_start(&s).unwrap();
-    non_finite_is_refused(&s, &st.v, &st.x);
+    non_finite_is_refused(&s, st.v(), st.x());
     let g = stewart::StewartGeneral::new();
     let gs = g.home_start().unwrap();
-    non_finite_is_refused(&g, &gs.v, &gs.x);
+    non_finite_is_refused(&g, gs.v(), gs.x());
     let h = rss_hexapod::RssHexapod::new();
     let hs = rss_hexapod::home_start(&h).unwrap();
-    non_finite_is_refused(&h, &hs.v, &hs.x);
+    non_finite_is_refused(&h, hs.v(), hs.x());
     let r = rps::Rps3::new();
     let rs = rps::home_start(&r).unwrap();
-    non_finite_is_refused(&r, &rs.v, &rs.x);
+    non_finite_is_refused(&r, rs.v(), rs.x());
 }

@@ -12,6 +12,7 @@ mod modes;
 mod no_alloc;
 mod other_mechanisms;
 mod properties;
+mod regressions;
 mod solvers;
 mod stewart_cli;
 mod tracking;

@@ -2,7 +2,7 @@
 //! homotopy on random 6-6 platforms, checked against an independent method — Newton's method
 //! in real arithmetic from many random poses — and against the pose that generated the legs.
 
-use linkage::lu::{factor_dense, solve_dense};
+use linkage::lu::Lu;
 use linkage::modes::{AllModes, Complex, EndpointKind, ModesError, ModesOptions, Roots};
 use linkage::{Mechanism, Pose};
 use linkage_examples::rps::Rps3;
@@ -65,10 +65,10 @@ fn newton_roots<S: Mechanism<N, M>, const N: usize, const M: usize>(
             let mut b = [[0.0; N]; N];
             sys.residual(&v, x, &mut f);
             sys.jacobian_dense(&v, x, &mut b);
-            let Some(piv) = factor_dense(&mut b) else {
+            let Some(lu) = Lu::new(b) else {
                 break;
             };
-            solve_dense(&b, &piv, &mut f);
+            lu.solve(&mut f);
             let size = f.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             for i in 0..N {
                 v[i] -= f[i];
@@ -224,7 +224,7 @@ fn table_iii_platform_at_home_legs() {
     let [yaw, pitch, roll, x, y, z] = HOME_POSE;
     let home = linkage::unknowns_from_pose(&sys, &Pose::from_euler(yaw, pitch, roll, [x, y, z]));
     // HOME_POSE is rounded to 1 µm: refine it to the root it names.
-    let home = linkage::Start::new(&sys, home, HOME_LEGS).unwrap().v;
+    let home = *linkage::Start::new(&sys, home, HOME_LEGS).unwrap().v();
     let mut rng = Rng::new(3);
     let (_, real, newton) = check_roots(
         &sys,
@@ -268,7 +268,7 @@ fn three_rps_has_sixteen_roots() {
         let v0 = linkage::unknowns_from_pose(&sys, &pose);
         let x0 = sys.inverse(&v0, &[150.0; 3]).unwrap();
         // The declared pivots are rounded to 1 µm: refine to the root the pose names.
-        let v0 = linkage::Start::new(&sys, v0, x0).unwrap().v;
+        let v0 = *linkage::Start::new(&sys, v0, x0).unwrap().v();
         let label = format!("3-RPS {k}");
         let (complete, _, _) = check_roots(&sys, &modes, &x0, Some(&v0), 300.0, &mut rng, &label);
         assert!(complete, "{label}");

@@ -117,11 +117,11 @@ fn hexaglide_jacobians_and_fk_against_ik() {
     let h = Hexaglide::new();
     let start = h.home_start().unwrap();
     assert!(
-        start.x.iter().all(|z| z.abs() < 1e-2),
+        start.x().iter().all(|z| z.abs() < 1e-2),
         "home at zero slide: {:?}",
-        start.x
+        *start.x()
     );
-    around(&h, start.v, start.x);
+    around(&h, *start.v(), *start.x());
     let mut rng = Rng::new(4);
     for _ in 0..50 {
         let pose = Pose::from_euler(
@@ -135,7 +135,7 @@ fn hexaglide_jacobians_and_fk_against_ik() {
             ],
         );
         let v = linkage::unknowns_from_pose(&h, &pose);
-        let x = h.inverse(&v, &start.x).unwrap();
+        let x = h.inverse(&v, start.x()).unwrap();
         let sol = arc_length(&h, &start, &x, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged);
         assert!(max_diff(&sol.v, &v) < 1e-6, "{}", max_diff(&sol.v, &v));
@@ -149,7 +149,7 @@ fn helical_and_cylindrical_drivers_have_exact_jacobians_and_solve() {
     around(&s, v, [0.0; 6]);
     let start = Start::new(&s, v, [0.0; 6]).unwrap();
     // H and C drivers have no closed-form inverse: the numerical one finds the start's inputs.
-    let back = s.inverse(&start.v, &[0.05; 6]).unwrap();
+    let back = s.inverse(start.v(), &[0.05; 6]).unwrap();
     assert!(max_diff(&back, &[0.0; 6]) < 1e-9, "{back:?}");
     let sol = arc_length(&s, &start, &[0.2; 6], &Options::TIGHT).unwrap();
     assert_eq!(sol.status, Status::Converged);

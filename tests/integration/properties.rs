@@ -53,7 +53,7 @@ fn fk_of_ik<S: SixSix>(sys: &S, motion: [f64; 6]) -> Result<(), TestCaseError> {
     let Ok(start) = find_start(sys, HOME_LEGS, None) else {
         return Ok(());
     };
-    let home = linkage::pose_from_unknowns(sys, &start.v).unwrap();
+    let home = linkage::pose_from_unknowns(sys, start.v()).unwrap();
     let e = home.euler();
     let t = home.translation;
     let pose = Pose::from_euler(
@@ -72,7 +72,7 @@ fn fk_of_ik<S: SixSix>(sys: &S, motion: [f64; 6]) -> Result<(), TestCaseError> {
         // The pose path may still wind around a cusp; only a straight path free of singularities
         // and a target on the same side are asserted.
         let truth_det = linkage::det_b(sys, &v, &x);
-        prop_assume!(truth_det * start.det > 0.0);
+        prop_assume!(truth_det * start.det() > 0.0);
         prop_assert_eq!(sol.status, Status::Converged);
         prop_assert!(max_diff(&sol.v, &v) < 1e-6, "{}", max_diff(&sol.v, &v));
     } else {
@@ -113,7 +113,7 @@ proptest! {
     fn tracker_never_changes_branch_on_smooth_trajectories(amp in prop::array::uniform6(-1.0f64..1.0), freq in 0.2f64..2.0) {
         let s = Stewart::new();
         let start = linkage_examples::stewart::home_start(&s).unwrap();
-        let home = linkage::pose_from_unknowns(&s, &start.v).unwrap();
+        let home = linkage::pose_from_unknowns(&s, start.v()).unwrap();
         let t0 = home.translation;
         let at = |t: f64| {
             let w = (2.0 * std::f64::consts::PI * freq * t).sin();
@@ -123,7 +123,7 @@ proptest! {
         for k in 1..=500 {
             let (x, v) = legs_for_pose(&s, &at(k as f64 * 1e-3)).unwrap();
             // Clear of singularities: the true configuration keeps the start's det B sign.
-            prop_assume!(linkage::det_b(&s, &v, &x) * start.det > 0.0);
+            prop_assume!(linkage::det_b(&s, &v, &x) * start.det() > 0.0);
             let sample = tracker.update(&x).unwrap();
             prop_assert!(max_diff(&sample.v, &v) < 1e-7);
         }
@@ -133,13 +133,13 @@ proptest! {
     fn generated_jacobians_equal_finite_differences(dv in prop::array::uniform32(-40.0f64..40.0), dx in prop::array::uniform6(-15.0f64..15.0)) {
         let s = Stewart::new();
         let st = linkage_examples::stewart::home_start(&s).unwrap();
-        check_jacobians(&s, &std::array::from_fn(|i| st.v[i] + dv[i]), &std::array::from_fn(|j| st.x[j] + dx[j]));
+        check_jacobians(&s, &std::array::from_fn(|i| st.v()[i] + dv[i]), &std::array::from_fn(|j| st.x()[j] + dx[j]));
         let h = rss_hexapod::RssHexapod::new();
         let hs = rss_hexapod::home_start(&h).unwrap();
-        check_jacobians(&h, &std::array::from_fn(|i| hs.v[i] + dv[i]), &std::array::from_fn(|j| hs.x[j] + dx[j] / 15.0));
+        check_jacobians(&h, &std::array::from_fn(|i| hs.v()[i] + dv[i]), &std::array::from_fn(|j| hs.x()[j] + dx[j] / 15.0));
         let r = rps::Rps3::new();
         let rs = rps::home_start(&r).unwrap();
-        check_jacobians(&r, &std::array::from_fn(|i| rs.v[i] + dv[i]), &std::array::from_fn(|j| rs.x[j] + dx[j]));
+        check_jacobians(&r, &std::array::from_fn(|i| rs.v()[i] + dv[i]), &std::array::from_fn(|j| rs.x()[j] + dx[j]));
     }
 
     #[test]

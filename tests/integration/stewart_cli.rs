@@ -13,7 +13,7 @@ fn the_default_start_is_the_papers_home() {
     let s = Stewart::new();
     let found = find_start(&s, HOME_LEGS, None).unwrap();
     let home = home_start(&s).unwrap();
-    assert!(max_diff(&found.v, &home.v) < 1e-9);
+    assert!(max_diff(found.v(), home.v()) < 1e-9);
 }
 
 #[test]
@@ -129,7 +129,7 @@ fn random_geometry(
 
 fn fk_matches_ik<S: SixSix>(sys: &S, rng: &mut Rng) -> usize {
     let start = find_start(sys, HOME_LEGS, None).unwrap();
-    let home = pose_from_unknowns(sys, &start.v).unwrap();
+    let home = pose_from_unknowns(sys, start.v()).unwrap();
     assert!((home.handedness() - 1.0).abs() < 1e-9);
     let mut solved = 0;
     for _ in 0..20 {
@@ -189,12 +189,12 @@ fn the_general_form_has_no_mirror_image_roots() {
     let (base, platform) = random_geometry(&mut rng, true, false);
     let sys = StewartGeneral::with_joints(&base, &platform).unwrap();
     let start = find_start(&sys, HOME_LEGS, None).unwrap();
-    let mut mirrored = start.v;
+    let mut mirrored = *start.v();
     for z in &mut mirrored[12..18] {
         *z = -*z;
     }
     let mut f = [0.0; 18];
-    sys.residual(&mirrored, &start.x, &mut f);
+    sys.residual(&mirrored, start.x(), &mut f);
     assert!(
         f[6..15].iter().any(|r| r.abs() > 1e-3),
         "a mirrored platform must violate the rigid-body rows"

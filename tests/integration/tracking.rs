@@ -101,7 +101,7 @@ fn tracker_refuses_to_cross_a_fold() {
     let mut previous = st;
     for k in 1..=400 {
         let l = k as f64 / 400.0;
-        let x: [f64; 6] = std::array::from_fn(|j| st.x[j] + l * (target[j] - st.x[j]));
+        let x: [f64; 6] = std::array::from_fn(|j| st.x()[j] + l * (target[j] - st.x()[j]));
         match tracker.update(&x) {
             Ok(sample) => {
                 // Ground truth: fine continuation from the previous accepted sample (after a
@@ -109,12 +109,8 @@ fn tracker_refuses_to_cross_a_fold() {
                 let (truth, flips) = straight_path_truth(&s, &previous, &x, 200);
                 assert_eq!(flips, 0, "accepted a sample across a sign change of det B");
                 assert!(max_diff(&sample.v, &truth) < 1e-6);
-                assert!(linkage::det_b(&s, &sample.v, &x) * st.det > 0.0);
-                previous = linkage::Start {
-                    v: sample.v,
-                    x,
-                    det: st.det,
-                };
+                assert!(linkage::det_b(&s, &sample.v, &x) * st.det() > 0.0);
+                previous = linkage::Start::new(&s, sample.v, x).unwrap();
                 accepted += 1;
             }
             Err(TrackError::Lost(_)) => refused += 1,

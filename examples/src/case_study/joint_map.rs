@@ -88,7 +88,7 @@ pub fn explore(
     let dist = |m: &JointMap, c: &(usize, usize, usize)| {
         let x = x_of(m, c.0, c.1, c.2);
         x.iter()
-            .zip(&start.x)
+            .zip(start.x())
             .map(|(a, b)| (a - b) * (a - b))
             .sum::<f64>()
     };
@@ -99,7 +99,7 @@ pub fn explore(
             if sol.is_ok() {
                 let c = map.index(seed.0, seed.1, seed.2);
                 solved[c] = Some(sol.v);
-                map.ratio[c] = Some(det_b(sys, &sol.v, &x) / start.det);
+                map.ratio[c] = Some(det_b(sys, &sol.v, &x) / start.det());
                 queue.push_back(*seed);
                 break;
             }
@@ -138,16 +138,16 @@ pub fn explore(
             match arc_length(sys, &here, &x, &options) {
                 Ok(sol) if sol.is_ok() => {
                     solved[to] = Some(sol.v);
-                    map.ratio[to] = Some(det_b(sys, &sol.v, &x) / start.det);
+                    map.ratio[to] = Some(det_b(sys, &sol.v, &x) / start.det());
                     queue.push_back((a, b, c));
                 }
                 Ok(sol) => {
                     if let linkage::Status::Fold { lambda } = sol.status {
                         let at = |p: f64, q: f64| p + lambda * (q - p);
                         map.folds.push([
-                            at(here.x[1], x[1]),
-                            at(here.x[3], x[3]),
-                            at(here.x[5], x[5]),
+                            at(here.x()[1], x[1]),
+                            at(here.x()[3], x[3]),
+                            at(here.x()[5], x[5]),
                         ]);
                     }
                 }

@@ -227,7 +227,7 @@ impl Sampler {
     pub fn new(protocol: Protocol) -> Self {
         let sys = Stewart::new();
         let start = home_start(&sys).expect("Table III's home configuration is valid");
-        let p = linkage::pose_from_unknowns(&sys, &start.v).expect("home pose");
+        let p = linkage::pose_from_unknowns(&sys, start.v()).expect("home pose");
         let e = p.euler();
         let t = p.translation;
         Sampler {
@@ -261,7 +261,7 @@ impl Sampler {
     /// Whether det B keeps the start's sign on the path to `t·u`.
     pub fn nonsingular(&self, u: &[f64; 6], t: f64) -> bool {
         let n = self.protocol.checks;
-        (1..=n).all(|k| self.det_at(u, t * k as f64 / n as f64) * self.start.det > 0.0)
+        (1..=n).all(|k| self.det_at(u, t * k as f64 / n as f64) * self.start.det() > 0.0)
     }
 
     fn random_offset(&self, rng: &mut Rng) -> [f64; 6] {
@@ -359,7 +359,7 @@ impl Sampler {
         let mut after = None;
         for k in 1..=steps {
             let t = k as f64 * dt;
-            if self.det_at(u, t) * self.start.det > 0.0 {
+            if self.det_at(u, t) * self.start.det() > 0.0 {
                 before = t;
             } else {
                 after = Some(t);
@@ -371,7 +371,7 @@ impl Sampler {
         let mut lo = before;
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            if self.det_at(u, mid) * self.start.det > 0.0 {
+            if self.det_at(u, mid) * self.start.det() > 0.0 {
                 lo = mid;
             } else {
                 hi = mid;

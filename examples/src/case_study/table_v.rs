@@ -71,7 +71,7 @@ pub fn solve_point(
     let seconds = t0.elapsed().as_secs_f64();
     let (status, v) = match result {
         Ok(sol) => (sol.status, sol.v),
-        Err(_) => (Status::Singular { lambda: 0.0 }, sampler.start.v),
+        Err(_) => (Status::Singular { lambda: 0.0 }, *sampler.start.v()),
     };
     let relative_error = rel_error(&v, &p.v);
     let off_truth = status == Status::Converged && relative_error >= 1e-3;
@@ -204,10 +204,15 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Result<Report,
 
 /// Fine continuation along start → corners…: no sign change of det B, and it ends at `v`.
 fn polyline_confirms(sampler: &Sampler, corners: &[[f64; 6]], v: &[f64; 18]) -> bool {
-    let (mut here, mut at) = (sampler.start.v, sampler.start.x);
+    let (mut here, mut at) = (*sampler.start.v(), *sampler.start.x());
     for corner in corners {
-        let (next, flips) =
-            straight_segment_from(&sampler.sys, (&here, &at), sampler.start.det, corner, 4000);
+        let (next, flips) = straight_segment_from(
+            &sampler.sys,
+            (&here, &at),
+            sampler.start.det(),
+            corner,
+            4000,
+        );
         if flips > 0 {
             return false;
         }

@@ -263,12 +263,12 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
                     for p in 0..#z {
                         damped[p][p] += mu * (h[p][p] + 1e-300);
                     }
-                    let Some(piv) = ::linkage::lu::factor_dense::<#z>(&mut damped) else {
+                    let Some(lu) = ::linkage::lu::Lu::<#z>::new(damped) else {
                         mu *= 10.0;
                         continue;
                     };
                     let mut d = g;
-                    ::linkage::lu::solve_dense::<#z>(&damped, &piv, &mut d);
+                    lu.solve(&mut d);
                     let (mut vt, mut xt) = (*v, *x);
                     for p in 0..#m {
                         xt[p] += d[p];

@@ -55,10 +55,15 @@ pub fn norm3(a: [f64; 3]) -> f64 {
 }
 
 /// Euclidean norm of a slice; rescaled only when the plain sum of squares over- or underflows.
+/// NaN if any entry is NaN, +∞ if any is infinite: a norm must never call a bad vector small
+/// (`f64::max` skips NaN, so the rescaling below must not see one).
 pub fn norm(v: &[f64]) -> f64 {
     let s: f64 = v.iter().map(|x| x * x).sum();
     if s.is_finite() && s > 1e-280 {
         return sqrt(s);
+    }
+    if s.is_nan() {
+        return f64::NAN;
     }
     let scale = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if scale == 0.0 || !scale.is_finite() {
@@ -66,4 +71,24 @@ pub fn norm(v: &[f64]) -> f64 {
     }
     let s: f64 = v.iter().map(|x| (x / scale) * (x / scale)).sum();
     scale * sqrt(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::norm;
+
+    #[test]
+    fn a_norm_never_calls_nan_or_infinity_small() {
+        assert!(norm(&[f64::NAN; 4]).is_nan());
+        assert!(norm(&[0.0, f64::NAN, 1.0]).is_nan());
+        assert!(norm(&[1e-200, f64::NAN]).is_nan());
+        assert_eq!(norm(&[f64::INFINITY, 1.0]), f64::INFINITY);
+        assert!(norm(&[f64::NEG_INFINITY, f64::NAN]).is_nan());
+        // Still accurate where the plain sum over- or underflows.
+        assert!((norm(&[3e200, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
+        assert!((norm(&[3e-200, 4e-200]) / 5e-200 - 1.0).abs() < 1e-15);
+        assert_eq!(norm(&[]), 0.0);
+        // Every caller's `norm(d) <= tol` must reject a NaN correction.
+        assert!(!(norm(&[f64::NAN; 18]) <= 1e-10));
+    }
 }

@@ -4,7 +4,7 @@ use super::complex::Complex;
 use super::monodromy::polish;
 use super::roots::{Endpoint, EndpointKind};
 use super::track::{Model, Outcome, Tracked, Workspace};
-use crate::lu::{factor_dense, solve_dense};
+use crate::lu::Lu;
 use crate::Mechanism;
 
 /// A path that stops this close to the target without reaching it is taken to approach a
@@ -119,8 +119,7 @@ pub(crate) fn real_root<S: Mechanism<N, M>, const N: usize, const M: usize>(
         } else {
             let mut b = [[0.0; N]; N];
             sys.jacobian_dense(&w, x, &mut b);
-            let piv = factor_dense(&mut b)?;
-            solve_dense(&b, &piv, &mut f);
+            Lu::new(b)?.solve(&mut f);
         }
         let mut size = 0.0f64;
         for i in 0..N {

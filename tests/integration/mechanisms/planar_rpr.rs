@@ -1,7 +1,7 @@
 //! A planar 3-RPR with true R–P–R legs: against closed-form inverse kinematics.
 
-use super::check_inverse;
-use linkage::{arc_length, Options, Status};
+use super::{check_inverse, GENERAL_MODEL};
+use linkage::{arc_length, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 linkage::mechanism! {
@@ -43,10 +43,14 @@ fn planar_rpr_forward_kinematics_against_inverse() {
     let rpr = PlanarRpr::new();
     let start = rpr.home_start().unwrap();
     for (i, l) in rpr_legs([0.3, 10.0, 5.0]).iter().enumerate() {
-        assert!((start.x[i] - l).abs() < 1e-9, "home legs: {:?}", start.x);
+        assert!(
+            (start.x()[i] - l).abs() < 1e-9,
+            "home legs: {:?}",
+            *start.x()
+        );
     }
-    check_jacobians(&rpr, &start.v, &start.x);
-    check_factorization(&rpr, &start.v, &start.x);
+    check_jacobians(&rpr, start.v(), start.x());
+    check_factorization(&rpr, start.v(), start.x());
     let mut rng = Rng::new(5);
     for _ in 0..60 {
         let pose = [
@@ -55,7 +59,7 @@ fn planar_rpr_forward_kinematics_against_inverse() {
             5.0 + rng.uniform(-30.0, 30.0),
         ];
         let legs = rpr_legs(pose);
-        let sol = arc_length(&rpr, &start, &legs, &Options::TIGHT).unwrap();
+        let sol = arc_length(&rpr, &start, &legs, &GENERAL_MODEL).unwrap();
         assert_eq!(sol.status, Status::Converged, "{pose:?}");
         check_inverse(&rpr, &sol.v, &legs, &PlanarRpr::HOME_INPUTS, 1e-8);
         let got = linkage::pose_from_unknowns(&rpr, &sol.v).unwrap();

@@ -1,8 +1,8 @@
 //! Tsai's translational 3-UPU: against closed-form inverse kinematics; the platform keeps its
 //! orientation.
 
-use super::check_inverse;
-use linkage::{arc_length, Options, Status};
+use super::{check_inverse, GENERAL_MODEL};
+use linkage::{arc_length, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 linkage::mechanism! {
@@ -27,8 +27,8 @@ linkage::mechanism! {
 fn translational_upu_keeps_its_orientation() {
     let upu = TranslationalUpu::new();
     let start = upu.home_start().unwrap();
-    check_jacobians(&upu, &start.v, &start.x);
-    check_factorization(&upu, &start.v, &start.x);
+    check_jacobians(&upu, start.v(), start.x());
+    check_factorization(&upu, start.v(), start.x());
     let a = [
         [150.0, 0.0],
         [-75.0, 75.0 * 3f64.sqrt()],
@@ -50,7 +50,7 @@ fn translational_upu_keeps_its_orientation() {
             ((t[0] + g[i][0] - a[i][0]).powi(2) + (t[1] + g[i][1] - a[i][1]).powi(2) + t[2].powi(2))
                 .sqrt()
         });
-        let sol = arc_length(&upu, &start, &legs, &Options::TIGHT).unwrap();
+        let sol = arc_length(&upu, &start, &legs, &GENERAL_MODEL).unwrap();
         assert_eq!(sol.status, Status::Converged, "{t:?}");
         check_inverse(&upu, &sol.v, &legs, &TranslationalUpu::HOME_INPUTS, 1e-8);
         let got = linkage::pose_from_unknowns(&upu, &sol.v).unwrap();

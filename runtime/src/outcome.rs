@@ -1,0 +1,117 @@
+//! How every solve's [`Solution`] is assembled, and the one place that may call it
+//! [`Status::Converged`]: a final Newton run whose returned point is finite, whose own
+//! correction is within the tolerance, and where det B has the start's sign.
+
+use crate::correction::{correction, det_b, Ending, Newton};
+use crate::math::norm;
+use crate::{Mechanism, Solution, Start, Status};
+
+/// What a solve met on its way, for its [`Solution`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Account {
+    pub lambda: f64,
+    pub accepted: u32,
+    pub rejected: u32,
+    pub iterations: u32,
+    pub min_det_ratio: f64,
+}
+
+impl Account {
+    /// Nothing done yet, at λ.
+    pub(crate) fn at(lambda: f64) -> Self {
+        Account {
+            lambda,
+            accepted: 0,
+            rejected: 0,
+            iterations: 0,
+            min_det_ratio: 1.0,
+        }
+    }
+
+    fn into_solution<const N: usize>(
+        self,
+        v: [f64; N],
+        status: Status,
+        error_estimate: f64,
+        det_ratio: f64,
+    ) -> Solution<N> {
+        Solution {
+            v,
+            status,
+            lambda: self.lambda,
+            steps_accepted: self.accepted,
+            steps_rejected: self.rejected,
+            newton_iterations: self.iterations,
+            error_estimate,
+            min_det_ratio: self.min_det_ratio.min(det_ratio),
+        }
+    }
+}
+
+/// The solution after a final Newton run (`Rule::Final`) at the target `x`.
+pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    run: &Newton<N>,
+    x: &[f64; M],
+    account: Account,
+) -> Solution<N> {
+    let lambda = account.lambda;
+    let status = match run.ending {
+        Ending::Converged => {
+            // `run.det` and `run.estimate` were measured at `run.v` itself.
+            let finite = norm(&run.v).is_finite() && run.estimate.is_finite();
+            if !finite {
+                not_converged(sys, &run.v, x)
+            } else if run.det * start.det() > 0.0 {
+                Status::Converged
+            } else {
+                Status::BranchChanged
+            }
+        }
+        Ending::Stalled => Status::ToleranceNotMet {
+            achieved: run.estimate,
+        },
+        Ending::Singular => Status::Singular { lambda },
+        Ending::NonFinite | Ending::Exhausted => not_converged(sys, &run.v, x),
+    };
+    if matches!(run.ending, Ending::Converged | Ending::Stalled) {
+        let ratio = (run.det / start.det()).abs();
+        return account.into_solution(run.v, status, run.estimate, ratio);
+    }
+    finish(sys, start, run.v, x, status, account)
+}
+
+pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Status {
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    Status::NotConverged {
+        residual_norm: norm(&f),
+    }
+}
+
+/// A solve that stopped short (`status` is never [`Status::Converged`]: only [`conclude`]
+/// grants that): fills in the error estimate and det B at `v`.
+pub(crate) fn finish<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    v: [f64; N],
+    x: &[f64; M],
+    status: Status,
+    account: Account,
+) -> Solution<N> {
+    let status = match status {
+        Status::Converged => not_converged(sys, &v, x),
+        other => other,
+    };
+    let (error_estimate, det) = match correction(sys, &v, x) {
+        Ok(c) => (c.size, c.det),
+        Err(_) => (f64::INFINITY, det_b(sys, &v, x)),
+    };
+    let ratio = (det / start.det()).abs();
+    account.into_solution(v, status, error_estimate, ratio)
+}
