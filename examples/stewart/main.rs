@@ -9,25 +9,15 @@
 //! cargo run --release --example stewart -- errors --out DIR
 //! ```
 
-#[path = "stewart_cli/args.rs"]
 mod args;
-#[path = "stewart_cli/bench.rs"]
 mod bench;
-#[path = "stewart_cli/equations.rs"]
 mod equations;
-#[path = "stewart_cli/errors.rs"]
 mod errors;
-#[path = "stewart_cli/map.rs"]
 mod map;
-#[path = "stewart_cli/modes.rs"]
 mod modes;
-#[path = "stewart_cli/plot.rs"]
 mod plot;
-#[path = "stewart_cli/solve.rs"]
 mod solve;
-#[path = "stewart_cli/table_v.rs"]
 mod table_v;
-#[path = "stewart_cli/trajectory.rs"]
 mod trajectory;
 
 use clap::{Parser, Subcommand, ValueEnum};
