@@ -141,8 +141,8 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
         estimate: f64::INFINITY,
         det: 0.0,
     };
-    // The best point factored so far: what a stall or an exhausted final run returns.
-    let mut best: Option<([f64; N], f64, f64)> = None;
+    // With the final rule `out` holds the best point factored so far (smallest correction):
+    // what a stall or an exhausted run returns.
     let mut current = v;
     let mut previous = f64::INFINITY;
     let mut convergence = Convergence::new(options.tolerance, &v);
@@ -151,9 +151,13 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let c = match correction_in(sys, &current, x, options.linear, &mut fac) {
             Ok(c) => c,
             Err(Failure::Singular) => {
-                out.ending = Ending::Singular;
-                out.v = current;
-                return out;
+                return Newton {
+                    v: current,
+                    ending: Ending::Singular,
+                    estimate: f64::INFINITY,
+                    det: 0.0,
+                    ..out
+                };
             }
             Err(Failure::NonFinite) => {
                 out.ending = Ending::NonFinite;
@@ -170,8 +174,10 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     out.det = c.det;
                     return out;
                 }
-                if !matches!(best, Some((_, size, _)) if size <= c.size) {
-                    best = Some((current, c.size, c.det));
+                if c.size < out.estimate {
+                    out.v = current;
+                    out.estimate = c.size;
+                    out.det = c.det;
                 }
                 if convergence.stalled(c.size, previous) {
                     out.ending = Ending::Stalled;
@@ -197,18 +203,10 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         previous = c.size;
     }
-    match (rule, best) {
-        (Rule::Final, Some((v, size, det))) => {
-            out.v = v;
-            out.estimate = size;
-            out.det = det;
-        }
-        // The last iterate if finite, else the start point.
-        _ => {
-            if norm(&current).is_finite() {
-                out.v = current;
-            }
-        }
+    // Without a best point: the last iterate if finite, else the start point.
+    let factored = rule == Rule::Final && out.estimate.is_finite();
+    if !factored && norm(&current).is_finite() {
+        out.v = current;
     }
     out
 }
