@@ -92,22 +92,21 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         prev: &Tangent<N>,
         frame: Option<&Frame<S::Factor, N>>,
     ) -> Option<TangentAt<N>> {
-        let (z, det) = match frame
-            .and_then(|fr| self.border(fr, prev, [0.0; N], 1.0).map(|z| (z, fr.det)))
-        {
-            Some(t) => t,
-            None => {
-                let (_, m) = self.bordered(p, prev);
-                let det = Lu::new(m.block).map_or(0.0, |lu| lu.det());
-                let lu = BorderedLu::new(m)?;
-                let mut z = Extended {
-                    head: [0.0; N],
-                    tail: 1.0,
-                };
-                lu.solve(&mut z);
-                (z, det)
-            }
-        };
+        let (z, det) =
+            match frame.and_then(|fr| self.border(fr, prev, [0.0; N], 1.0).map(|z| (z, fr.det))) {
+                Some(t) => t,
+                None => {
+                    let (_, m) = self.bordered(p, prev);
+                    let det = Lu::new(m.block).map_or(0.0, |lu| lu.det());
+                    let lu = BorderedLu::new(m)?;
+                    let mut z = Extended {
+                        head: [0.0; N],
+                        tail: 1.0,
+                    };
+                    lu.solve(&mut z);
+                    (z, det)
+                }
+            };
         let nrm = crate::math::sqrt(dot(&z.head, &z.head) + z.tail * z.tail);
         if !(nrm > 0.0) || !nrm.is_finite() {
             return None;

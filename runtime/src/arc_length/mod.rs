@@ -193,9 +193,8 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     t = t1;
                     frame = next_frame;
                     det_prev = next.det;
-                    account.min_det_ratio = account
-                        .min_det_ratio
-                        .min((next.det / start.det()).abs());
+                    account.min_det_ratio =
+                        account.min_det_ratio.min((next.det / start.det()).abs());
                     if step.end {
                         account.lambda = 1.0;
                         return Ok(polish(sys, start, p.v, target, options, account));
