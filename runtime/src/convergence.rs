@@ -7,7 +7,7 @@ use crate::math::norm;
 /// When Newton's method at fixed inputs stops.
 ///
 /// A solve's answer is *converged* only at a point where the Newton correction, measured with
-/// B factored at that very point, is at most the tolerance (see `correction::newton`): then the
+/// B factored at that very point, is at most the tolerance (see `newton::newton`): then the
 /// residual, the error estimate and det B all belong to the returned point.
 ///
 /// For intermediate points (a Newton-homotopy step), [`Self::reached`] also accepts a correction

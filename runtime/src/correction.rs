@@ -1,10 +1,8 @@
-//! One Newton correction `Δ = B⁻¹F`, and Newton's method at fixed inputs ending by the rule
-//! every solver shares.
+//! One Newton correction `Δ = B⁻¹F` at a point, and what factoring B there tells.
 
-use crate::convergence::Convergence;
 use crate::lu::Lu;
 use crate::math::norm;
-use crate::{Linear, Mechanism, Options};
+use crate::{Linear, Mechanism};
 
 /// A Newton correction at a point, with what factoring B there told.
 #[derive(Clone, Copy, Debug)]
@@ -84,131 +82,6 @@ fn failure<S: Mechanism<N, M>, const N: usize, const M: usize>(
     } else {
         Failure::NonFinite
     }
-}
-
-/// How a Newton run ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Ending {
-    /// Final rule: the correction measured at the returned point is within the tolerance.
-    /// Intermediate rule: the point is within it as far as the contraction predicts.
-    Converged,
-    /// The corrections stopped decreasing at the rounding floor, above the tolerance.
-    Stalled,
-    /// B was singular at an iterate.
-    Singular,
-    /// The iterates overflowed.
-    NonFinite,
-    /// The iteration limit came first.
-    Exhausted,
-}
-
-/// Which stopping rule a Newton run follows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Rule {
-    /// For an answer: stop at a point whose own correction is within the tolerance and return
-    /// that point, so that its error estimate and det B are measured there, not extrapolated.
-    Final,
-    /// For a point on the way (a homotopy step): the extrapolated estimate suffices, and a
-    /// stall at the rounding floor is good enough to go on from.
-    Intermediate,
-}
-
-/// Newton's method at fixed `x` from `v`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Newton<const N: usize> {
-    /// The point reached: with the final rule, the last point B was factored at (or the best
-    /// one, for a stall); never a non-finite point.
-    pub v: [f64; N],
-    pub ending: Ending,
-    pub iterations: u32,
-    /// ‖B⁻¹F‖ at `v` (final rule), or its extrapolation (intermediate rule).
-    pub estimate: f64,
-    /// det B at `v` (final rule), or at the iterate before the last correction (intermediate).
-    pub det: f64,
-}
-
-pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: [f64; N],
-    x: &[f64; M],
-    options: &Options,
-    rule: Rule,
-) -> Newton<N> {
-    let mut out = Newton {
-        v,
-        ending: Ending::Exhausted,
-        iterations: 0,
-        estimate: f64::INFINITY,
-        det: 0.0,
-    };
-    // With the final rule `out` holds the best point factored so far (smallest correction):
-    // what a stall or an exhausted run returns.
-    let mut current = v;
-    let mut previous = f64::INFINITY;
-    let mut convergence = Convergence::new(options.tolerance, &v);
-    let mut fac = sys.new_factor();
-    while out.iterations < options.max_iterations {
-        let c = match correction_in(sys, &current, x, options.linear, &mut fac) {
-            Ok(c) => c,
-            Err(Failure::Singular) => {
-                return Newton {
-                    v: current,
-                    ending: Ending::Singular,
-                    estimate: f64::INFINITY,
-                    det: 0.0,
-                    ..out
-                };
-            }
-            Err(Failure::NonFinite) => {
-                out.ending = Ending::NonFinite;
-                break;
-            }
-        };
-        out.iterations += 1;
-        match rule {
-            Rule::Final => {
-                if c.size <= options.tolerance {
-                    out.v = current;
-                    out.ending = Ending::Converged;
-                    out.estimate = c.size;
-                    out.det = c.det;
-                    return out;
-                }
-                if c.size < out.estimate {
-                    out.v = current;
-                    out.estimate = c.size;
-                    out.det = c.det;
-                }
-                if convergence.stalled(c.size, previous) {
-                    out.ending = Ending::Stalled;
-                    break;
-                }
-                for i in 0..N {
-                    current[i] -= c.delta[i];
-                }
-            }
-            Rule::Intermediate => {
-                for i in 0..N {
-                    current[i] -= c.delta[i];
-                }
-                let stalled = convergence.stalled(c.size, previous);
-                if convergence.reached(c.size) || stalled {
-                    out.v = current;
-                    out.det = c.det;
-                    out.estimate = convergence.estimate;
-                    out.ending = Ending::Converged;
-                    return out;
-                }
-            }
-        }
-        previous = c.size;
-    }
-    // Without a best point: the last iterate if finite, else the start point.
-    let factored = rule == Rule::Final && out.estimate.is_finite();
-    if !factored && norm(&current).is_finite() {
-        out.v = current;
-    }
-    out
 }
 
 /// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the

@@ -2,8 +2,9 @@
 //! [`Status::Converged`]: a final Newton run whose returned point is finite, whose own
 //! correction is within the tolerance, and where det B has the start's sign.
 
-use crate::correction::{correction, det_b, Ending, Newton};
+use crate::correction::{correction, det_b};
 use crate::math::norm;
+use crate::newton::{Ending, Newton};
 use crate::{Mechanism, Solution, Start, Status};
 
 /// What a solve met on its way, for its [`Solution`].

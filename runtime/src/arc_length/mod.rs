@@ -29,8 +29,8 @@ mod corrector;
 mod path;
 mod step;
 
-use crate::correction::{newton, Rule};
 use crate::math::norm;
+use crate::newton::{newton, Rule};
 use crate::outcome::{conclude, finish, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 use path::{dot, first_order_travel, Path, Point, Tangent};
