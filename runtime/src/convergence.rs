@@ -2,7 +2,7 @@
 //! ([`Convergence`]), and when a corrector may be trusted to have stayed on its branch
 //! ([`Contraction`]).
 
-use crate::math::norm;
+use crate::math::size;
 
 /// When Newton's method at fixed inputs stops.
 ///
@@ -26,10 +26,10 @@ pub(crate) struct Convergence {
 }
 
 impl Convergence {
-    pub(crate) fn new(tolerance: f64, v: &[f64]) -> Self {
+    pub(crate) fn new<const N: usize>(tolerance: f64, v: &[f64; N]) -> Self {
         Convergence {
             tolerance,
-            floor: 1e-6 * norm(v).max(1.0),
+            floor: 1e-6 * size(v).max(1.0),
             previous: f64::INFINITY,
             estimate: f64::INFINITY,
         }

@@ -1,7 +1,7 @@
 //! One Newton correction `Δ = B⁻¹F` at a point, and what factoring B there tells.
 
 use crate::lu::Lu;
-use crate::math::norm;
+use crate::math::{norm, size};
 use crate::{Linear, Mechanism};
 
 /// A Newton correction at a point, with what factoring B there told.
@@ -24,6 +24,60 @@ pub(crate) enum Failure {
     NonFinite,
 }
 
+impl<const N: usize> Correction<N> {
+    /// Storage for [`Self::update`].
+    pub(crate) const fn new() -> Self {
+        Correction {
+            delta: [0.0; N],
+            det: 0.0,
+            size: f64::INFINITY,
+        }
+    }
+
+    /// The correction at `(v, x)`, computed in place with the chosen linear solver and the
+    /// factorisation storage of a loop. On failure the fields are unspecified.
+    #[inline(always)]
+    pub(crate) fn update<S: Mechanism<N, M>, const M: usize>(
+        &mut self,
+        sys: &S,
+        v: &[f64; N],
+        x: &[f64; M],
+        linear: Linear,
+        fac: &mut S::Factor,
+    ) -> Result<(), Failure> {
+        let det = match linear {
+            Linear::Generated => sys.newton_step(v, x, fac, &mut self.delta).map(|i| i.det),
+            Linear::Dense => dense_step(sys, v, x, &mut self.delta),
+        };
+        // One pass gives the size callers need and rejects NaN or infinite corrections.
+        self.size = size(&self.delta);
+        match det {
+            Some(det) if self.size.is_finite() => {
+                self.det = det;
+                Ok(())
+            }
+            // Only on failure: tell overflow from singularity.
+            _ => Err(failure(sys, v, x)),
+        }
+    }
+}
+
+/// [`Mechanism::newton_step`] with dense LU on the assembled B (the baseline).
+#[inline(never)]
+fn dense_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    delta: &mut [f64; N],
+) -> Option<f64> {
+    sys.residual(v, x, delta);
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    let lu = Lu::new(b)?;
+    lu.solve(delta);
+    Some(lu.det())
+}
+
 /// A Newton correction at `(v, x)` with the generated factorisation.
 pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
@@ -41,35 +95,12 @@ pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
     linear: Linear,
     fac: &mut S::Factor,
 ) -> Result<Correction<N>, Failure> {
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
-    let factored = match linear {
-        Linear::Generated => sys.factor(v, x, fac).map(|info| {
-            sys.solve(fac, &mut f);
-            info.det
-        }),
-        Linear::Dense => {
-            let mut b = [[0.0; N]; N];
-            sys.jacobian_dense(v, x, &mut b);
-            Lu::new(b).map(|lu| {
-                lu.solve(&mut f);
-                lu.det()
-            })
-        }
-    };
-    // One pass gives the size callers need and rejects NaN or infinite corrections.
-    let size = norm(&f);
-    match factored {
-        Some(det) if size.is_finite() => Ok(Correction {
-            delta: f,
-            det,
-            size,
-        }),
-        // Only on failure: tell overflow from singularity.
-        _ => Err(failure(sys, v, x)),
-    }
+    let mut c = Correction::new();
+    c.update(sys, v, x, linear, fac)?;
+    Ok(c)
 }
 
+#[cold]
 fn failure<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],

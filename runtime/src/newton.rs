@@ -4,8 +4,8 @@
 //! assembly mode. The det B sign check catches some of those, not all.
 
 use crate::convergence::Convergence;
-use crate::correction::{correction_in, Failure};
-use crate::math::norm;
+use crate::correction::{Correction, Failure};
+use crate::math::size;
 use crate::outcome::{conclude, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start};
 
@@ -97,6 +97,14 @@ pub(crate) struct Newton<const N: usize> {
     pub det: f64,
 }
 
+/// The smallest correction met so far, at the best point factored so far: what a stall or an
+/// exhausted run returns under the final rule.
+#[derive(Clone, Copy)]
+struct Best {
+    estimate: f64,
+    det: f64,
+}
+
 pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: [f64; N],
@@ -104,79 +112,103 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
     rule: Rule,
 ) -> Newton<N> {
-    let mut out = Newton {
-        v,
-        ending: Ending::Exhausted,
-        iterations: 0,
-        estimate: f64::INFINITY,
-        det: 0.0,
-    };
-    // With the final rule `out` holds the best point factored so far (smallest correction):
-    // what a stall or an exhausted run returns.
-    let mut current = v;
-    let mut previous = f64::INFINITY;
-    let mut convergence = Convergence::new(options.tolerance, &v);
+    let tolerance = options.tolerance;
+    let mut convergence = Convergence::new(tolerance, &v);
     let mut fac = sys.new_factor();
-    while out.iterations < options.max_iterations {
-        let c = match correction_in(sys, &current, x, options.linear, &mut fac) {
-            Ok(c) => c,
+    let mut c = Correction::new();
+    let mut current = v;
+    let mut best: Option<Best> = None;
+    // The best point is `current` itself until the step moves it, then `best_v`: it is copied
+    // only as the step is taken, and only while the corrections keep shrinking.
+    let mut best_v = v;
+    let mut best_here = false;
+    let mut iterations = 0;
+    let mut previous = f64::INFINITY;
+    let ending = loop {
+        if iterations >= options.max_iterations {
+            break Ending::Exhausted;
+        }
+        match c.update(sys, &current, x, options.linear, &mut fac) {
+            Ok(()) => {}
             Err(Failure::Singular) => {
                 return Newton {
                     v: current,
                     ending: Ending::Singular,
+                    iterations,
                     estimate: f64::INFINITY,
                     det: 0.0,
-                    ..out
                 };
             }
-            Err(Failure::NonFinite) => {
-                out.ending = Ending::NonFinite;
-                break;
+            Err(Failure::NonFinite) => break Ending::NonFinite,
+        }
+        iterations += 1;
+        if rule == Rule::Final {
+            if c.size <= tolerance {
+                return Newton {
+                    v: current,
+                    ending: Ending::Converged,
+                    iterations,
+                    estimate: c.size,
+                    det: c.det,
+                };
             }
-        };
-        out.iterations += 1;
-        match rule {
-            Rule::Final => {
-                if c.size <= options.tolerance {
-                    out.v = current;
-                    out.ending = Ending::Converged;
-                    out.estimate = c.size;
-                    out.det = c.det;
-                    return out;
-                }
-                if c.size < out.estimate {
-                    out.v = current;
-                    out.estimate = c.size;
-                    out.det = c.det;
-                }
-                if convergence.stalled(c.size, previous) {
-                    out.ending = Ending::Stalled;
-                    break;
-                }
-                for i in 0..N {
-                    current[i] -= c.delta[i];
-                }
+            if best.as_ref().is_none_or(|b| c.size < b.estimate) {
+                best = Some(Best {
+                    estimate: c.size,
+                    det: c.det,
+                });
+                best_here = true;
             }
-            Rule::Intermediate => {
-                for i in 0..N {
-                    current[i] -= c.delta[i];
-                }
-                let stalled = convergence.stalled(c.size, previous);
-                if convergence.reached(c.size) || stalled {
-                    out.v = current;
-                    out.det = c.det;
-                    out.estimate = convergence.estimate;
-                    out.ending = Ending::Converged;
-                    return out;
-                }
+            if convergence.stalled(c.size, previous) {
+                break Ending::Stalled;
+            }
+        }
+        if best_here {
+            // One pass copies and steps (clippy sees only the copy).
+            #[allow(clippy::manual_memcpy)]
+            for i in 0..N {
+                best_v[i] = current[i];
+                current[i] -= c.delta[i];
+            }
+            best_here = false;
+        } else {
+            for i in 0..N {
+                current[i] -= c.delta[i];
+            }
+        }
+        if rule == Rule::Intermediate {
+            let stalled = convergence.stalled(c.size, previous);
+            if convergence.reached(c.size) || stalled {
+                return Newton {
+                    v: current,
+                    ending: Ending::Converged,
+                    iterations,
+                    estimate: convergence.estimate,
+                    det: c.det,
+                };
             }
         }
         previous = c.size;
+    };
+    match best {
+        Some(b) => Newton {
+            v: if best_here { current } else { best_v },
+            ending,
+            iterations,
+            estimate: b.estimate,
+            det: b.det,
+        },
+        // The last iterate if finite, else the start point.
+        None => Newton {
+            v: if size(&current).is_finite() {
+                current
+            } else {
+                v
+            },
+            ending,
+            iterations,
+            estimate: f64::INFINITY,
+            det: 0.0,
+        },
     }
-    // Without a best point: the last iterate if finite, else the start point.
-    let factored = rule == Rule::Final && out.estimate.is_finite();
-    if !factored && norm(&current).is_finite() {
-        out.v = current;
-    }
-    out
 }
