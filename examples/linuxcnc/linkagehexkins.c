@@ -28,6 +28,9 @@
  *                                    2 branch_changed, 1 fold, ... see linkage_hexapod.h)
  *   PREFIX.refused (bit out)         the last forward call was a solver refusal (status > 0)
  *   PREFIX.refusals (u32 out)        how many forward calls were refused so far
+ *   PREFIX.failures (u32 out)        how many forward calls failed so far, for any reason
+ *                                    (fwd-kins-fail only says whether the last one did)
+ *   PREFIX.last-failure (s32 out)    the status code of the latest failed call
  *   PREFIX.tracking (bit out)        a branch is being tracked
  *   PREFIX.proximity (float out)     |det B| / |det B at the start| (0 at a singularity)
  *   PREFIX.min-proximity (float out) its smallest value since tracking started
@@ -62,9 +65,9 @@ static struct haldata {
     hal_float_t *conv_criterion, *max_error;
     hal_u32_t *iter_limit, *last_iter, *max_iter;
     hal_bit_t *fwd_kins_fail;
-    hal_s32_t *status;
+    hal_s32_t *status, *last_failure;
     hal_bit_t *refused, *tracking, *fell_back, *reset;
-    hal_u32_t *refusals;
+    hal_u32_t *refusals, *failures;
     hal_float_t *proximity, *min_proximity;
 } *haldata;
 
@@ -137,6 +140,8 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     *haldata->last_iter = report.newton_iterations;
     if (rc != LINKAGE_OK) {
         *haldata->fwd_kins_fail = 1;
+        *haldata->failures += 1;
+        *haldata->last_failure = rc;
         *haldata->refused = rc > 0;
         if (rc > 0) {
             *haldata->refusals += 1;
@@ -282,6 +287,8 @@ static int make_pins(void)
     r |= hal_pin_s32_newf(HAL_OUT, &haldata->status, comp_id, "%s.status", prefix);
     r |= hal_pin_bit_newf(HAL_OUT, &haldata->refused, comp_id, "%s.refused", prefix);
     r |= hal_pin_u32_newf(HAL_OUT, &haldata->refusals, comp_id, "%s.refusals", prefix);
+    r |= hal_pin_u32_newf(HAL_OUT, &haldata->failures, comp_id, "%s.failures", prefix);
+    r |= hal_pin_s32_newf(HAL_OUT, &haldata->last_failure, comp_id, "%s.last-failure", prefix);
     r |= hal_pin_bit_newf(HAL_OUT, &haldata->tracking, comp_id, "%s.tracking", prefix);
     r |= hal_pin_float_newf(HAL_OUT, &haldata->proximity, comp_id, "%s.proximity", prefix);
     r |= hal_pin_float_newf(HAL_OUT, &haldata->min_proximity, comp_id, "%s.min-proximity", prefix);
@@ -300,6 +307,8 @@ static int make_pins(void)
     *haldata->status = 0;
     *haldata->refused = 0;
     *haldata->refusals = 0;
+    *haldata->failures = 0;
+    *haldata->last_failure = 0;
     *haldata->tracking = 0;
     *haldata->proximity = 0.0;
     *haldata->min_proximity = 0.0;

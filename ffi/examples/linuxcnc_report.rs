@@ -12,6 +12,7 @@
 //! linkagehexkins runs must pass every check; the genhexkins runs are measured the same way
 //! and reported. Ends with one line starting `linuxcnc:`; exits 1 if a check failed.
 
+use std::collections::BTreeMap;
 use std::process::ExitCode;
 
 use linkage_ffi::{Hexapod, LinkageGeometry, LinkagePose};
@@ -30,15 +31,21 @@ struct Sample {
     joints: [f64; 6],
     pose: LinkagePose,
     command: LinkagePose,
+    /// The fwd-kins-fail pin was set, or (linkagehexkins) a forward call failed since the
+    /// sample before: LinuxCNC then kept the last good Cartesian feedback, which is stale.
     fail: bool,
     /// linkagehexkins' proximity pin (NaN for genhexkins).
     proximity: f64,
+    /// linkagehexkins' last-failure pin when a call failed since the sample before.
+    failure: Option<i32>,
 }
 
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 struct Stats {
     samples: usize,
     failed: usize,
+    /// linkagehexkins' failed calls seen, by status code.
+    failures: BTreeMap<i32, usize>,
     /// Samples whose pose is wrong though the pin says success (it does not give back the
     /// joints), or, in coordinated moves, is off the commanded pose; each counted once.
     bad: usize,
@@ -54,6 +61,7 @@ impl Default for Stats {
         Stats {
             samples: 0,
             failed: 0,
+            failures: BTreeMap::new(),
             bad: 0,
             max_leg_error: 0.0,
             max_lag: 0.0,
@@ -67,6 +75,9 @@ impl Stats {
     fn add(&mut self, o: &Stats) {
         self.samples += o.samples;
         self.failed += o.failed;
+        for (code, n) in &o.failures {
+            *self.failures.entry(*code).or_default() += n;
+        }
         self.bad += o.bad;
         self.max_leg_error = self.max_leg_error.max(o.max_leg_error);
         self.max_lag = self.max_lag.max(o.max_lag);
@@ -127,15 +138,20 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
         return Err(format!("{file}: the run stopped: {e}"));
     }
     let mut out = Vec::new();
+    // Failures before the first sample (the module is called before homing, at zero legs)
+    // are not any sample's.
+    let mut failures = f64::NAN;
     for (n, line) in text.lines().enumerate().skip(1) {
         let v: Vec<f64> = line
             .split(',')
             .map(|w| w.parse::<f64>())
             .collect::<Result<_, _>>()
             .map_err(|_| format!("{file}:{}: not a sample", n + 1))?;
-        if v.len() != 22 {
-            return Err(format!("{file}:{}: {} fields, not 22", n + 1, v.len()));
+        if v.len() != 24 {
+            return Err(format!("{file}:{}: {} fields, not 24", n + 1, v.len()));
         }
+        let failed_since = !failures.is_nan() && v[22] != failures;
+        failures = v[22];
         let pose = |i: usize| LinkagePose {
             x: v[i],
             y: v[i + 1],
@@ -149,8 +165,9 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
             joints: std::array::from_fn(|j| v[2 + j]),
             pose: pose(8),
             command: pose(14),
-            fail: v[20] != 0.0,
+            fail: v[20] != 0.0 || failed_since,
             proximity: v[21],
+            failure: failed_since.then_some(v[23] as i32),
         });
     }
     Ok(out)
@@ -165,6 +182,9 @@ fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> boo
         st.min_proximity = st.min_proximity.min(s.proximity);
         if s.fail {
             st.failed += 1;
+        }
+        if let Some(code) = s.failure {
+            *st.failures.entry(code).or_default() += 1;
         }
         let error = hex.inverse(&s.pose).map_or(f64::INFINITY, |legs| {
             (0..6)
@@ -245,8 +265,8 @@ fn run() -> Result<bool, String> {
                 commands[step - 1].clone()
             };
             let (sa, sb) = (
-                a.get(step).copied().unwrap_or_default(),
-                b.get(step).copied().unwrap_or_default(),
+                a.get(step).cloned().unwrap_or_default(),
+                b.get(step).cloned().unwrap_or_default(),
             );
             println!(
                 "{:<34} | {} {:>8.1e} | {}",
@@ -266,7 +286,16 @@ fn run() -> Result<bool, String> {
         problems.push("the proximity pin was not read or not positive".to_string());
     }
     if ours_all.failed > 0 {
-        problems.push(format!("{} samples with fwd-kins-fail", ours_all.failed));
+        let codes: Vec<String> = ours_all
+            .failures
+            .iter()
+            .map(|(code, n)| format!("status {code} after {n} samples"))
+            .collect();
+        problems.push(format!(
+            "{} samples with fwd-kins-fail or after a failed call ({})",
+            ours_all.failed,
+            codes.join(", ")
+        ));
     }
     if ours_all.bad > 0 || !(ours_all.max_leg_error <= LEG_TOLERANCE) {
         problems.push(format!(
