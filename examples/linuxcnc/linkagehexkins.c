@@ -18,9 +18,10 @@
  *   PREFIX.convergence-criterion                      the tracker's tolerance (length units)
  *   PREFIX.limit-iterations                           the tracker's Newton iteration limit
  *   PREFIX.max-error                                  accepted for compatibility, not used
- *   PREFIX.base-n.N.*, PREFIX.platform-n.N.*, PREFIX.screw-lead, PREFIX.correction.N
- *       as genhexkins; strut length correction is not implemented: a non-zero screw-lead
- *       makes both kinematics fail (with a message) rather than compute without it
+ *   PREFIX.base-n.N.*, PREFIX.platform-n.N.*, PREFIX.screw-lead   the strut length correction
+ *       for screw-driven struts, as genhexkins (off while screw-lead is 0, the default);
+ *       forward kinematics solves for it (a fixed point around the tracker)
+ *   PREFIX.correction.N (out)        each strut's correction at the last inverse call
  *   PREFIX.fwd-kins-fail (out)       the last forward call failed or was refused
  *   PREFIX.last-iterations (out), PREFIX.max-iterations (out)   Newton iterations
  * and, beyond genhexkins:
@@ -75,25 +76,16 @@ static int comp_id;
 /* The handle: static storage, built once at load, never freed (it owns nothing). */
 static linkage_hexapod hex;
 static linkage_geometry current;
-static int screw_lead_warned;
+static linkage_strut_correction current_correction;
 
 /* Reads the geometry and options pins; hands a changed geometry or option to the handle. */
 static int sync_pins(void)
 {
     linkage_geometry g;
+    linkage_strut_correction c;
     double dz = *haldata->spindle_offset + *haldata->tool_offset;
     int i, k, rc;
 
-    if (*haldata->screw_lead != 0.0) {
-        if (!screw_lead_warned) {
-            rtapi_print_msg(RTAPI_MSG_ERR,
-                "linkagehexkins: %s.screw-lead is not zero: strut length correction is not "
-                "implemented, kinematics disabled\n", prefix);
-            screw_lead_warned = 1;
-        }
-        return LINKAGE_INVALID_GEOMETRY;
-    }
-    screw_lead_warned = 0;
     for (i = 0; i < STRUTS; i++) {
         for (k = 0; k < 3; k++) {
             g.base[i][k] = *haldata->base[i][k];
@@ -108,6 +100,20 @@ static int sync_pins(void)
             return rc;
         }
         current = g;
+    }
+    for (i = 0; i < STRUTS; i++) {
+        for (k = 0; k < 3; k++) {
+            c.base_n[i][k] = *haldata->base_n[i][k];
+            c.platform_n[i][k] = *haldata->platform_n[i][k];
+        }
+    }
+    c.screw_lead = *haldata->screw_lead;
+    if (memcmp(&c, &current_correction, sizeof c) != 0) {
+        rc = linkage_hexapod_set_strut_correction(&hex, &c);
+        if (rc != LINKAGE_OK) {
+            return rc;
+        }
+        current_correction = c;
     }
     rc = linkage_hexapod_set_options(&hex, *haldata->conv_criterion, *haldata->iter_limit);
     if (rc != LINKAGE_OK) {
@@ -172,7 +178,7 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
                       KINEMATICS_FORWARD_FLAGS *fflags)
 {
     linkage_pose p;
-    double legs[STRUTS];
+    double legs[STRUTS], corrections[STRUTS];
     int i;
     (void)iflags;
     (void)fflags;
@@ -182,11 +188,13 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
     }
     p.x = pos->tran.x; p.y = pos->tran.y; p.z = pos->tran.z;
     p.a = pos->a; p.b = pos->b; p.c = pos->c;
-    if (linkage_hexapod_inverse(&hex, &p, legs) != LINKAGE_OK) {
+    if (linkage_hexapod_inverse(&hex, &p, legs) != LINKAGE_OK
+        || linkage_hexapod_strut_corrections(&hex, &p, corrections) != LINKAGE_OK) {
         return -1;
     }
     for (i = 0; i < STRUTS; i++) {
         joints[i] = legs[i];
+        *haldata->correction[i] = corrections[i];
     }
     return 0;
 }

@@ -68,6 +68,10 @@ run() { # run KINS PATH_NAME -> $work/NAME-KINS.csv
     sed -e "s|@KINS@|$kins|" -e "s|@DRIVER@|$here/drive.py|" "$here/sim/hexapod.ini" > "$dir/hexapod.ini"
     cp "$here/sim/hexapod.hal" "$here/sim/hexapod.tbl" "$dir/"
     sed "s/PREFIX/$kins/" "$here/sim/geometry.hal" > "$dir/geometry.hal"
+    # A path may come with pins of its own (paths/NAME.hal), set after the geometry's.
+    if [ -f "$here/paths/$name.hal" ]; then
+        sed "s/PREFIX/$kins/" "$here/paths/$name.hal" >> "$dir/geometry.hal"
+    fi
     [ -n "${RTAPI_UID:-}" ] && chown "$RTAPI_UID" "$dir"
     local t0=$SECONDS rc=0
     (cd "$dir" && RTAPI_FIFO_PATH="$dir/rtapi_fifo" LINKAGE_PATH="$here/paths/$name.path" \
@@ -81,7 +85,7 @@ run() { # run KINS PATH_NAME -> $work/NAME-KINS.csv
     echo "$name with $kins: $(($(wc -l < "$work/$name-$kins.csv") - 1)) samples in $((SECONDS - t0)) s"
 }
 args=("$here/sim/geometry.hal")
-for name in workspace singular; do
+for name in workspace singular screws; do
     run linkagehexkins "$name"
     run genhexkins "$name"
     args+=("$name" "$here/paths/$name.path" "$work/$name-linkagehexkins.csv" "$work/$name-genhexkins.csv")

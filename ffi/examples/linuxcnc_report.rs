@@ -9,13 +9,15 @@
 //! controller computed from it with the module's kinematicsForward. The check runs our
 //! inverse kinematics (linkage's) on that pose: it must give back the joints. In coordinated
 //! moves the pose must also follow the commanded one (to a few servo cycles of lag). The
+//! A path with a HAL file of its own beside it (PATH with the extension `.hal`) sets the
+//! strut correction there; the check's inverse kinematics then adds it too. The
 //! linkagehexkins runs must pass every check; the genhexkins runs are measured the same way
 //! and reported. Ends with one line starting `linuxcnc:`; exits 1 if a check failed.
 
 use std::collections::BTreeMap;
 use std::process::ExitCode;
 
-use linkage_ffi::{Hexapod, LinkageGeometry, LinkagePose};
+use linkage_ffi::{Hexapod, LinkageGeometry, LinkagePose, LinkageStrutCorrection};
 
 /// |IK(pose) − joints| above this (inches) is a wrong pose.
 const LEG_TOLERANCE: f64 = 1e-6;
@@ -86,40 +88,46 @@ impl Stats {
     }
 }
 
-fn geometry(file: &str) -> Result<LinkageGeometry, String> {
+/// The `setp PIN VALUE` lines of a HAL file: each pin name's dot-separated parts after the
+/// prefix, and the value.
+fn setps(file: &str) -> Result<Vec<(Vec<String>, f64)>, String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{file}: {e}"))?;
+    let mut out = Vec::new();
+    for line in text.lines().filter(|l| l.starts_with("setp ")) {
+        let mut words = line.split_whitespace().skip(1);
+        let (Some(name), Some(value)) = (words.next(), words.next()) else {
+            return Err(format!("{file}: `{line}` is not `setp PIN VALUE`"));
+        };
+        let value: f64 = value
+            .parse()
+            .map_err(|_| format!("{file}: bad value in `{line}`"))?;
+        out.push((name.split('.').skip(1).map(str::to_string).collect(), value));
+    }
+    Ok(out)
+}
+
+/// Writes `value` into `table[i][axis]` for the parts `[_, i, axis]`.
+fn set_vector(table: &mut [[f64; 3]; 6], parts: &[String], value: f64) -> Option<()> {
+    let i: usize = parts.get(1)?.parse().ok()?;
+    let k = ["x", "y", "z"]
+        .iter()
+        .position(|a| Some(*a) == parts.get(2).map(|s| s.as_str()))?;
+    *table.get_mut(i)?.get_mut(k)? = value;
+    Some(())
+}
+
+fn geometry(file: &str) -> Result<LinkageGeometry, String> {
     let mut g = LinkageGeometry {
         base: [[f64::NAN; 3]; 6],
         platform: [[f64::NAN; 3]; 6],
     };
-    for line in text.lines().filter(|l| l.starts_with("setp ")) {
-        let mut words = line.split_whitespace().skip(1);
-        let (Some(name), Some(value)) = (words.next(), words.next()) else {
-            continue;
+    for (parts, value) in setps(file)? {
+        let target = match parts.first().map(|s| s.as_str()) {
+            Some("base") => &mut g.base,
+            Some("platform") => &mut g.platform,
+            _ => continue,
         };
-        let parts: Vec<&str> = name.split('.').collect();
-        let value: f64 = value
-            .parse()
-            .map_err(|_| format!("{file}: bad value in `{line}`"))?;
-        if let [_, link, i, axis] = parts[..] {
-            let i: usize = i
-                .parse()
-                .map_err(|_| format!("{file}: bad index in `{line}`"))?;
-            let k = ["x", "y", "z"]
-                .iter()
-                .position(|a| *a == axis)
-                .ok_or(format!("{file}: bad axis in `{line}`"))?;
-            let target = match link {
-                "base" => &mut g.base,
-                "platform" => &mut g.platform,
-                _ => continue,
-            };
-            *target
-                .get_mut(i)
-                .ok_or(format!("{file}: bad index in `{line}`"))?
-                .get_mut(k)
-                .unwrap() = value;
-        }
+        set_vector(target, &parts, value).ok_or(format!("{file}: bad pin {}", parts.join(".")))?;
     }
     if g.base
         .iter()
@@ -130,6 +138,38 @@ fn geometry(file: &str) -> Result<LinkageGeometry, String> {
         return Err(format!("{file}: not every joint centre is set"));
     }
     Ok(g)
+}
+
+/// The strut correction a path's own HAL file sets (every joint axis and the screw lead),
+/// or None when the path has no HAL file.
+fn strut_correction(path: &str) -> Result<Option<LinkageStrutCorrection>, String> {
+    let file = std::path::Path::new(path).with_extension("hal");
+    if !file.exists() {
+        return Ok(None);
+    }
+    let file = file.to_string_lossy().into_owned();
+    let mut c = LinkageStrutCorrection {
+        base_n: [[f64::NAN; 3]; 6],
+        platform_n: [[f64::NAN; 3]; 6],
+        screw_lead: f64::NAN,
+    };
+    for (parts, value) in setps(&file)? {
+        let set = match parts.first().map(|s| s.as_str()) {
+            Some("screw-lead") => {
+                c.screw_lead = value;
+                Some(())
+            }
+            Some("base-n") => set_vector(&mut c.base_n, &parts, value),
+            Some("platform-n") => set_vector(&mut c.platform_n, &parts, value),
+            _ => Some(()),
+        };
+        set.ok_or(format!("{file}: bad pin {}", parts.join(".")))?;
+    }
+    let all = c.base_n.iter().chain(&c.platform_n).flatten();
+    if c.screw_lead.is_nan() || all.clone().any(|v| v.is_nan()) {
+        return Err(format!("{file}: the screw lead or a joint axis is not set"));
+    }
+    Ok(Some(c))
 }
 
 fn samples(file: &str) -> Result<Vec<Sample>, String> {
@@ -251,11 +291,21 @@ fn run() -> Result<bool, String> {
             .collect();
         let coordinated =
             |step: usize| step > 0 && commands.get(step - 1).is_some_and(|c| c.starts_with("mdi"));
+        let mut hex = hex.clone();
+        let correction = strut_correction(path)?;
+        if let Some(c) = &correction {
+            hex.set_strut_correction(c)
+                .map_err(|code| format!("{path}: strut correction: status {code}"))?;
+        }
         let a = measure(&hex, &samples(ours)?, &coordinated);
         let b = measure(&hex, &samples(theirs)?, &coordinated);
         println!("\npath {name} ({path})");
+        if let Some(c) = correction {
+            println!("with screw-driven struts (lead {} per turn)", c.screw_lead);
+        }
+        let width = commands.iter().map(String::len).max().unwrap_or(0).max(34);
         println!(
-            "{:<34} | {:^47} | {:^38}",
+            "{:<width$} | {:^47} | {:^38}",
             "step", "linkagehexkins", "genhexkins"
         );
         for step in 0..=commands.len() {
@@ -269,7 +319,7 @@ fn run() -> Result<bool, String> {
                 b.get(step).cloned().unwrap_or_default(),
             );
             println!(
-                "{:<34} | {} {:>8.1e} | {}",
+                "{:<width$} | {} {:>8.1e} | {}",
                 label,
                 cell(&sa),
                 sa.min_proximity,

@@ -80,6 +80,25 @@ int32_t linkage_hexapod_set_geometry(linkage_hexapod *h, const linkage_geometry 
    restarts tracking at the next forward call. */
 int32_t linkage_hexapod_set_options(linkage_hexapod *h, double tolerance, uint32_t max_iterations);
 
+/* genhexkins' strut length correction for screw-driven struts: base_n[i] and platform_n[i]
+   are the axes of strut i's end joints (base frame, platform frame), screw_lead the length
+   per turn; a strut's joint value is its length plus screw_lead * asin(n3 . n2) / 2 pi, with
+   n3 = u x (base_n x u) and n2 = (R platform_n) x u, both made unit, u the strut's direction.
+   A zero screw_lead turns it off (the default). A change restarts tracking. */
+typedef struct linkage_strut_correction {
+    double base_n[6][3];
+    double platform_n[6][3];
+    double screw_lead;
+} linkage_strut_correction;
+
+int32_t linkage_hexapod_set_strut_correction(linkage_hexapod *h,
+                                             const linkage_strut_correction *correction);
+
+/* The corrections linkage_hexapod_inverse adds to the struts at pose (zeros when off);
+   out is written only on 0. */
+int32_t linkage_hexapod_strut_corrections(const linkage_hexapod *h, const linkage_pose *pose,
+                                          double out[6]);
+
 /* Forgets the tracked branch. */
 int32_t linkage_hexapod_reset(linkage_hexapod *h);
 

@@ -13,6 +13,7 @@ use std::mem::MaybeUninit;
 use crate::hexapod::{Hexapod, LinkageGeometry, LinkageReport};
 use crate::pose::LinkagePose;
 use crate::status;
+use crate::strut_correction::LinkageStrutCorrection;
 
 /// Bytes of caller storage a handle needs (`LINKAGE_HEXAPOD_STORAGE` in the header).
 pub const STORAGE: usize = 4096;
@@ -79,6 +80,20 @@ pub extern "C" fn linkage_hexapod_set_options(
     code(h.set_options(tolerance, max_iterations))
 }
 
+/// genhexkins' strut length correction: the joints' axes and the screw lead (0 turns it off).
+/// Inverse kinematics adds it to each strut; forward kinematics solves for it. A change
+/// restarts tracking at the next forward call; on error the handle keeps its previous one.
+#[no_mangle]
+pub extern "C" fn linkage_hexapod_set_strut_correction(
+    h: Option<&mut Hexapod>,
+    correction: Option<&LinkageStrutCorrection>,
+) -> i32 {
+    let (Some(h), Some(correction)) = (h, correction) else {
+        return status::NULL_POINTER;
+    };
+    code(h.set_strut_correction(correction))
+}
+
 /// Forgets the tracked branch: the next forward call starts at the pose it is given.
 #[no_mangle]
 pub extern "C" fn linkage_hexapod_reset(h: Option<&mut Hexapod>) -> i32 {
@@ -108,6 +123,26 @@ pub extern "C" fn linkage_hexapod_inverse(
     match h.inverse(pose) {
         Ok(l) => {
             *legs = l;
+            status::OK
+        }
+        Err(c) => c,
+    }
+}
+
+/// The strut corrections at `pose` (what `linkage_hexapod_inverse` added to each strut;
+/// zeros when the correction is off). `out` is written only on success.
+#[no_mangle]
+pub extern "C" fn linkage_hexapod_strut_corrections(
+    h: Option<&Hexapod>,
+    pose: Option<&LinkagePose>,
+    out: Option<&mut [f64; 6]>,
+) -> i32 {
+    let (Some(h), Some(pose), Some(out)) = (h, pose, out) else {
+        return status::NULL_POINTER;
+    };
+    match h.strut_corrections(pose) {
+        Ok(c) => {
+            *out = c;
             status::OK
         }
         Err(c) => c,

@@ -8,6 +8,7 @@ use linkage_examples::stewart::{
 
 use crate::pose::LinkagePose;
 use crate::status;
+use crate::strut_correction::LinkageStrutCorrection;
 
 /// Joint centres: base ones in the base (world) frame, platform ones in the platform frame;
 /// leg `i` joins `base[i]` to `platform[i]`.
@@ -54,10 +55,16 @@ enum Tracking {
 /// The state behind a C handle. Fixed size, never allocates, needs no destructor.
 #[derive(Clone, Debug)]
 pub struct Hexapod {
+    geometry: LinkageGeometry,
     model: Model,
     tracking: Option<Tracking>,
     options: Options,
+    correction: LinkageStrutCorrection,
 }
+
+/// Most passes of the strut-correction fixed point (each one tracker update); the
+/// correction's share of a strut's length change is small, so a few passes suffice.
+const CORRECTION_PASSES: usize = 20;
 
 fn model(g: &LinkageGeometry) -> Result<Model, i32> {
     let finite = g
@@ -135,16 +142,30 @@ impl Hexapod {
     /// A hexapod with this geometry, not yet tracking.
     pub fn new(geometry: &LinkageGeometry) -> Result<Hexapod, i32> {
         Ok(Hexapod {
+            geometry: *geometry,
             model: model(geometry)?,
             tracking: None,
             options: Options::TIGHT,
+            correction: LinkageStrutCorrection::NONE,
         })
     }
 
     /// Replaces the geometry; tracking starts afresh at the next forward call.
     pub fn set_geometry(&mut self, geometry: &LinkageGeometry) -> Result<(), i32> {
         self.model = model(geometry)?;
+        self.geometry = *geometry;
         self.tracking = None;
+        Ok(())
+    }
+
+    /// Sets genhexkins' strut length correction (a zero screw lead turns it off); a change
+    /// restarts tracking at the next forward call.
+    pub fn set_strut_correction(&mut self, c: &LinkageStrutCorrection) -> Result<(), i32> {
+        c.check()?;
+        if *c != self.correction {
+            self.correction = *c;
+            self.tracking = None;
+        }
         Ok(())
     }
 
@@ -171,8 +192,23 @@ impl Hexapod {
         self.tracking.is_some()
     }
 
-    /// Leg lengths for a pose (closed form, one solution).
+    /// Leg lengths for a pose (closed form, one solution), with the strut correction.
     pub fn inverse(&self, pose: &LinkagePose) -> Result<[f64; 6], i32> {
+        let struts = self.struts(pose)?;
+        let corrections = self.strut_corrections(pose)?;
+        Ok(std::array::from_fn(|i| struts[i] + corrections[i]))
+    }
+
+    /// The strut corrections at a pose (zeros when the correction is off).
+    pub fn strut_corrections(&self, pose: &LinkagePose) -> Result<[f64; 6], i32> {
+        if !pose.is_finite() {
+            return Err(status::NON_FINITE);
+        }
+        self.correction.at(&self.geometry, &pose.to_pose())
+    }
+
+    /// The struts' geometric lengths at a pose.
+    fn struts(&self, pose: &LinkagePose) -> Result<[f64; 6], i32> {
         match &self.model {
             Model::Coplanar(s) => inverse_with(s, pose),
             Model::General(s) => inverse_with(s, pose),
@@ -209,6 +245,83 @@ impl Hexapod {
         if !pose.is_finite() {
             return status::NON_FINITE;
         }
+        if self.correction.is_on() {
+            return self.forward_corrected(legs, pose, report);
+        }
+        self.forward_struts(legs, pose, report)
+    }
+
+    /// Forward kinematics with the strut correction: the struts' geometric lengths are the
+    /// joints less the correction at the pose, which the pose depends on. A fixed point:
+    /// track the struts for the correction at the last pose, until the correction changes by
+    /// at most a quarter of the tolerance. On any failure the tracker goes back to where it was.
+    fn forward_corrected(
+        &mut self,
+        joints: &[f64; 6],
+        pose: &mut LinkagePose,
+        report: &mut LinkageReport,
+    ) -> i32 {
+        let saved = self.tracking.clone();
+        let tolerance = self.options.tolerance;
+        let (mut iterations, mut started, mut fell_back) = (0, 0, 0);
+        let mut out = *pose;
+        let mut previous_change = f64::INFINITY;
+        let code = 'passes: {
+            let mut corrections = match self.correction.at(&self.geometry, &out.to_pose()) {
+                Ok(c) => c,
+                Err(code) => break 'passes code,
+            };
+            for _ in 0..CORRECTION_PASSES {
+                let struts: [f64; 6] = std::array::from_fn(|i| joints[i] - corrections[i]);
+                if let Err(code) = check_legs(&struts) {
+                    break 'passes code;
+                }
+                let code = self.forward_struts(&struts, &mut out, report);
+                iterations += report.newton_iterations;
+                started |= report.started;
+                fell_back |= report.fell_back;
+                if code != status::OK {
+                    break 'passes code;
+                }
+                let next = match self.correction.at(&self.geometry, &out.to_pose()) {
+                    Ok(c) => c,
+                    Err(code) => break 'passes code,
+                };
+                let change = (0..6).fold(0.0f64, |m, i| m.max((next[i] - corrections[i]).abs()));
+                corrections = next;
+                // A quarter of the tolerance: the struts then match the joints to about the
+                // tracker's own accuracy.
+                if change <= 0.25 * tolerance {
+                    break 'passes status::OK;
+                }
+                // The passes contract by the correction's small share of a strut's change;
+                // where they do not (near a singularity), there is no fixed point to trust.
+                if change > 0.5 * previous_change {
+                    break 'passes status::NOT_CONVERGED;
+                }
+                previous_change = change;
+            }
+            status::NOT_CONVERGED
+        };
+        report.newton_iterations = iterations;
+        report.started = started;
+        report.fell_back = fell_back;
+        if code == status::OK {
+            *pose = out;
+        } else {
+            self.tracking = saved;
+        }
+        code
+    }
+
+    /// Forward kinematics for the struts' geometric lengths (no correction).
+    fn forward_struts(
+        &mut self,
+        legs: &[f64; 6],
+        pose: &mut LinkagePose,
+        report: &mut LinkageReport,
+    ) -> i32 {
+        report.started = 0;
         if self.tracking.is_none() {
             let started = match &self.model {
                 Model::Coplanar(s) => {
@@ -452,5 +565,188 @@ pub(crate) mod tests {
         );
         assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
         assert!(max_diff(&pose, &HOME) < 1e-7, "{pose:?}");
+    }
+
+    /// genhexkins' default joint axes (genhexkins.h) with a screw lead of 0.2 in per turn.
+    fn screws() -> LinkageStrutCorrection {
+        let r = std::f64::consts::FRAC_1_SQRT_2; // genhexkins.h writes 0.707107
+        LinkageStrutCorrection {
+            base_n: [
+                [r, 0.0, r],
+                [0.0, -r, r],
+                [-r, 0.0, r],
+                [-r, 0.0, r],
+                [0.0, r, r],
+                [r, 0.0, r],
+            ],
+            platform_n: [
+                [-1.0, 0.0, 0.0],
+                [0.866025, 0.5, 0.0],
+                [0.866025, 0.5, 0.0],
+                [0.866025, -0.5, 0.0],
+                [0.866025, -0.5, 0.0],
+                [-1.0, 0.0, 0.0],
+            ],
+            screw_lead: 0.2,
+        }
+    }
+
+    /// genhexkins' correction written out from its source's steps, with the rotation built
+    /// from the angle words directly (R = Rz(C) Ry(B) Rx(A)), not through `Pose`.
+    fn genhex_correction(
+        g: &LinkageGeometry,
+        c: &LinkageStrutCorrection,
+        p: &LinkagePose,
+    ) -> [f64; 6] {
+        let (a, b, cc) = (p.a.to_radians(), p.b.to_radians(), p.c.to_radians());
+        let (sa, ca, sb, cb, sc, c3) = (a.sin(), a.cos(), b.sin(), b.cos(), cc.sin(), cc.cos());
+        let r = [
+            [c3 * cb, c3 * sb * sa - sc * ca, c3 * sb * ca + sc * sa],
+            [sc * cb, sc * sb * sa + c3 * ca, sc * sb * ca - c3 * sa],
+            [-sb, cb * sa, cb * ca],
+        ];
+        let mul = |v: [f64; 3]| -> [f64; 3] {
+            std::array::from_fn(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
+        };
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let unit = |a: [f64; 3]| {
+            let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            a.map(|v| v / n)
+        };
+        std::array::from_fn(|i| {
+            let ra = mul(g.platform[i]);
+            let strut = [0, 1, 2].map(|k| p_t(p)[k] + ra[k] - g.base[i][k]);
+            let u = unit(strut);
+            let nb3 = unit(cross(u, cross(c.base_n[i], u)));
+            let na2 = unit(cross(mul(c.platform_n[i]), u));
+            let dot = nb3[0] * na2[0] + nb3[1] * na2[1] + nb3[2] * na2[2];
+            c.screw_lead * dot.asin() / (2.0 * std::f64::consts::PI)
+        })
+    }
+
+    fn p_t(p: &LinkagePose) -> [f64; 3] {
+        [p.x, p.y, p.z]
+    }
+
+    #[test]
+    fn inverse_adds_genhexkins_strut_correction() {
+        let g = genhex();
+        let mut h = Hexapod::new(&g).unwrap();
+        h.set_strut_correction(&screws()).unwrap();
+        let mut largest = 0.0f64;
+        for k in 0..50 {
+            let t = k as f64 / 49.0;
+            let p = LinkagePose {
+                x: 2.0 * t - 1.0,
+                y: 0.5 - t,
+                z: 19.0 + 2.0 * t,
+                a: 10.0 * t - 5.0,
+                b: 4.0 - 8.0 * t,
+                c: 60.0 * t - 30.0,
+            };
+            let legs = h.inverse(&p).unwrap();
+            let (struts, corr) = (struts(&g, &p), genhex_correction(&g, &screws(), &p));
+            for i in 0..6 {
+                assert!(
+                    (legs[i] - struts[i] - corr[i]).abs() < 1e-12,
+                    "{k}: {legs:?}"
+                );
+                largest = largest.max(corr[i].abs());
+            }
+        }
+        // The correction is there to be tested: a good share of a lead.
+        assert!(largest > 0.01, "largest correction {largest}");
+    }
+
+    #[test]
+    fn forward_solves_for_the_strut_correction() {
+        let g = genhex();
+        let mut h = Hexapod::new(&g).unwrap();
+        h.set_strut_correction(&screws()).unwrap();
+        let mut report = LinkageReport::default();
+        let mut pose = HOME;
+        assert_eq!(
+            h.forward(&h.inverse(&HOME).unwrap(), &mut pose, &mut report),
+            status::OK
+        );
+        assert!(max_diff(&pose, &HOME) < 1e-9, "{pose:?}");
+        for k in 1..=300 {
+            let t = k as f64 / 300.0;
+            let want = LinkagePose {
+                x: 2.0 * t,
+                y: -t,
+                z: 20.0 + 3.0 * t,
+                a: 8.0 * t,
+                b: -6.0 * t,
+                c: 40.0 * t,
+            };
+            let joints = h.inverse(&want).unwrap();
+            assert_eq!(
+                h.forward(&joints, &mut pose, &mut report),
+                status::OK,
+                "step {k}"
+            );
+            assert!(
+                max_diff(&pose, &want) < 1e-7,
+                "step {k}: {pose:?} vs {want:?}"
+            );
+            // What the tracker returns gives the joints back through the corrected inverse.
+            let back = h.inverse(&pose).unwrap();
+            assert!(
+                (0..6).all(|i| (back[i] - joints[i]).abs() < 1e-8),
+                "step {k}"
+            );
+        }
+        // Without the correction the same joints are another pose: the correction mattered.
+        let joints = h.inverse(&pose).unwrap();
+        let mut plain = Hexapod::new(&g).unwrap();
+        let mut p = pose;
+        assert_eq!(
+            plain.forward(&plain.inverse(&pose).unwrap(), &mut p, &mut report),
+            status::OK
+        );
+        assert_eq!(plain.forward(&joints, &mut p, &mut report), status::OK);
+        assert!(max_diff(&p, &pose) > 1e-3, "{p:?} vs {pose:?}");
+    }
+
+    #[test]
+    fn a_failed_corrected_call_leaves_the_tracker_where_it_was() {
+        let g = genhex();
+        let mut h = Hexapod::new(&g).unwrap();
+        h.set_strut_correction(&screws()).unwrap();
+        let mut report = LinkageReport::default();
+        let mut pose = HOME;
+        let home = h.inverse(&HOME).unwrap();
+        assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
+        // Legs driven out of the workspace through a fold: refused, the pose and tracker
+        // untouched, and the next call from home still works.
+        let mut refused = false;
+        for k in 1..=400 {
+            let s = k as f64 * 0.05;
+            let legs: [f64; 6] = std::array::from_fn(|i| home[i] + if i % 2 == 0 { s } else { -s });
+            let before = pose;
+            if h.forward(&legs, &mut pose, &mut report) != status::OK {
+                assert_eq!(pose, before);
+                refused = true;
+                break;
+            }
+        }
+        assert!(refused);
+        assert!(h.is_tracking());
+        assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
+        assert!(max_diff(&pose, &HOME) < 1e-9);
+        // Bad axes are refused and leave the old correction in place.
+        let mut bad = screws();
+        bad.base_n[2] = [0.0; 3];
+        assert_eq!(h.set_strut_correction(&bad), Err(status::INVALID_GEOMETRY));
+        bad.base_n[2] = [f64::NAN, 0.0, 1.0];
+        assert_eq!(h.set_strut_correction(&bad), Err(status::NON_FINITE));
+        assert_eq!(h.inverse(&HOME).unwrap(), home);
     }
 }

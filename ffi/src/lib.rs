@@ -36,7 +36,9 @@ mod exports;
 mod hexapod;
 mod pose;
 pub mod status;
+mod strut_correction;
 
 pub use exports::*;
 pub use hexapod::{Hexapod, LinkageGeometry, LinkageReport};
 pub use pose::LinkagePose;
+pub use strut_correction::LinkageStrutCorrection;
