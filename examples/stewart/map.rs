@@ -2,10 +2,12 @@
 //! (L2, L4, L6) joint space, every point on the initial configuration's branch.
 
 use crate::plot::{draw_err, init_fonts, scale};
+use indicatif::{ProgressBar, ProgressStyle};
 use linkage_examples::case_study::joint_map::{explore, linspace, JointMap};
 use linkage_examples::stewart::{home_start, Stewart};
 use plotters::prelude::*;
 use std::path::Path;
+use std::time::Instant;
 
 pub const SLICES: [f64; 4] = [190.0, 210.0, 230.0, 250.0];
 
@@ -21,14 +23,23 @@ pub fn run(out: &Path) -> Result<(), String> {
         "map: continuation over {} grid points (L1 = L3 = L5 = 190 mm)…",
         l2.len() * l4.len() * l6.len()
     );
+    // A progress bar on a terminal; nothing on a pipe or a log.
+    let bar = ProgressBar::new(1000).with_style(
+        ProgressStyle::with_template("map: {bar:40} {percent:>3} % {elapsed} (eta {eta})")
+            .map_err(|e| e.to_string())?,
+    );
+    let clock = Instant::now();
     let map = explore(&sys, &start, 190.0, l2, l4, l6, |f| {
-        eprintln!("map: {:>3.0} %", 100.0 * f)
+        bar.set_position((1000.0 * f) as u64)
     });
+    bar.finish_and_clear();
     eprintln!(
-        "map: {} of {} grid points on the start's branch, {} fold points located",
+        "map: {} of {} grid points on the start's branch, {} fold points located, in {:.1} s on {} threads",
         map.reached(),
         map.ratio.len(),
-        map.folds.len()
+        map.folds.len(),
+        clock.elapsed().as_secs_f64(),
+        rayon::current_num_threads()
     );
     for (n, l6) in SLICES.iter().enumerate() {
         let k = map
