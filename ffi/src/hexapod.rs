@@ -406,6 +406,47 @@ pub(crate) mod tests {
         .fold(0.0, |m, d| m.max(d.abs()))
     }
 
+    /// A pose path from home through the workspace, `t` from 0 to 1.
+    fn along_path(t: f64) -> LinkagePose {
+        LinkagePose {
+            x: 2.0 * t,
+            y: -t,
+            z: 20.0 + 3.0 * t,
+            a: 8.0 * t,
+            b: -6.0 * t,
+            c: 40.0 * t,
+        }
+    }
+
+    /// Drives three legs longer and three shorter from `home` until a forward call is
+    /// refused; checks every accepted pose against the inverse and the refused call left
+    /// `pose` alone. The refusal's code, if any.
+    fn drive_out_of_the_workspace(
+        h: &mut Hexapod,
+        home: &[f64; 6],
+        pose: &mut LinkagePose,
+    ) -> Option<i32> {
+        let mut report = LinkageReport::default();
+        for k in 1..=400 {
+            let s = k as f64 * 0.05;
+            let legs: [f64; 6] = std::array::from_fn(|i| home[i] + if i % 2 == 0 { s } else { -s });
+            let before = *pose;
+            let code = h.forward(&legs, pose, &mut report);
+            if code != status::OK {
+                assert_eq!(*pose, before, "pose untouched on refusal");
+                return Some(code);
+            }
+            let back = h.inverse(pose).unwrap();
+            for i in 0..6 {
+                assert!(
+                    (back[i] - legs[i]).abs() < 1e-7,
+                    "step {k}: accepted a wrong pose"
+                );
+            }
+        }
+        None
+    }
+
     #[test]
     fn inverse_is_genhexkins_strut_lengths() {
         let g = genhex();
@@ -440,15 +481,7 @@ pub(crate) mod tests {
         assert_eq!(report.started, 1);
         assert!(max_diff(&pose, &HOME) < 1e-9);
         for k in 1..=400 {
-            let t = k as f64 / 400.0;
-            let want = LinkagePose {
-                x: 2.0 * t,
-                y: -t,
-                z: 20.0 + 3.0 * t,
-                a: 8.0 * t,
-                b: -6.0 * t,
-                c: 40.0 * t,
-            };
+            let want = along_path(k as f64 / 400.0);
             let legs = h.inverse(&want).unwrap();
             assert_eq!(
                 h.forward(&legs, &mut pose, &mut report),
@@ -539,30 +572,10 @@ pub(crate) mod tests {
         let home = h.inverse(&HOME).unwrap();
         assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
         // Shorten three legs and lengthen three until no assembly exists near the branch.
-        let mut refused = None;
-        for k in 1..=400 {
-            let s = k as f64 * 0.05;
-            let legs: [f64; 6] = std::array::from_fn(|i| home[i] + if i % 2 == 0 { s } else { -s });
-            let before = pose;
-            let code = h.forward(&legs, &mut pose, &mut report);
-            if code != status::OK {
-                assert!(code > 0, "a refusal, not an input error: {code}");
-                assert_eq!(pose, before);
-                refused = Some(code);
-                break;
-            }
-            let back = h.inverse(&pose).unwrap();
-            for i in 0..6 {
-                assert!(
-                    (back[i] - legs[i]).abs() < 1e-7,
-                    "step {k}: accepted a wrong pose"
-                );
-            }
-        }
-        assert!(
-            refused.is_some(),
-            "the legs were driven out of the workspace"
-        );
+        let refused = drive_out_of_the_workspace(&mut h, &home, &mut pose);
+        let code = refused.expect("the legs were driven out of the workspace");
+        assert!(code > 0, "a refusal, not an input error: {code}");
+
         assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
         assert!(max_diff(&pose, &HOME) < 1e-7, "{pose:?}");
     }
@@ -677,15 +690,7 @@ pub(crate) mod tests {
         );
         assert!(max_diff(&pose, &HOME) < 1e-9, "{pose:?}");
         for k in 1..=300 {
-            let t = k as f64 / 300.0;
-            let want = LinkagePose {
-                x: 2.0 * t,
-                y: -t,
-                z: 20.0 + 3.0 * t,
-                a: 8.0 * t,
-                b: -6.0 * t,
-                c: 40.0 * t,
-            };
+            let want = along_path(k as f64 / 300.0);
             let joints = h.inverse(&want).unwrap();
             assert_eq!(
                 h.forward(&joints, &mut pose, &mut report),
@@ -726,18 +731,7 @@ pub(crate) mod tests {
         assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
         // Legs driven out of the workspace through a fold: refused, the pose and tracker
         // untouched, and the next call from home still works.
-        let mut refused = false;
-        for k in 1..=400 {
-            let s = k as f64 * 0.05;
-            let legs: [f64; 6] = std::array::from_fn(|i| home[i] + if i % 2 == 0 { s } else { -s });
-            let before = pose;
-            if h.forward(&legs, &mut pose, &mut report) != status::OK {
-                assert_eq!(pose, before);
-                refused = true;
-                break;
-            }
-        }
-        assert!(refused);
+        assert!(drive_out_of_the_workspace(&mut h, &home, &mut pose).is_some());
         assert!(h.is_tracking());
         assert_eq!(h.forward(&home, &mut pose, &mut report), status::OK);
         assert!(max_diff(&pose, &HOME) < 1e-9);
