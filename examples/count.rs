@@ -13,7 +13,9 @@
 //! Newton iterations to divide the count by. `nr-rps`, `nr-rss_hexapod`: the same from the
 //! home configurations of the other examples to 100 inputs around it. `ph-all`: pseudo-arc-length
 //! continuation from home to every row. `track TRAJECTORY.csv`:
-//! the `Tracker` over every sample of a `stewart trajectory` CSV. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
+//! the `Tracker` over every sample of a `stewart trajectory` CSV. `certify`: the Krawczyk
+//! certificate of NR's answer from home at every row it solves; `certify-step TRAJECTORY.csv`:
+//! `certify_step` between successive tracked samples. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Mechanism, Options, Start};
@@ -75,6 +77,33 @@ fn main() -> Result<(), String> {
             let (ok, samples) = measure_track(&sys, &start, &rows);
             println!("stewart tracker: {samples} samples, {ok} ok");
         }
+        "certify" => {
+            // Certificates of NR's answers from home at every row it solves.
+            let (_, all) = points(&path)?;
+            let sols: Vec<_> = all
+                .iter()
+                .filter_map(|x| {
+                    let sol = newton_raphson(&sys, &start, x, &Options::TIGHT).ok()?;
+                    sol.is_ok().then_some((sol.v, *x))
+                })
+                .collect();
+            let proved = measure_certify(&sys, &sols);
+            println!("stewart certify: {} solutions, {proved} certified", sols.len());
+        }
+        "certify-step" => {
+            // The tracker's samples, then a certificate of every step between them.
+            let rows = legs_after_first_column(&path)?;
+            let mut tracker = linkage::Tracker::new(sys.clone(), start, Options::TIGHT);
+            let samples: Vec<_> = rows
+                .iter()
+                .filter_map(|x| Some((tracker.update(x).ok()?.v, *x)))
+                .collect();
+            let proved = measure_certify_step(&sys, &samples);
+            println!(
+                "stewart certify_step: {} steps, {proved} certified",
+                samples.len().saturating_sub(1)
+            );
+        }
         "stewart" => kernels("stewart", &sys, &start),
         "rps" => {
             let r = rps::Rps3::new();
@@ -86,7 +115,7 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|nr-rps|nr-rss_hexapod|ph-all|track|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-rps|nr-rss_hexapod|ph-all|track|certify|certify-step|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
@@ -182,6 +211,23 @@ fn measure_track(
         .filter(|x| tracker.update(black_box(x)).is_ok())
         .count();
     (ok, rows.len())
+}
+
+#[inline(never)]
+fn measure_certify(sys: &stewart::Stewart, sols: &[([f64; 18], [f64; 6])]) -> usize {
+    sols.iter()
+        .filter(|(v, x)| linkage::certify(sys, black_box(v), black_box(x)).is_ok())
+        .count()
+}
+
+#[inline(never)]
+fn measure_certify_step(sys: &stewart::Stewart, samples: &[([f64; 18], [f64; 6])]) -> usize {
+    samples
+        .windows(2)
+        .filter(|w| {
+            linkage::certify_step(sys, black_box((&w[0].0, &w[0].1)), (&w[1].0, &w[1].1)).is_ok()
+        })
+        .count()
 }
 
 fn kernels<S: Mechanism<N, M>, const N: usize, const M: usize>(

@@ -40,6 +40,7 @@ extern crate self as linkage;
 pub use linkage_macros::mechanism;
 
 mod arc_length;
+mod ball;
 mod certify;
 mod convergence;
 mod correction;
