@@ -104,6 +104,10 @@ fn approximate_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
     Some(())
 }
 
+fn finite(a: &[f64]) -> bool {
+    a.iter().all(|v| v.is_finite())
+}
+
 /// An upper bound on γ_n = n u / (1 − n u), the relative error bound of an n-term sum of
 /// products: n u (1 + 2 n u) is at least that for n u ≤ 1/2, and its two factors are exact.
 fn gamma(n: usize) -> f64 {
@@ -346,7 +350,7 @@ pub fn certify<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> Result<Certificate<N>, CertifyError> {
-    if v.iter().chain(x).any(|a| !a.is_finite()) {
+    if !(finite(v) && finite(x)) {
         return Err(CertifyError::NonFinite);
     }
     search(sys, v, x, &[0.0; M])
@@ -366,13 +370,7 @@ pub fn certify_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
     (v0, x0): (&[f64; N], &[f64; M]),
     (v1, x1): (&[f64; N], &[f64; M]),
 ) -> Result<Certificate<N>, CertifyError> {
-    if v0
-        .iter()
-        .chain(x0)
-        .chain(v1)
-        .chain(x1)
-        .any(|a| !a.is_finite())
-    {
+    if !(finite(v0) && finite(x0) && finite(v1) && finite(x1)) {
         return Err(CertifyError::NonFinite);
     }
     let c: [f64; N] = core::array::from_fn(|i| 0.5 * (v0[i] + v1[i]));

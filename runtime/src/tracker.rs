@@ -30,6 +30,8 @@ pub struct Sample<const N: usize> {
     pub newton_iterations: u32,
     /// Whether the fast path failed and continuation had to take over.
     pub fell_back: bool,
+    /// With [`Tracker::certified`]: whether this step is proven to have kept the branch.
+    pub proof: Option<crate::StepProof>,
 }
 
 /// Why a sample was refused. The tracker keeps its last good state and stays usable.
@@ -108,6 +110,8 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     factor: Option<S::Factor>,
     /// The last sample was refused: the next must be reached by continuation.
     refused: bool,
+    /// With [`Tracker::certified`]: the chain of step certificates.
+    certified: Option<crate::CertifiedSteps<N, M>>,
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
@@ -121,7 +125,18 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             options,
             factor: None,
             refused: false,
+            certified: None,
         }
+    }
+
+    /// Certifies every accepted step ([`CertifiedSteps`](crate::CertifiedSteps)): each
+    /// [`Sample::proof`] then says whether the joint segment from the last accepted sample is
+    /// proven, by parametric Krawczyk certificates (the segment split into up to 64 pieces
+    /// when it does not pass whole), to lead along one branch without a singularity. An
+    /// unproven step is still solved and returned, marked so.
+    pub fn certified(mut self) -> Self {
+        self.certified = Some(crate::CertifiedSteps::new());
+        self
     }
 
     /// The last accepted pivot coordinates and joint inputs.
@@ -136,9 +151,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// Solves the next sample. On error the state is kept, and the next sample is reached
     /// from it by continuation only.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
+        let from = (self.v, self.x);
         let result = self.step(x);
         self.refused = result.is_err();
-        result
+        let mut sample = result?;
+        if let Some(chain) = &mut self.certified {
+            sample.proof = Some(chain.prove(&self.sys, (&from.0, &from.1), (&sample.v, x)));
+        }
+        Ok(sample)
     }
 
     fn step(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
@@ -254,6 +274,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             proximity: (det / self.start.det()).abs(),
             newton_iterations,
             fell_back,
+            proof: None,
         }
     }
 }

@@ -3,6 +3,7 @@
 
 mod case_study;
 mod certify;
+mod certify_adversarial;
 mod cli_regressions;
 mod front_end_robustness;
 mod generated_systems;
