@@ -25,8 +25,13 @@ pub enum StepProof {
     /// The root at the new sample lies on one branch with the root at the previous sample,
     /// without a singularity of ∂F/∂v between them: the joint segment was covered by `pieces`
     /// parametric Krawczyk certificates, chained, whose smallest radius of uniqueness was
-    /// `radius`.
-    Proven { pieces: u32, radius: f64 },
+    /// `radius`; the root at the new sample is within `error_bound` of the given point in
+    /// every coordinate (a proven bound, from the last piece's enclosure).
+    Proven {
+        pieces: u32,
+        radius: f64,
+        error_bound: f64,
+    },
     /// Not proven (which does not mean the branch changed): `reason` is why the last piece
     /// tried failed, after `pieces` pieces had passed.
     Unproven { pieces: u32, reason: CertifyError },
@@ -104,7 +109,11 @@ impl<const N: usize, const M: usize> CertifiedSteps<N, M> {
             .filter(|(x, e)| x == x0 && (0..N).all(|i| e[i].contains(v0[i])))
             .map(|(_, e)| e);
         let (proof, enclosure) = prove(sys, known, (v0, x0), (v1, x1));
-        self.end = enclosure.map(|e| (*x1, e));
+        // An unproven step leaves the chain where it was: a retry from the same point still
+        // chains from it.
+        if let Some(e) = enclosure {
+            self.end = Some((*x1, e));
+        }
         proof
     }
 
@@ -196,5 +205,18 @@ fn prove<S: Mechanism<N, M>, const N: usize, const M: usize>(
             None => return unproven(pieces, reason),
         }
     }
-    (StepProof::Proven { pieces, radius }, Some(enclosure))
+    // The enclosure holds the root at x1: its farthest face from v1 bounds v1's error.
+    let error_bound = (0..N).fold(0.0f64, |m, i| {
+        let e = enclosure[i];
+        m.max((v1[i] - e.lo).next_up())
+            .max((e.hi - v1[i]).next_up())
+    });
+    (
+        StepProof::Proven {
+            pieces,
+            radius,
+            error_bound,
+        },
+        Some(enclosure),
+    )
 }
