@@ -16,7 +16,8 @@
 //! continuation from home to every row. `track TRAJECTORY.csv`:
 //! the `Tracker` over every sample of a `stewart trajectory` CSV. `certify`: the Krawczyk
 //! certificate of NR's answer from home at every row it solves; `certify-step TRAJECTORY.csv`:
-//! `certify_step` between successive tracked samples. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
+//! `certify_step` between successive tracked samples; `track-certify TRAJECTORY.csv`: the
+//! certified `Tracker` (each sample's step proven). `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Linear, Mechanism, Options, Start};
@@ -86,6 +87,11 @@ fn main() -> Result<(), String> {
             let (ok, samples) = measure_track(&sys, &start, &rows);
             println!("stewart tracker: {samples} samples, {ok} ok");
         }
+        "track-certify" => {
+            let rows = legs_after_first_column(&path)?;
+            let (ok, samples) = measure_track_certified(&sys, &start, &rows);
+            println!("stewart certified tracker: {samples} samples, {ok} ok and proven");
+        }
         "certify" => {
             // Certificates of NR's answers from home at every row it solves.
             let (_, all) = points(&path)?;
@@ -124,7 +130,7 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|certify|certify-step|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|track-certify|certify|certify-step|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
@@ -216,6 +222,20 @@ fn measure_track(
     rows: &[[f64; 6]],
 ) -> (usize, usize) {
     let mut tracker = linkage::Tracker::new(sys.clone(), *start, Options::TIGHT);
+    let ok = rows
+        .iter()
+        .filter(|x| tracker.update(black_box(x)).is_ok())
+        .count();
+    (ok, rows.len())
+}
+
+#[inline(never)]
+fn measure_track_certified(
+    sys: &stewart::Stewart,
+    start: &Start<18, 6>,
+    rows: &[[f64; 6]],
+) -> (usize, usize) {
+    let mut tracker = linkage::Tracker::new(sys.clone(), *start, Options::TIGHT).certified();
     let ok = rows
         .iter()
         .filter(|x| tracker.update(black_box(x)).is_ok())

@@ -6,7 +6,7 @@
 //! in its box. That the root in the box at the step's start is the root the chain came along,
 //! and not another one the box happens to hold, needs an enclosure of that root inside the box:
 //! the chain keeps one (from [`certify`] at its first point, then from each step's certificate,
-//! which encloses every root along its segment) and checks it against the next box.
+//! which encloses the root at the step's end) and checks it against the next box.
 
 use crate::certify::{certify, certify_step, CertifyError};
 use crate::interval::Interval;

@@ -38,14 +38,14 @@ use crate::{Mechanism, Scalar};
 pub struct Certificate<const N: usize> {
     /// A box in which F(·, x) has exactly one root (for every x of the segment, for a step).
     pub unique_in: [Interval; N],
-    /// A box that contains that root (for a step: the roots along the segment).
+    /// A box that contains that root (for a step: the root at the step's end, `x1`).
     pub enclosure: [Interval; N],
     /// The half-width of the box of uniqueness about the given point (about the midpoint of
     /// the two, for a step): no other root is nearer than this in the largest coordinate.
     /// [`Self::unique_in`] is that box rounded inwards.
     pub radius: f64,
-    /// The largest distance, coordinate by coordinate, from the given point (the midpoint,
-    /// for a step) to the root (to any root along the segment): a proven bound on its error.
+    /// The largest distance, coordinate by coordinate, from the given point (for a step: from
+    /// `v1`) to the root in [`Self::enclosure`]: a proven bound on its error.
     pub error_bound: f64,
 }
 
@@ -156,15 +156,22 @@ impl<const N: usize> Rows<N> {
     }
 }
 
+/// The vector |Y| multiplies to bound the error of d = Y F (as computed): a signed dot
+/// product's γ_N |Y| |F|, and |Y| rad F.
+fn for_d<const N: usize>(f: &[Ball<1>; N]) -> [f64; N] {
+    let gn = gamma(N);
+    core::array::from_fn(|k| up(gn * f[k].mid.abs() + f[k].rad[0], 2))
+}
+
 /// The Krawczyk rows about `c` for inputs `x_mid ± half_width`, with Y ≈ B(c, x_mid)⁻¹.
 fn rows<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     c: &[f64; N],
     x_mid: &[f64; M],
     half_width: &[f64; M],
+    yt: &mut [[f64; N]; N],
 ) -> Result<Rows<N>, CertifyError> {
-    let mut yt = [[0.0; N]; N];
-    approximate_inverse(sys, c, x_mid, &mut yt).ok_or(CertifyError::Singular)?;
+    approximate_inverse(sys, c, x_mid, yt).ok_or(CertifyError::Singular)?;
     // R: a power of two at least the largest coordinate (so r = ρR is exact).
     let scale = c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     if !(scale < 1e100) {
@@ -228,7 +235,7 @@ fn rows<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // roundings, the sums with the products below through N + 1 more.
     let n = N as u32;
     let gn = gamma(N);
-    let for_d: [f64; N] = core::array::from_fn(|k| up(gn * f[k].mid.abs() + f[k].rad[0], 2));
+    let for_d = for_d(&f);
     let for_g: [f64; N] = core::array::from_fn(|k| up(gn * up(b_abs[k], n) + up(e0[k], n), 2));
     let for_h: [f64; N] = core::array::from_fn(|k| up(e1[k], n));
     let (mut step, mut d_error, mut g, mut h) =
@@ -267,8 +274,11 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
     c: &[f64; N],
     x_mid: &[f64; M],
     half_width: &[f64; M],
+    end: Option<(&[f64; N], &[f64; M])>,
 ) -> Result<Certificate<N>, CertifyError> {
-    let rows = rows(sys, c, x_mid, half_width)?;
+    // Y ≈ B(c)⁻¹ (transposed), kept here for the step's end.
+    let mut yt = [[0.0; N]; N];
+    let rows = rows(sys, c, x_mid, half_width, &mut yt)?;
     let (lo, hi) = rows.predicted().ok_or(CertifyError::NotContracting)?;
     // Just above the predicted smallest radius (the bounds are rounded up a few ulps).
     let mut small = None;
@@ -311,12 +321,101 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
             (c[i] + radius).next_down().max(c[i]),
         )
     });
-    Ok(Certificate {
+    let certificate = Certificate {
         unique_in,
         enclosure,
         radius,
         error_bound: error_bound.min(small),
+    };
+    // For a step: a tight enclosure of the root at its end, when one passes; else the
+    // segment's enclosure, which holds it too (measured from `v1`).
+    Ok(match end {
+        None => certificate,
+        Some((v1, x1)) => match at_end(sys, (&rows, &yt), c, radius, v1, x1) {
+            Some((enclosure, error_bound)) => Certificate {
+                enclosure,
+                error_bound,
+                ..certificate
+            },
+            None => Certificate {
+                error_bound: farthest(&certificate.enclosure, v1),
+                ..certificate
+            },
+        },
     })
+}
+
+/// The largest distance from `v` to a face of the box `e` (which holds `v`'s root), rounded up.
+fn farthest<const N: usize>(e: &[Interval; N], v: &[f64; N]) -> f64 {
+    (0..N).fold(0.0f64, |m, i| {
+        m.max((v[i] - e[i].lo).next_up())
+            .max((e[i].hi - v[i]).next_up())
+    })
+}
+
+/// The Krawczyk test about `v1` at the single input `x1`, reusing the step's Y and its bounds on
+/// B: the box `v1 ± r` lies in `c ± (δ + r)`, δ = |v1 − c|∞, so B over it is bounded by the
+/// rows' `e₀ + e₁ (δ + r)/R`, and row i passes when `a′_i + r (g_i + h_i (δ + r)) < r` with
+/// a′ = |Y F(v1, x1)| and its error. Requiring `δ + r` within the step's radius of uniqueness
+/// makes the root it encloses the one the step proved unique, the branch's. The tight
+/// enclosure and error bound, or `None`.
+fn at_end<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    (rows, yt): (&Rows<N>, &[[f64; N]; N]),
+    c: &[f64; N],
+    radius: f64,
+    v1: &[f64; N],
+    x1: &[f64; M],
+) -> Option<([Interval; N], f64)> {
+    let delta = up((0..N).fold(0.0f64, |m, i| m.max((v1[i] - c[i]).abs())), 1);
+    let mut f = [Ball::<1>::from_f64(0.0); N];
+    sys.residual_in(&v1.map(Ball::from_f64), &x1.map(Ball::from_f64), &mut f);
+    let for_d = for_d(&f);
+    let (mut step, mut d_error) = ([0.0f64; N], [0.0f64; N]);
+    for k in 0..N {
+        let (yk, fm, wd) = (&yt[k], f[k].mid, for_d[k]);
+        for i in 0..N {
+            step[i] += yk[i] * fm;
+            d_error[i] += yk[i].abs() * wd;
+        }
+    }
+    let n = N as u32;
+    let a: [f64; N] = core::array::from_fn(|i| up(step[i].abs() + up(d_error[i], n + 1), 1));
+    // Five roundings after the coefficients, which are upper bounds already.
+    let bound = |i: usize, r: f64| up(a[i] + r * (rows.g[i] + rows.h[i] * (delta + r)), 5);
+    // The smallest r the rows allow, solved in floating point as a guide.
+    let mut lo = 0.0f64;
+    for i in 0..N {
+        let l = 1.0 - rows.g[i] - rows.h[i] * delta;
+        let disc = l * l - 4.0 * a[i] * rows.h[i];
+        if !(l > 0.0 && disc >= 0.0) {
+            return None;
+        }
+        lo = lo.max(2.0 * a[i] / (l + crate::math::sqrt(disc)));
+    }
+    let limit = radius.min(rows.reach);
+    let mut r = lo * (1.0 + 1e-6) + f64::MIN_POSITIVE;
+    for _ in 0..4 {
+        if up(delta + r, 1) > limit {
+            return None;
+        }
+        if (0..N).all(|i| bound(i, r) < r) {
+            let mut error_bound = 0.0f64;
+            let enclosure = core::array::from_fn(|i| {
+                let w = bound(i, r);
+                error_bound = error_bound.max(up(step[i].abs() + w, 1));
+                let centre = Interval::point(v1[i]) - Interval::point(step[i]);
+                let x = Interval::around(v1[i], r);
+                Interval::new(
+                    (centre.lo - w).next_down().max(x.lo),
+                    (centre.hi + w).next_up().min(x.hi),
+                )
+            });
+            return Some((enclosure, error_bound.min(r)));
+        }
+        r *= 4.0;
+    }
+    None
 }
 
 /// Proves that F(·, x) has exactly one root near `v`, and bounds its distance from `v`.
@@ -353,7 +452,7 @@ pub fn certify<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !(finite(v) && finite(x)) {
         return Err(CertifyError::NonFinite);
     }
-    search(sys, v, x, &[0.0; M])
+    search(sys, v, x, &[0.0; M], None)
 }
 
 /// Proves that the roots `v0` at `x0` and `v1` at `x1` lie on one branch without a singularity
@@ -361,10 +460,10 @@ pub fn certify<S: Mechanism<N, M>, const N: usize, const M: usize>(
 /// [`Certificate::unique_in`], which holds both, and ∂F/∂v is nonsingular throughout.
 ///
 /// What it proves about the roots themselves (rather than the points `v0`, `v1`): the root at
-/// `x1` in the box is on one branch with the root at `x0` in the box, and every root along the
-/// segment lies in [`Certificate::enclosure`]. To know that the root in the box at `x0` is the
-/// one `v0` stands for, check that an enclosure of it (from [`certify`], or from the previous
-/// step) lies in [`Certificate::unique_in`].
+/// `x1` in the box is on one branch with the root at `x0` in the box, and it lies in
+/// [`Certificate::enclosure`], within [`Certificate::error_bound`] of `v1`. To know that the
+/// root in the box at `x0` is the one `v0` stands for, check that an enclosure of it (from
+/// [`certify`], or from the previous step) lies in [`Certificate::unique_in`].
 pub fn certify_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     (v0, x0): (&[f64; N], &[f64; M]),
@@ -378,7 +477,7 @@ pub fn certify_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // The segment's hull x_mid ± w (each end's distance rounded up).
     let w: [f64; M] =
         core::array::from_fn(|j| up((x0[j] - x_mid[j]).abs().max((x1[j] - x_mid[j]).abs()), 1));
-    let cert = search(sys, &c, &x_mid, &w)?;
+    let cert = search(sys, &c, &x_mid, &w, Some((v1, x1)))?;
     // Both ends must be inside the box of uniqueness.
     let inside = |v: &[f64; N]| (0..N).all(|i| cert.unique_in[i].contains(v[i]));
     if inside(v0) && inside(v1) {
