@@ -84,6 +84,8 @@ impl<const D: usize> Add for Ball<D> {
 
 impl<const D: usize> Sub for Ball<D> {
     type Output = Self;
+    // The radii of a difference add, as those of a sum do.
+    #[allow(clippy::suspicious_arithmetic_impl)]
     #[inline(always)]
     fn sub(self, o: Self) -> Self {
         Ball::finish(
