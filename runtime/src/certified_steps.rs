@@ -12,10 +12,14 @@ use crate::certify::{certify, certify_step, CertifyError};
 use crate::interval::Interval;
 use crate::Mechanism;
 
-/// Pieces a step may be split into, at most (in halves, then quarters, …).
+/// Pieces a tracked step may be split into, at most (in halves, then quarters, …).
 const MAX_PIECES: u32 = 64;
-/// How often a piece may be halved: pieces down to 1/2⁸ of the step.
+/// How often a tracked step's piece may be halved: pieces down to 1/2⁸ of the step.
 const MAX_DEPTH: usize = 8;
+/// For a whole continuation path ([`crate::arc_length_certified`]): pieces, and halvings
+/// (down to 1/2³² of the segment, for paths that end near a singularity).
+pub(crate) const PATH_PIECES: u32 = 4096;
+pub(crate) const PATH_DEPTH: usize = 32;
 /// Newton iterations for the root at a split point (the certificate checks it).
 const SPLIT_NEWTON: usize = 8;
 
@@ -108,7 +112,8 @@ impl<const N: usize, const M: usize> CertifiedSteps<N, M> {
             .end
             .filter(|(x, e)| x == x0 && (0..N).all(|i| e[i].contains(v0[i])))
             .map(|(_, e)| e);
-        let (proof, enclosure) = prove(sys, known, (v0, x0), (v1, x1));
+        let (proof, enclosure) =
+            prove::<S, N, M, MAX_DEPTH>(sys, known, (v0, x0), (v1, x1), MAX_PIECES);
         // An unproven step leaves the chain where it was: a retry from the same point still
         // chains from it.
         if let Some(e) = enclosure {
@@ -155,12 +160,14 @@ fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     Some(v)
 }
 
-/// The step proof, and the enclosure of the root at `x1` to chain the next step from.
-fn prove<S: Mechanism<N, M>, const N: usize, const M: usize>(
+/// The step proof, and the enclosure of the root at `x1` to chain the next step from; at most
+/// `max_pieces` pieces, each at least 1/2^DEPTH of the step.
+pub(crate) fn prove<S: Mechanism<N, M>, const N: usize, const M: usize, const DEPTH: usize>(
     sys: &S,
     known: Option<[Interval; N]>,
     (v0, x0): (&[f64; N], &[f64; M]),
     (v1, x1): (&[f64; N], &[f64; M]),
+    max_pieces: u32,
 ) -> (StepProof, Option<[Interval; N]>) {
     let unproven = |pieces, reason| (StepProof::Unproven { pieces, reason }, None);
     // An enclosure of the root at the start.
@@ -172,7 +179,7 @@ fn prove<S: Mechanism<N, M>, const N: usize, const M: usize>(
         },
     };
     // The pieces' right ends still to reach, the nearest last.
-    let mut ends = [([0.0; N], [0.0; M]); MAX_DEPTH];
+    let mut ends = [([0.0; N], [0.0; M]); DEPTH];
     ends[0] = (*v1, *x1);
     let mut depth = 1;
     let (mut v, mut x, mut enclosure) = (*v0, *x0, start);
@@ -191,7 +198,7 @@ fn prove<S: Mechanism<N, M>, const N: usize, const M: usize>(
             Ok(_) => CertifyError::NotContracting,
             Err(e) => e,
         };
-        if depth == MAX_DEPTH || pieces + depth as u32 >= MAX_PIECES {
+        if depth == DEPTH || pieces + depth as u32 >= max_pieces {
             return unproven(pieces, reason);
         }
         // Split: the root at the middle of the joint segment, from the middle of the two.

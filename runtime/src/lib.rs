@@ -41,6 +41,7 @@ pub use linkage_macros::mechanism;
 
 mod arc_length;
 mod ball;
+mod certified_path;
 mod certified_steps;
 mod certify;
 mod convergence;
@@ -65,6 +66,7 @@ mod tracker;
 pub mod __private;
 
 pub use arc_length::arc_length;
+pub use certified_path::arc_length_certified;
 pub use certified_steps::{CertifiedSteps, StepProof};
 pub use certify::{certify, certify_step, Certificate, CertifyError};
 pub use correction::{det_b, error_estimate};
