@@ -42,6 +42,7 @@ pub enum StepProof {
 }
 
 impl StepProof {
+    /// Whether the step is [`StepProof::Proven`].
     pub fn is_proven(&self) -> bool {
         matches!(self, StepProof::Proven { .. })
     }
@@ -92,6 +93,7 @@ impl<const N: usize, const M: usize> Default for CertifiedSteps<N, M> {
 }
 
 impl<const N: usize, const M: usize> CertifiedSteps<N, M> {
+    /// A chain with no step yet: its first step starts from a root certified on its own.
     pub fn new() -> Self {
         CertifiedSteps { end: None }
     }
