@@ -155,8 +155,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// whole), to lead along one branch without a singularity; [`Sample::proof`] holds the
     /// proof. A sample that is solved but not proven is refused with
     /// [`TrackError::Unproven`], like any refused sample: the state stays at the last accepted
-    /// one, so the chain of proofs from the start is never broken and every accepted sample is
-    /// proven to lie on the start's branch.
+    /// one, so the chain of proofs is never broken: called on a new tracker (as below), every
+    /// accepted sample is proven to lie on the start's branch. Called later, the chain starts
+    /// at the last accepted sample.
     ///
     /// ```
     /// use linkage::{Mechanism, Options, StepProof, Tracker};
