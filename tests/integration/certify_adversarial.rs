@@ -506,3 +506,45 @@ fn bad_input_and_points_far_from_roots_are_not_certified() {
     assert!(dd_in_box(&root, &c.enclosure));
     assert!(c.error_bound >= dd_dist(&root, &near.map(Dd::from)));
 }
+
+/// A step's certificate encloses the root at its end (refined in double-double) and bounds the
+/// end point's distance to it — also when the end point given is off the root by 1e-9 to 1e-4
+/// mm, where the bound must grow with it or the step be refused.
+#[test]
+fn a_step_encloses_the_root_at_its_end() {
+    let s = Stewart::new();
+    let start = home_start(&s).unwrap();
+    let (mut checked, mut refused) = (0, 0);
+    for (k, sample) in linkage_tests::stewart_pose_samples(7, 20, 0.25, 30.0, 50)
+        .iter()
+        .enumerate()
+    {
+        let x0 = sample.x;
+        // Legs moved by up to 0.15 mm: a step of a fast 1 kHz trajectory.
+        let x1: [f64; 6] = std::array::from_fn(|j| x0[j] + 0.05 * (((j + k) % 7) as f64 - 3.0));
+        let from = linkage::Start::new(&s, sample.v, x0).unwrap();
+        let next = arc_length(&s, &from, &x1, &Options::TIGHT).unwrap();
+        assert!(next.is_ok());
+        let root = root_dd(&s, &next.v, &x1).unwrap();
+        for off in [0.0, 1e-9, 1e-6, 1e-4] {
+            let v1: [f64; 18] = std::array::from_fn(|i| next.v[i] + off * (i as f64 - 8.5) / 8.5);
+            match certify_step(&s, (&sample.v, &x0), (&v1, &x1)) {
+                Ok(c) => {
+                    checked += 1;
+                    assert!(dd_in_box(&root, &c.enclosure), "sample {k}, {off} off");
+                    let d = dd_dist(&root, &v1.map(Dd::from));
+                    assert!(c.error_bound >= d, "{} < {d}", c.error_bound);
+                    // And it is tight: a few per cent above the true distance.
+                    assert!(
+                        c.error_bound < 1.2 * off + 1e-9,
+                        "{} for {off}",
+                        c.error_bound
+                    );
+                }
+                Err(_) => refused += 1,
+            }
+        }
+    }
+    println!("{checked} step certificates checked, {refused} refused");
+    assert!(checked >= 60, "{checked}");
+}
