@@ -513,7 +513,6 @@ fn bad_input_and_points_far_from_roots_are_not_certified() {
 #[test]
 fn a_step_encloses_the_root_at_its_end() {
     let s = Stewart::new();
-    let start = home_start(&s).unwrap();
     let (mut checked, mut refused) = (0, 0);
     for (k, sample) in linkage_tests::stewart_pose_samples(7, 20, 0.25, 30.0, 50)
         .iter()
