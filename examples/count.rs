@@ -14,7 +14,10 @@
 //! (`Linear::Dense`). `nr-rps`, `nr-rss_hexapod`: the same from the
 //! home configurations of the other examples to 100 inputs around it. `ph-all`: pseudo-arc-length
 //! continuation from home to every row. `track TRAJECTORY.csv`:
-//! the `Tracker` over every sample of a `stewart trajectory` CSV. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
+//! the `Tracker` over every sample of a `stewart trajectory` CSV. `certify`: the Krawczyk
+//! certificate of NR's answer from home at every row it solves; `certify-step TRAJECTORY.csv`:
+//! `certify_step` between successive tracked samples; `track-certify TRAJECTORY.csv`: the
+//! certified `Tracker` (each sample's step proven). `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Linear, Mechanism, Options, Start};
@@ -84,6 +87,38 @@ fn main() -> Result<(), String> {
             let (ok, samples) = measure_track(&sys, &start, &rows);
             println!("stewart tracker: {samples} samples, {ok} ok");
         }
+        "track-certify" => {
+            let rows = legs_after_first_column(&path)?;
+            let (ok, samples) = measure_track_certified(&sys, &start, &rows);
+            println!("stewart certified tracker: {samples} samples, {ok} ok and proven");
+        }
+        "certify" => {
+            // Certificates of NR's answers from home at every row it solves.
+            let (_, all) = points(&path)?;
+            let sols: Vec<_> = all
+                .iter()
+                .filter_map(|x| {
+                    let sol = newton_raphson(&sys, &start, x, &Options::TIGHT).ok()?;
+                    sol.is_ok().then_some((sol.v, *x))
+                })
+                .collect();
+            let proved = measure_certify(&sys, &sols);
+            println!("stewart certify: {} solutions, {proved} certified", sols.len());
+        }
+        "certify-step" => {
+            // The tracker's samples, then a certificate of every step between them.
+            let rows = legs_after_first_column(&path)?;
+            let mut tracker = linkage::Tracker::new(sys.clone(), start, Options::TIGHT);
+            let samples: Vec<_> = rows
+                .iter()
+                .filter_map(|x| Some((tracker.update(x).ok()?.v, *x)))
+                .collect();
+            let proved = measure_certify_step(&sys, &samples);
+            println!(
+                "stewart certify_step: {} steps, {proved} certified",
+                samples.len().saturating_sub(1)
+            );
+        }
         "stewart" => kernels("stewart", &sys, &start),
         "rps" => {
             let r = rps::Rps3::new();
@@ -95,7 +130,7 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|track-certify|certify|certify-step|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
@@ -192,6 +227,37 @@ fn measure_track(
         .filter(|x| tracker.update(black_box(x)).is_ok())
         .count();
     (ok, rows.len())
+}
+
+#[inline(never)]
+fn measure_track_certified(
+    sys: &stewart::Stewart,
+    start: &Start<18, 6>,
+    rows: &[[f64; 6]],
+) -> (usize, usize) {
+    let mut tracker = linkage::Tracker::new(sys.clone(), *start, Options::TIGHT).certified();
+    let ok = rows
+        .iter()
+        .filter(|x| tracker.update(black_box(x)).is_ok())
+        .count();
+    (ok, rows.len())
+}
+
+#[inline(never)]
+fn measure_certify(sys: &stewart::Stewart, sols: &[([f64; 18], [f64; 6])]) -> usize {
+    sols.iter()
+        .filter(|(v, x)| linkage::certify(sys, black_box(v), black_box(x)).is_ok())
+        .count()
+}
+
+#[inline(never)]
+fn measure_certify_step(sys: &stewart::Stewart, samples: &[([f64; 18], [f64; 6])]) -> usize {
+    samples
+        .windows(2)
+        .filter(|w| {
+            linkage::certify_step(sys, black_box((&w[0].0, &w[0].1)), (&w[1].0, &w[1].1)).is_ok()
+        })
+        .count()
 }
 
 fn kernels<S: Mechanism<N, M>, const N: usize, const M: usize>(

@@ -2,7 +2,7 @@
 //! timing is stable.
 
 use crate::Method;
-use linkage::{Options, Start, Tracker};
+use linkage::{CertifiedSteps, Options, Start, TrackError, Tracker};
 use linkage_examples::cli::legs_csv::{self, LegRows};
 use linkage_examples::cli::stream::{open_input, print};
 use linkage_examples::stewart::{home_start, Stewart};
@@ -15,6 +15,7 @@ pub fn run(
     input: &Path,
     json: bool,
     dense: bool,
+    certify: bool,
 ) -> Result<(), String> {
     // The rows are replayed pass after pass, so the valid ones are held in memory (48 bytes
     // each); the others are counted and said.
@@ -48,25 +49,48 @@ pub fn run(
         Method::Nr => linkage::Method::NewtonRaphson,
     };
     let mut times: Vec<f64> = Vec::new();
-    let (mut failures, mut repetitions) = (0usize, 0usize);
+    let (mut failures, mut unproven, mut repetitions) = (0usize, 0usize, 0usize);
     let began = Instant::now();
     // At least 3 passes and 1 s of solving, so that the per-solve statistics are stable.
     while repetitions < 3 || began.elapsed() < Duration::from_secs(1) {
         repetitions += 1;
-        let mut tracker = Tracker::new(sys.clone(), start, options);
+        let tracker = Tracker::new(sys.clone(), start, options);
+        let mut tracker = if certify {
+            tracker.certified()
+        } else {
+            tracker
+        };
+        let mut chain = CertifiedSteps::new();
         let mut current = start;
         for x in &rows {
             let t0 = Instant::now();
-            let (ok, next) = if track && matches!(method, Method::Ph) {
-                (tracker.update(x).is_ok(), None)
+            // With `--certify`, a solve counts as proven when its certificate (with `--track`:
+            // its step's proof, the tracker's own for PH) passes, and is timed with it.
+            let (ok, proven, next) = if track && matches!(method, Method::Ph) {
+                match tracker.update(x) {
+                    Ok(_) => (true, true, None),
+                    Err(TrackError::Unproven { .. }) => (true, false, None),
+                    Err(_) => (false, false, None),
+                }
             } else {
                 match solver.solve(&sys, &current, x, &options) {
-                    Ok(sol) if sol.is_ok() => (true, track.then_some(sol.v)),
-                    _ => (false, None),
+                    Ok(sol) if sol.is_ok() => {
+                        let proven = !certify
+                            || if track {
+                                chain
+                                    .prove(&sys, (current.v(), current.x()), (&sol.v, x))
+                                    .is_proven()
+                            } else {
+                                linkage::certify(&sys, &sol.v, x).is_ok()
+                            };
+                        (true, proven, (track && proven).then_some(sol.v))
+                    }
+                    _ => (false, false, None),
                 }
             };
             times.push(t0.elapsed().as_secs_f64() * 1e6);
             failures += usize::from(!ok);
+            unproven += usize::from(certify && ok && !proven);
             // The next row starts here: a checked start, outside the timed solve.
             if let Some(Ok(s)) = next.map(|v| Start::new(&sys, v, *x)) {
                 current = s;
@@ -84,19 +108,27 @@ pub fn run(
     if json {
         let out = serde_json::json!({
             "method": name, "track": track, "linear": if dense { "dense" } else { "generated" },
+            "certify": certify,
             "points": rows.len(), "repetitions": repetitions, "failures_per_pass": failures / repetitions,
+            "unproven_per_pass": certify.then_some(unproven / repetitions),
             "mean_us": mean, "median_us": pick(0.5), "p99_us": pick(0.99),
         });
         print(&format!("{out}\n"))
     } else {
         print(&format!(
-            "{name}{}{}: {} points × {repetitions} passes, mean {mean:.3} µs, median {:.3} µs, p99 {:.3} µs per solve ({} not ok per pass)\n",
+            "{name}{}{}{}: {} points × {repetitions} passes, mean {mean:.3} µs, median {:.3} µs, p99 {:.3} µs per solve ({} not ok{} per pass)\n",
             if track { " --track" } else { "" },
+            if certify { " --certify" } else { "" },
             if dense { " (dense LU)" } else { "" },
             rows.len(),
             pick(0.5),
             pick(0.99),
-            failures / repetitions
+            failures / repetitions,
+            if certify {
+                format!(", {} solved but not proven", unproven / repetitions)
+            } else {
+                String::new()
+            }
         ))
     }
 }

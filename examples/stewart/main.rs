@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example stewart -- equations [--json]
-//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] --input legs.csv|- [--output out.csv]
+//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] [--certify] --input legs.csv|- [--output out.csv]
 //! cargo run --release --example stewart -- modes [--geometry FILE] --input legs.csv [--json]
 //! cargo run --release --example stewart -- table-v [--seed S] [--json]
 //! cargo run --release --example stewart -- map --out DIR
@@ -109,6 +109,9 @@ enum Command {
         /// Use the dense-LU baseline instead of the generated elimination.
         #[arg(long)]
         dense: bool,
+        /// Time each solve with its certificate (with `--track`: each step proven).
+        #[arg(long)]
+        certify: bool,
     },
     /// Draw Fig. 7 (relative error per test point and method) as PNG.
     Errors {
@@ -147,6 +150,11 @@ pub struct SolveArgs {
     /// Newton iterations allowed for the final correction (and for NR altogether).
     #[arg(long, default_value_t = linkage::Options::TIGHT.max_iterations, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..))]
     max_iterations: u32,
+    /// Prove each ok answer by the Krawczyk test (columns `certified`, `radius_mm`,
+    /// `error_bound_mm`); with `--track`, prove each step from the last row kept its branch,
+    /// and refuse a row (`unproven`) whose step is not proven.
+    #[arg(long)]
+    certify: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -209,11 +217,15 @@ fn main() -> ExitCode {
             input,
             json,
             dense,
+            certify,
         } => match method {
+            BenchMethod::All if certify => {
+                Err("--certify is not available with --method all".into())
+            }
             BenchMethod::All => bench::run_all(geometry.as_deref(), &input, json),
-            BenchMethod::Ph => bench::run(Method::Ph, track, &input, json, dense),
-            BenchMethod::Nh => bench::run(Method::Nh, track, &input, json, dense),
-            BenchMethod::Nr => bench::run(Method::Nr, track, &input, json, dense),
+            BenchMethod::Ph => bench::run(Method::Ph, track, &input, json, dense, certify),
+            BenchMethod::Nh => bench::run(Method::Nh, track, &input, json, dense, certify),
+            BenchMethod::Nr => bench::run(Method::Nr, track, &input, json, dense, certify),
         },
         Command::Errors { out, seed } => errors::run(&out, seed),
     };

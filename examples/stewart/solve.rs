@@ -1,7 +1,7 @@
 //! `stewart solve`: forward kinematics for a CSV of leg lengths, streamed row by row.
 
 use crate::{Method, SolveArgs};
-use linkage::{Mechanism, Options, Pose, Start, Tracker};
+use linkage::{CertifiedSteps, Mechanism, Options, Pose, Start, StepProof, Tracker};
 use linkage_examples::cli::geometry;
 use linkage_examples::cli::legs_csv::{LegRows, Row};
 use linkage_examples::cli::results_csv::{self, Record, Via};
@@ -18,6 +18,10 @@ const MAX_LEG_OVER_SIZE: f64 = 1e6;
 /// The status of a row the solver called converged with an error estimate above the
 /// tolerance (near a singularity rounding can forbid the tolerance): not `ok`.
 const TOLERANCE_NOT_MET: &str = "tolerance_not_met";
+
+/// The status of a row with `--certify --track` whose step from the last row was solved but
+/// not proven to keep the branch: refused, not `ok`.
+const UNPROVEN: &str = "unproven";
 
 pub fn run(args: &SolveArgs) -> Result<(), String> {
     match &args.geometry {
@@ -56,7 +60,11 @@ fn solve_stream<S: SixSix>(
     let name = args.input.display();
     let mut rows = LegRows::new(input)
         .map_err(|e| sink.check().err().unwrap_or_else(|| format!("{name}: {e}")))?;
-    sink.write_line(&results_csv::header())?;
+    sink.write_line(&if args.certify {
+        results_csv::header_certified()
+    } else {
+        results_csv::header()
+    })?;
     let mut line = String::new();
     let mut n = 0u64;
     loop {
@@ -68,7 +76,11 @@ fn solve_stream<S: SixSix>(
         };
         n += 1;
         line.clear();
-        solver.solve(n, row).write_to(&mut line);
+        let record = solver.solve(n, row);
+        record.write_to(&mut line);
+        if args.certify {
+            record.write_certificate(&mut line);
+        }
         sink.write_line(&line)?;
     }
     sink.flush()
@@ -85,6 +97,11 @@ struct RowSolver<S: SixSix> {
     method: Method,
     track: bool,
     max_leg: f64,
+    /// `--certify`: each ok answer certified; with `--track`, each step proven (and a row
+    /// whose step is not proven is refused).
+    certify: bool,
+    /// With `--certify --track` and NH or NR: the chain of step proofs from the start.
+    chain: CertifiedSteps<18, 6>,
 }
 
 impl<S: SixSix> RowSolver<S> {
@@ -96,8 +113,13 @@ impl<S: SixSix> RowSolver<S> {
             ..Options::TIGHT
         };
         let size = mechanism_size(&sys);
+        let tracker = Tracker::new(sys.clone(), start, options);
         RowSolver {
-            tracker: Tracker::new(sys.clone(), start, options),
+            tracker: if args.certify {
+                tracker.certified()
+            } else {
+                tracker
+            },
             sys,
             start,
             current: start,
@@ -105,6 +127,8 @@ impl<S: SixSix> RowSolver<S> {
             method: args.method,
             track: args.track,
             max_leg: MAX_LEG_OVER_SIZE * size,
+            certify: args.certify,
+            chain: CertifiedSteps::new(),
         }
     }
 
@@ -162,11 +186,35 @@ impl<S: SixSix> RowSolver<S> {
             steps: Some(steps),
             min_det_ratio: Some(min_det_ratio),
             via: Some(via),
+            certified: None,
         };
         if !sol.is_ok() {
             return record;
         }
-        let record = with_pose(&self.sys, record, &sol.v, self.options.tolerance);
+        let mut record = with_pose(&self.sys, record, &sol.v, self.options.tolerance);
+        if self.certify && record.solution.is_some() {
+            if self.track {
+                // The step from the last row solved ok: a row it is not proven to reach on
+                // that row's branch is refused, and the next row starts from the last one.
+                let from = (self.current.v(), self.current.x());
+                match self.chain.prove(&self.sys, from, (&sol.v, &x)) {
+                    StepProof::Proven {
+                        radius,
+                        error_bound,
+                        ..
+                    } => record.certified = Some((radius, error_bound)),
+                    StepProof::Unproven { .. } => {
+                        return Record {
+                            status: UNPROVEN,
+                            solution: None,
+                            ..record
+                        }
+                    }
+                }
+            } else if let Ok(c) = linkage::certify(&self.sys, &sol.v, &x) {
+                record.certified = Some((c.radius, c.error_bound));
+            }
+        }
         if self.track && record.solution.is_some() {
             // A checked start: a row that cannot be one (non-finite, singular) is not taken
             // up, and the next row starts from the last one that can.
@@ -198,6 +246,14 @@ impl<S: SixSix> RowSolver<S> {
                     } else {
                         Via::Direct
                     }),
+                    certified: match sample.proof {
+                        Some(StepProof::Proven {
+                            radius,
+                            error_bound,
+                            ..
+                        }) => Some((radius, error_bound)),
+                        _ => None,
+                    },
                 };
                 let record = with_pose(&self.sys, record, &sample.v, self.options.tolerance);
                 if record.solution.is_none() {
@@ -207,6 +263,7 @@ impl<S: SixSix> RowSolver<S> {
             }
             Err(linkage::TrackError::Input(e)) => Record::status_only(n, e.word()),
             Err(linkage::TrackError::Lost(status)) => Record::status_only(n, status.word()),
+            Err(linkage::TrackError::Unproven { .. }) => Record::status_only(n, UNPROVEN),
         }
     }
 }

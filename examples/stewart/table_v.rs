@@ -83,6 +83,12 @@ fn table(r: &Report) -> String {
         row("normal points not solved", &|s| {
             s.normal_failures.to_string()
         });
+        row("ok answers certified (Krawczyk): normal", &|s| {
+            format!("{}/{}", s.normal_certified, s.normal_ok)
+        });
+        row("ok answers certified (Krawczyk): near-singular", &|s| {
+            format!("{}/{}", s.near_singular_certified, s.near_singular_ok)
+        });
     }
     line!(
         "\nnear-singular points whose straight joint-space segment leaves the valid joint space: {} of {}",

@@ -135,6 +135,9 @@ fn track<S: SixSix>(
         }
         Err(linkage::TrackError::Input(e)) => status::of_error(&e),
         Err(linkage::TrackError::Lost(s)) => status::of_status(&s),
+        // Only a certified tracker refuses a sample as unproven; this one is not: a refusal
+        // all the same, never ok.
+        Err(linkage::TrackError::Unproven { .. }) => status::FAILED,
     }
 }
 

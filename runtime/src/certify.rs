@@ -1,35 +1,51 @@
 //! Proofs by the Krawczyk test: that a box holds exactly one root of F(·, x), and that a tracked
 //! step stayed on one branch.
 //!
-//! For a box X around a point c, an approximate inverse Y of B(c), and inputs P (a point, or
-//! the interval hull of a joint-space segment),
+//! For the box X = c ± r (the same r in every coordinate), an approximate inverse Y of B(c), and
+//! inputs P (a point, or the interval hull of a joint-space segment),
 //!
 //! `K(X, P) = c − Y F(c, P) + (I − Y B(X, P)) (X − c)`.
 //!
 //! If K lies in the interior of X, then for every x in P there is exactly one root of F(·, x) in
 //! X, every B in B(X, P) is nonsingular, and the root lies in K (Krawczyk 1969, Moore 1977; the
-//! parametric form in Neumaier, *Interval Methods for Systems of Equations*, 1990, §5.1). Every
-//! interval operation rounds outward, and F and B are evaluated by the generated `residual_in`
-//! and `jacobian_in` over [`Interval`]s, so the test is a proof for the model with its
-//! floating-point constants. X − c is symmetric, so (I − Y B)(X − c) needs only the magnitudes
-//! of I − Y B.
+//! parametric form in Neumaier, *Interval Methods for Systems of Equations*, 1990, §5.1).
+//!
+//! One pass proves a whole range of radii. With d = Y F(c, P), row i of "K inside X" reads
+//!
+//! `|d_i| + r Σ_j |I − Y B(X, P)|_ij < r`,
+//!
+//! and the generated Jacobian evaluated once in [`Ball`] arithmetic over every box c ± ρR
+//! (ρ ∈ [0, 1]) bounds `|B(X, P) − B(c)|` by `e₀ + e₁ ρ` entrywise, so the row becomes the
+//! quadratic "radii polynomial" (Day, Lessard and Mischaikow 2007)
+//!
+//! `a_i + g_i r + h_i r² < r`,  a = |d| and its error, g = Σ_j |I − Y B(c)|_ij + (|Y| e₀)_i,
+//! h = (|Y| e₁)_i / R,
+//!
+//! whose coefficients are computed in floating point and made upper bounds by a-priori error
+//! bounds (see [`crate::ball`]). Every r ≤ R that satisfies every row is a proof: the smallest
+//! gives a tight enclosure of the root (the error bound), the largest the radius within which it
+//! is unique. Only the products of Y with B(c) and with the few row vectors touch N² numbers,
+//! and the first goes through B's nonzeros only. The proof is for the model with its
+//! floating-point constants.
 
+use crate::ball::{up, Ball, U};
 use crate::interval::Interval;
 use crate::lu::Lu;
-use crate::Mechanism;
+use crate::{Mechanism, Scalar};
 
 /// A proven statement about the roots near a point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Certificate<const N: usize> {
     /// A box in which F(·, x) has exactly one root (for every x of the segment, for a step).
     pub unique_in: [Interval; N],
-    /// A box that contains that root (for a step: the roots along the segment).
+    /// A box that contains that root (for a step: the root at the step's end, `x1`).
     pub enclosure: [Interval; N],
-    /// The smallest half-width of [`Self::unique_in`]: no other root is nearer than this in any
-    /// coordinate.
+    /// The half-width of the box of uniqueness about the given point (about the midpoint of
+    /// the two, for a step): no other root is nearer than this in the largest coordinate.
+    /// [`Self::unique_in`] is that box rounded inwards.
     pub radius: f64,
-    /// The largest distance, coordinate by coordinate, from the given point to the enclosure:
-    /// a proven bound on its error.
+    /// The largest distance, coordinate by coordinate, from the given point (for a step: from
+    /// `v1`) to the root in [`Self::enclosure`]: a proven bound on its error.
     pub error_bound: f64,
 }
 
@@ -40,7 +56,7 @@ pub enum CertifyError {
     NonFinite,
     /// B is singular (to working precision) at the point.
     Singular,
-    /// No box tried passed the test: the point may be too far from a root, or too close to a
+    /// No box passed the test: the point may be too far from a root, or too close to a
     /// singularity or to another root.
     NotContracting,
 }
@@ -57,13 +73,14 @@ impl core::fmt::Display for CertifyError {
     }
 }
 
-/// Y ≈ B(c)⁻¹, as a dense matrix.
+/// Y ≈ B(c)⁻¹, transposed: `yt[k]` becomes column k of Y. Non-finite entries are left for
+/// the test to fail on (they make its bounds NaN or infinite).
 fn approximate_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     c: &[f64; N],
     x: &[f64; M],
-) -> Option<[[f64; N]; N]> {
-    let mut y = [[0.0; N]; N];
+    yt: &mut [[f64; N]; N],
+) -> Option<()> {
     // The generated factorisation when it is well conditioned, else dense LU: Y needs only
     // to be a good approximation, the test itself is rigorous.
     let mut fac = sys.new_factor();
@@ -77,216 +94,328 @@ fn approximate_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
         sys.jacobian_dense(c, x, &mut b);
         Some(Lu::new(b)?)
     };
-    for j in 0..N {
-        let mut e = [0.0; N];
-        e[j] = 1.0;
+    for (k, col) in yt.iter_mut().enumerate() {
+        col[k] = 1.0;
         match &dense {
-            None => sys.solve(&fac, &mut e),
-            Some(lu) => lu.solve(&mut e),
-        }
-        for i in 0..N {
-            y[i][j] = e[i];
+            None => sys.solve(&fac, col),
+            Some(lu) => lu.solve(col),
         }
     }
-    y.iter().flatten().all(|v| v.is_finite()).then_some(y)
+    Some(())
 }
 
-/// `Y · a` for a point matrix and an interval vector.
-fn times<const N: usize>(y: &[[f64; N]; N], a: &[Interval; N]) -> [Interval; N] {
-    core::array::from_fn(|i| {
-        let mut s = Interval::point(0.0);
-        for j in 0..N {
-            s = s + a[j].scale(y[i][j]);
+fn finite(a: &[f64]) -> bool {
+    a.iter().all(|v| v.is_finite())
+}
+
+/// An upper bound on γ_n = n u / (1 − n u), the relative error bound of an n-term sum of
+/// products: n u (1 + 2 n u) is at least that for n u ≤ 1/2, and its two factors are exact.
+fn gamma(n: usize) -> f64 {
+    let nu = n as f64 * U;
+    up(nu * (1.0 + 2.0 * nu), 1)
+}
+
+/// The radii polynomials of the Krawczyk test about `c`: row i passes at radius r ≤ `reach`
+/// when `a_i + g_i r + h_i r² < r` (all coefficients upper bounds).
+struct Rows<const N: usize> {
+    /// d = Y F(c, P), as computed: the Newton step.
+    step: [f64; N],
+    a: [f64; N],
+    g: [f64; N],
+    h: [f64; N],
+    /// The largest radius the bounds hold for (R, a power of two).
+    reach: f64,
+}
+
+impl<const N: usize> Rows<N> {
+    /// An upper bound on |K_i − c_i| over the box c ± r.
+    fn bound(&self, i: usize, r: f64) -> f64 {
+        up(self.a[i] + r * self.g[i] + r * r * self.h[i], 4)
+    }
+
+    /// Whether the Krawczyk test passes on c ± r: a proof (NaN fails).
+    fn passes(&self, r: f64) -> bool {
+        r <= self.reach && (0..N).all(|i| self.bound(i, r) < r)
+    }
+
+    /// The radii between which every row's polynomial is negative, solved in floating point:
+    /// a guide for which radii to prove, not a proof.
+    fn predicted(&self) -> Option<(f64, f64)> {
+        let (mut lo, mut hi) = (0.0f64, self.reach);
+        for i in 0..N {
+            let (a, l, h) = (self.a[i], 1.0 - self.g[i], self.h[i]);
+            let disc = l * l - 4.0 * a * h;
+            if !(l > 0.0 && disc >= 0.0) {
+                return None;
+            }
+            let s = l + crate::math::sqrt(disc);
+            lo = lo.max(2.0 * a / s);
+            hi = hi.min(s / (2.0 * h));
         }
-        s
-    })
+        (lo < hi).then_some((lo, hi))
+    }
 }
 
-/// The Krawczyk test on the box `c ± r` with inputs `p`: the image K if it lies inside the box.
-fn krawczyk<S: Mechanism<N, M>, const N: usize, const M: usize>(
+/// The vector |Y| multiplies to bound the error of d = Y F (as computed): a signed dot
+/// product's γ_N |Y| |F|, and |Y| rad F.
+fn for_d<const N: usize>(f: &[Ball<1>; N]) -> [f64; N] {
+    let gn = gamma(N);
+    core::array::from_fn(|k| up(gn * f[k].mid.abs() + f[k].rad[0], 2))
+}
+
+/// The Krawczyk rows about `c` for inputs `x_mid ± half_width`, with Y ≈ B(c, x_mid)⁻¹.
+fn rows<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
-    y: &[[f64; N]; N],
-    d: &[Interval; N],
     c: &[f64; N],
-    r: &[f64; N],
-    p: &[Interval; M],
-) -> Option<[Interval; N]> {
-    let xs: [Interval; N] = core::array::from_fn(|i| Interval::around(c[i], r[i]));
-    // B over the box, sparse.
-    let mut values = [Interval::point(0.0); 512];
-    let values = values.get_mut(..S::NNZ)?;
-    sys.jacobian_in(&xs, p, values);
-    // |I − Y B(X)| entrywise, in midpoint-radius form with plain floating point and a bound on
-    // its rounding (Rump's products): with B = mid ± rad, the entry is within
-    // |δ − Σ Y mid| + Σ |Y| rad of 0, and computing those sums of at most N + 1 terms in
-    // floating point errs by at most γ_{N+1} (Σ |Y| |mid| + 1 + Σ |Y| rad), γ_n = n u / (1 − n u).
-    let mut centre = [[0.0f64; N]; N];
-    let mut size = [[0.0f64; N]; N];
-    let mut spread_of = [[0.0f64; N]; N];
-    for (k, &(row, col)) in S::PATTERN.iter().enumerate() {
-        let (mid, rad) = (values[k].mid(), values[k].radius());
-        if !(mid.is_finite() && rad.is_finite()) {
-            return None;
-        }
+    x_mid: &[f64; M],
+    half_width: &[f64; M],
+    yt: &mut [[f64; N]; N],
+) -> Result<Rows<N>, CertifyError> {
+    approximate_inverse(sys, c, x_mid, yt).ok_or(CertifyError::Singular)?;
+    // R: a power of two at least the largest coordinate (so r = ρR is exact).
+    let scale = c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    if !(scale < 1e100) {
+        return Err(CertifyError::NonFinite);
+    }
+    let reach = libm::exp2(libm::ceil(libm::log2(scale)));
+    // F(c, P), and B over every box c ± ρR with inputs P. Non-finite values need no check
+    // here: they make the rows' coefficients NaN or infinite, and the test fails on them.
+    let mut f = [Ball::<1>::from_f64(0.0); N];
+    sys.residual_in(
+        &c.map(|ci| Ball {
+            mid: ci,
+            rad: [0.0],
+        }),
+        &core::array::from_fn(|j| Ball {
+            mid: x_mid[j],
+            rad: [half_width[j]],
+        }),
+        &mut f,
+    );
+    let mut storage = [[Ball::<2>::from_f64(0.0); N]; N];
+    let values = storage
+        .as_flattened_mut()
+        .get_mut(..S::NNZ)
+        .ok_or(CertifyError::NotContracting)?;
+    sys.jacobian_in(
+        &c.map(|ci| Ball {
+            mid: ci,
+            rad: [0.0, reach],
+        }),
+        &core::array::from_fn(|j| Ball {
+            mid: x_mid[j],
+            rad: [half_width[j], 0.0],
+        }),
+        values,
+    );
+    // Through B's nonzeros: C = Y B(c) (transposed, column by column), and per row of B the
+    // sums of |B(c)| and of the radius coefficients.
+    let mut ct = [[0.0f64; N]; N];
+    let (mut b_abs, mut e0, mut e1) = ([0.0f64; N], [0.0f64; N], [0.0f64; N]);
+    for (b, &(row, col)) in values.iter().zip(S::PATTERN) {
+        let (y, out) = (&yt[row], &mut ct[col]);
         for i in 0..N {
-            let yv = y[i][row];
-            centre[i][col] += yv * mid;
-            size[i][col] += yv.abs() * mid.abs();
-            spread_of[i][col] += yv.abs() * rad;
+            out[i] += y[i] * b.mid;
+        }
+        b_abs[row] += b.mid.abs();
+        e0[row] += b.rad[0];
+        e1[row] += b.rad[1];
+    }
+    // Σ_j |C_ij − δ_ij| as computed (one more rounding on the diagonal).
+    let mut off = [0.0f64; N];
+    for (j, col) in ct.iter_mut().enumerate() {
+        col[j] -= 1.0;
+        for i in 0..N {
+            off[i] += col[i].abs();
         }
     }
-    let u = f64::EPSILON / 2.0;
-    let n1 = (N + 1) as f64;
-    let gamma = (n1 * u / (1.0 - n1 * u)).next_up();
-    let mut k = [Interval::point(0.0); N];
+    // The vectors |Y| multiplies, as upper bounds: for the error of d = Y F(c) (a signed dot
+    // product's γ_N |Y| |F(c)|, and |Y| rad F), for g (C's error γ_N |Y| |B(c)| summed over
+    // the columns, and |Y| e₀) and for h (|Y| e₁). Row sums of B pass through up to N
+    // roundings, the sums with the products below through N + 1 more.
+    let n = N as u32;
+    let gn = gamma(N);
+    let for_d = for_d(&f);
+    let for_g: [f64; N] = core::array::from_fn(|k| up(gn * up(b_abs[k], n) + up(e0[k], n), 2));
+    let for_h: [f64; N] = core::array::from_fn(|k| up(e1[k], n));
+    let (mut step, mut d_error, mut g, mut h) =
+        ([0.0f64; N], [0.0f64; N], [0.0f64; N], [0.0f64; N]);
+    for k in 0..N {
+        let (yk, fm) = (&yt[k], f[k].mid);
+        let (wd, wg, wh) = (for_d[k], for_g[k], for_h[k]);
+        for i in 0..N {
+            let y = yk[i];
+            let a = y.abs();
+            step[i] += y * fm;
+            d_error[i] += a * wd;
+            g[i] += a * wg;
+            h[i] += a * wh;
+        }
+    }
+    let mut rows = Rows {
+        step,
+        a: [0.0; N],
+        g: [0.0; N],
+        h: [0.0; N],
+        reach,
+    };
     for i in 0..N {
-        // Σ_j |(I − Y B)_ij| r_j, rounded up.
-        let mut spread = 0.0f64;
-        for j in 0..N {
-            let delta = if i == j { 1.0 } else { 0.0 };
-            let bound = (delta - centre[i][j]).abs()
-                + spread_of[i][j]
-                + gamma * (size[i][j] + 1.0 + spread_of[i][j]);
-            // Three more roundings above: widen by a few units.
-            let m = (bound * (1.0 + 4.0 * u)).next_up();
-            spread = (spread + (m * r[j]).next_up()).next_up();
-        }
-        if !spread.is_finite() {
-            return None;
-        }
-        let centre = Interval::point(c[i]) - d[i];
-        k[i] = Interval::new(
-            (centre.lo - spread).next_down(),
-            (centre.hi + spread).next_up(),
-        );
-        if !xs[i].contains_strictly(&k[i]) {
-            return None;
-        }
+        rows.a[i] = up(step[i].abs() + up(d_error[i], n + 1), 1);
+        rows.g[i] = up(up(off[i], n + 1) + up(g[i], n + 1), 1);
+        rows.h[i] = up(up(h[i], n + 1) / reach, 1);
     }
-    Some(k)
+    Ok(rows)
 }
 
-/// The radii for which the Krawczyk test should pass, predicted in floating point.
-///
-/// B is linear in v (the system is of degree ≤ 2), so over the box c ± r the radius of B is
-/// `W_p + r W_v` (W_p from the inputs' widths, W_v from a unit box), and row i of the test
-/// reads `|d_i| + E_i r + G_i r² < r` with `E = row sums of |I − Y mid B| + |Y| W_p` and
-/// `G = row sums of |Y| W_v`: a quadratic in r whose roots bracket the radii that pass. The
-/// prediction only chooses the boxes; the interval test decides.
-fn predicted_radii<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    y: &[[f64; N]; N],
-    d: &[Interval; N],
-    c: &[f64; N],
-    p: &[Interval; M],
-) -> Option<(f64, f64)> {
-    let mut at_c = [Interval::point(0.0); 512];
-    let at_c = at_c.get_mut(..S::NNZ)?;
-    let cs: [Interval; N] = core::array::from_fn(|i| Interval::point(c[i]));
-    sys.jacobian_in(&cs, p, at_c);
-    let mut unit = [Interval::point(0.0); 512];
-    let unit = unit.get_mut(..S::NNZ)?;
-    let xs: [Interval; N] = core::array::from_fn(|i| Interval::around(c[i], 1.0));
-    sys.jacobian_in(&xs, p, unit);
-    // E and G row by row, through the pattern.
-    let mut ymb = [[0.0f64; N]; N];
-    let mut e = [0.0f64; N];
-    let mut g = [0.0f64; N];
-    for (k, &(row, col)) in S::PATTERN.iter().enumerate() {
-        let (mid, wp) = (at_c[k].mid(), at_c[k].radius());
-        let wv = (unit[k].radius() - wp).max(0.0);
-        for i in 0..N {
-            ymb[i][col] += y[i][row] * mid;
-            e[i] += y[i][row].abs() * wp;
-            g[i] += y[i][row].abs() * wv;
-        }
-    }
-    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
-    for i in 0..N {
-        for j in 0..N {
-            e[i] += ((if i == j { 1.0 } else { 0.0 }) - ymb[i][j]).abs();
-        }
-        let (a, b, cc) = (g[i], 1.0 - e[i], d[i].mag());
-        if !(b > 0.0) {
-            return None;
-        }
-        if a <= 0.0 {
-            lo = lo.max(cc / b);
-            continue;
-        }
-        let disc = b * b - 4.0 * a * cc;
-        if !(disc > 0.0) {
-            return None;
-        }
-        let root = crate::math::sqrt(disc);
-        lo = lo.max((b - root) / (2.0 * a));
-        hi = hi.min((b + root) / (2.0 * a));
-    }
-    (lo < hi && hi.is_finite()).then_some((lo, hi))
-}
-
-/// The Krawczyk test on a few boxes around `c` with inputs `p`: a small one, just outside the
-/// Newton step, for a tight enclosure of the root; a large one, near the largest predicted to
-/// pass, for the radius of uniqueness (halved until it passes).
+/// The Krawczyk test about `c` for inputs `x_mid ± half_width`: the smallest radius that
+/// passes for the enclosure, the largest for uniqueness.
 fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     c: &[f64; N],
     x_mid: &[f64; M],
-    p: &[Interval; M],
-    at_least: &[f64; N],
+    half_width: &[f64; M],
+    end: Option<(&[f64; N], &[f64; M])>,
 ) -> Result<Certificate<N>, CertifyError> {
-    if S::NNZ > 512 {
-        // The interval Jacobians live on the stack; larger systems are not certified.
-        return Err(CertifyError::NotContracting);
-    }
-    let y = approximate_inverse(sys, c, x_mid).ok_or(CertifyError::Singular)?;
-    let cs: [Interval; N] = core::array::from_fn(|i| Interval::point(c[i]));
-    let mut f = [Interval::point(0.0); N];
-    sys.residual_in(&cs, p, &mut f);
-    if f.iter().any(|v| !v.is_finite()) {
-        return Err(CertifyError::NonFinite);
-    }
-    let d = times(&y, &f);
-    let scale = c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-    let cover = at_least.iter().fold(0.0f64, |m, v| m.max(*v));
-    let (lo, hi) = predicted_radii(sys, &y, &d, c, p).ok_or(CertifyError::NotContracting)?;
-    let small = (2.0 * lo).max(1e-13 * scale).max(1.25 * cover);
-    let box_of = |r: f64| -> [f64; N] { core::array::from_fn(|_| r) };
-    let mut tight = None;
-    for k in 0..4 {
-        let r = small * libm::pow(4.0, k as f64);
-        if let Some(e) = krawczyk(sys, &y, &d, c, &box_of(r), p) {
-            tight = Some((e, r));
+    // Y ≈ B(c)⁻¹ (transposed), kept here for the step's end.
+    let mut yt = [[0.0; N]; N];
+    let rows = rows(sys, c, x_mid, half_width, &mut yt)?;
+    let (lo, hi) = rows.predicted().ok_or(CertifyError::NotContracting)?;
+    // Just above the predicted smallest radius (the bounds are rounded up a few ulps).
+    let mut small = None;
+    let mut r = lo * (1.0 + 1e-6);
+    for _ in 0..4 {
+        if r < hi && rows.passes(r) {
+            small = Some(r);
             break;
         }
+        r *= 4.0;
     }
-    let (enclosure, r_small) = tight.ok_or(CertifyError::NotContracting)?;
-    let error_bound = (0..N).fold(0.0f64, |m, i| {
-        m.max(
-            (enclosure[i].hi - c[i])
-                .max(c[i] - enclosure[i].lo)
-                .next_up(),
-        )
-    });
-    // The largest box: start at half the predicted limit and halve while it fails.
-    let mut radius = r_small;
-    let mut r = 0.5 * hi;
-    for _ in 0..6 {
-        if r <= r_small {
+    let small = small.ok_or(CertifyError::NotContracting)?;
+    // Just below the predicted largest, shrinking while it fails.
+    let mut radius = small;
+    let mut r = hi * (1.0 - 1e-6);
+    for _ in 0..8 {
+        if r <= small {
             break;
         }
-        if krawczyk(sys, &y, &d, c, &box_of(r), p).is_some() {
+        if rows.passes(r) {
             radius = r;
             break;
         }
-        r *= 0.25;
+        r *= 0.5;
     }
-    Ok(Certificate {
-        unique_in: core::array::from_fn(|i| Interval::around(c[i], radius)),
+    // K at the small radius: c − d ± bound, within c ± small too.
+    let mut error_bound = 0.0f64;
+    let enclosure = core::array::from_fn(|i| {
+        let w = rows.bound(i, small);
+        error_bound = error_bound.max(up(rows.step[i].abs() + w, 1));
+        let centre = Interval::point(c[i]) - Interval::point(rows.step[i]);
+        let k = Interval::new((centre.lo - w).next_down(), (centre.hi + w).next_up());
+        let x = Interval::around(c[i], small);
+        Interval::new(k.lo.max(x.lo), k.hi.min(x.hi))
+    });
+    // The box of uniqueness rounded inwards (never empty: c itself is inside).
+    let unique_in = core::array::from_fn(|i| {
+        Interval::new(
+            (c[i] - radius).next_up().min(c[i]),
+            (c[i] + radius).next_down().max(c[i]),
+        )
+    });
+    let certificate = Certificate {
+        unique_in,
         enclosure,
         radius,
-        error_bound,
+        error_bound: error_bound.min(small),
+    };
+    // For a step: a tight enclosure of the root at its end, when one passes; else the
+    // segment's enclosure, which holds it too (measured from `v1`).
+    Ok(match end {
+        None => certificate,
+        Some((v1, x1)) => match at_end(sys, (&rows, &yt), c, radius, v1, x1) {
+            Some((enclosure, error_bound)) => Certificate {
+                enclosure,
+                error_bound,
+                ..certificate
+            },
+            None => Certificate {
+                error_bound: farthest(&certificate.enclosure, v1),
+                ..certificate
+            },
+        },
     })
+}
+
+/// The largest distance from `v` to a face of the box `e` (which holds `v`'s root), rounded up.
+fn farthest<const N: usize>(e: &[Interval; N], v: &[f64; N]) -> f64 {
+    (0..N).fold(0.0f64, |m, i| {
+        m.max((v[i] - e[i].lo).next_up())
+            .max((e[i].hi - v[i]).next_up())
+    })
+}
+
+/// The Krawczyk test about `v1` at the single input `x1`, reusing the step's Y and its bounds on
+/// B: the box `v1 ± r` lies in `c ± (δ + r)`, δ = |v1 − c|∞, so B over it is bounded by the
+/// rows' `e₀ + e₁ (δ + r)/R`, and row i passes when `a′_i + r (g_i + h_i (δ + r)) < r` with
+/// a′ = |Y F(v1, x1)| and its error. Requiring `δ + r` within the step's radius of uniqueness
+/// makes the root it encloses the one the step proved unique, the branch's. The tight
+/// enclosure and error bound, or `None`.
+fn at_end<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    (rows, yt): (&Rows<N>, &[[f64; N]; N]),
+    c: &[f64; N],
+    radius: f64,
+    v1: &[f64; N],
+    x1: &[f64; M],
+) -> Option<([Interval; N], f64)> {
+    let delta = up((0..N).fold(0.0f64, |m, i| m.max((v1[i] - c[i]).abs())), 1);
+    let mut f = [Ball::<1>::from_f64(0.0); N];
+    sys.residual_in(&v1.map(Ball::from_f64), &x1.map(Ball::from_f64), &mut f);
+    let for_d = for_d(&f);
+    let (mut step, mut d_error) = ([0.0f64; N], [0.0f64; N]);
+    for k in 0..N {
+        let (yk, fm, wd) = (&yt[k], f[k].mid, for_d[k]);
+        for i in 0..N {
+            step[i] += yk[i] * fm;
+            d_error[i] += yk[i].abs() * wd;
+        }
+    }
+    let n = N as u32;
+    let a: [f64; N] = core::array::from_fn(|i| up(step[i].abs() + up(d_error[i], n + 1), 1));
+    // Five roundings after the coefficients, which are upper bounds already.
+    let bound = |i: usize, r: f64| up(a[i] + r * (rows.g[i] + rows.h[i] * (delta + r)), 5);
+    // The smallest r the rows allow, solved in floating point as a guide.
+    let mut lo = 0.0f64;
+    for i in 0..N {
+        let l = 1.0 - rows.g[i] - rows.h[i] * delta;
+        let disc = l * l - 4.0 * a[i] * rows.h[i];
+        if !(l > 0.0 && disc >= 0.0) {
+            return None;
+        }
+        lo = lo.max(2.0 * a[i] / (l + crate::math::sqrt(disc)));
+    }
+    let limit = radius.min(rows.reach);
+    let mut r = lo * (1.0 + 1e-6) + f64::MIN_POSITIVE;
+    for _ in 0..4 {
+        if up(delta + r, 1) > limit {
+            return None;
+        }
+        if (0..N).all(|i| bound(i, r) < r) {
+            let mut error_bound = 0.0f64;
+            let enclosure = core::array::from_fn(|i| {
+                let w = bound(i, r);
+                error_bound = error_bound.max(up(step[i].abs() + w, 1));
+                let centre = Interval::point(v1[i]) - Interval::point(step[i]);
+                let x = Interval::around(v1[i], r);
+                Interval::new(
+                    (centre.lo - w).next_down().max(x.lo),
+                    (centre.hi + w).next_up().min(x.hi),
+                )
+            });
+            return Some((enclosure, error_bound.min(r)));
+        }
+        r *= 4.0;
+    }
+    None
 }
 
 /// Proves that F(·, x) has exactly one root near `v`, and bounds its distance from `v`.
@@ -320,38 +449,36 @@ pub fn certify<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> Result<Certificate<N>, CertifyError> {
-    if v.iter().chain(x).any(|a| !a.is_finite()) {
+    if !(finite(v) && finite(x)) {
         return Err(CertifyError::NonFinite);
     }
-    let p: [Interval; M] = core::array::from_fn(|j| Interval::point(x[j]));
-    search(sys, v, x, &p, &[0.0; N])
+    search(sys, v, x, &[0.0; M], None)
 }
 
 /// Proves that the roots `v0` at `x0` and `v1` at `x1` lie on one branch without a singularity
 /// between them: for every input on the segment from `x0` to `x1`, one root and only one lies in
 /// [`Certificate::unique_in`], which holds both, and ∂F/∂v is nonsingular throughout.
+///
+/// What it proves about the roots themselves (rather than the points `v0`, `v1`): the root at
+/// `x1` in the box is on one branch with the root at `x0` in the box, and it lies in
+/// [`Certificate::enclosure`], within [`Certificate::error_bound`] of `v1`. To know that the
+/// root in the box at `x0` is the one `v0` stands for, check that an enclosure of it (from
+/// [`certify`], or from the previous step) lies in [`Certificate::unique_in`].
 pub fn certify_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     (v0, x0): (&[f64; N], &[f64; M]),
     (v1, x1): (&[f64; N], &[f64; M]),
 ) -> Result<Certificate<N>, CertifyError> {
-    if v0
-        .iter()
-        .chain(x0)
-        .chain(v1)
-        .chain(x1)
-        .any(|a| !a.is_finite())
-    {
+    if !(finite(v0) && finite(x0) && finite(v1) && finite(x1)) {
         return Err(CertifyError::NonFinite);
     }
     let c: [f64; N] = core::array::from_fn(|i| 0.5 * (v0[i] + v1[i]));
     let x_mid: [f64; M] = core::array::from_fn(|j| 0.5 * (x0[j] + x1[j]));
-    let p: [Interval; M] = core::array::from_fn(|j| {
-        Interval::new(x0[j].min(x1[j]).next_down(), x0[j].max(x1[j]).next_up())
-    });
-    let half: [f64; N] = core::array::from_fn(|i| 0.5 * (v1[i] - v0[i]).abs());
-    let cert = search(sys, &c, &x_mid, &p, &half)?;
-    // Both ends must be inside the box of uniqueness (the search sized it so).
+    // The segment's hull x_mid ± w (each end's distance rounded up).
+    let w: [f64; M] =
+        core::array::from_fn(|j| up((x0[j] - x_mid[j]).abs().max((x1[j] - x_mid[j]).abs()), 1));
+    let cert = search(sys, &c, &x_mid, &w, Some((v1, x1)))?;
+    // Both ends must be inside the box of uniqueness.
     let inside = |v: &[f64; N]| (0..N).all(|i| cert.unique_in[i].contains(v[i]));
     if inside(v0) && inside(v1) {
         Ok(cert)

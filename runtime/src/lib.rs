@@ -40,6 +40,9 @@ extern crate self as linkage;
 pub use linkage_macros::mechanism;
 
 mod arc_length;
+mod ball;
+mod certified_path;
+mod certified_steps;
 mod certify;
 mod convergence;
 mod correction;
@@ -63,6 +66,8 @@ mod tracker;
 pub mod __private;
 
 pub use arc_length::arc_length;
+pub use certified_path::arc_length_certified;
+pub use certified_steps::{CertifiedSteps, StepProof};
 pub use certify::{certify, certify_step, Certificate, CertifyError};
 pub use correction::{det_b, error_estimate};
 pub use detour::{arc_length_detour, Detoured};

@@ -5,7 +5,7 @@ use crate::arc_length::arc_length;
 use crate::convergence::Contraction;
 use crate::correction::{correction_in, det_b};
 use crate::math::norm;
-use crate::{Mechanism, Options, SolveError, Start, Status};
+use crate::{Mechanism, Options, SolveError, Start, Status, StepProof};
 
 /// Corrections the fast path may take before it gives the sample to continuation.
 const MAX_CORRECTIONS: u32 = 8;
@@ -30,6 +30,9 @@ pub struct Sample<const N: usize> {
     pub newton_iterations: u32,
     /// Whether the fast path failed and continuation had to take over.
     pub fell_back: bool,
+    /// With [`Tracker::certified`]: the proof that this step kept the branch (always
+    /// [`StepProof::Proven`](crate::StepProof::Proven): an unproven step is refused).
+    pub proof: Option<crate::StepProof>,
 }
 
 /// Why a sample was refused. The tracker keeps its last good state and stays usable.
@@ -39,6 +42,13 @@ pub enum TrackError {
     Input(SolveError),
     /// The sample cannot be reached on the branch from the last one.
     Lost(Status),
+    /// With [`Tracker::certified`]: the sample was solved, but the step to it could not be
+    /// proven to keep the branch ([`StepProof::Unproven`](crate::StepProof::Unproven) says
+    /// after how many pieces and why). Not a statement that the branch changed.
+    Unproven {
+        pieces: u32,
+        reason: crate::CertifyError,
+    },
 }
 
 impl core::fmt::Display for TrackError {
@@ -46,6 +56,10 @@ impl core::fmt::Display for TrackError {
         match self {
             TrackError::Input(e) => write!(f, "{e}"),
             TrackError::Lost(s) => write!(f, "{s}"),
+            TrackError::Unproven { pieces, reason } => write!(
+                f,
+                "the step was not proven to keep the branch ({reason}, after {pieces} pieces)"
+            ),
         }
     }
 }
@@ -116,6 +130,8 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     factor: Option<S::Factor>,
     /// The last sample was refused: the next must be reached by continuation.
     refused: bool,
+    /// With [`Tracker::certified`]: the chain of step certificates.
+    certified: Option<crate::CertifiedSteps<N, M>>,
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
@@ -129,7 +145,51 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             options,
             factor: None,
             refused: false,
+            certified: None,
         }
+    }
+
+    /// Certifies every step ([`CertifiedSteps`](crate::CertifiedSteps)): a sample is accepted
+    /// only when the joint segment from the last accepted sample is proven, by parametric
+    /// Krawczyk certificates (the segment split into up to 64 pieces when it does not pass
+    /// whole), to lead along one branch without a singularity; [`Sample::proof`] holds the
+    /// proof. A sample that is solved but not proven is refused with
+    /// [`TrackError::Unproven`], like any refused sample: the state stays at the last accepted
+    /// one, so the chain of proofs is never broken: called on a new tracker (as below), every
+    /// accepted sample is proven to lie on the start's branch. Called later, the chain starts
+    /// at the last accepted sample.
+    ///
+    /// ```
+    /// use linkage::{Mechanism, Options, StepProof, Tracker};
+    /// # linkage::mechanism! {
+    /// #     pub struct Rps;
+    /// #     base {
+    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+    /// #     }
+    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+    /// # }
+    /// # let rps = Rps::new();
+    /// # let v0 = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    /// # let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+    /// # let start = linkage::Start::new(&rps, v0, x0).unwrap();
+    /// let mut tracker = Tracker::new(rps.clone(), start, Options::TIGHT).certified();
+    /// for k in 1..=100 {
+    ///     let legs = x0.map(|l| l + 10.0 * (k as f64 * 1e-2).sin());
+    ///     let sample = tracker.update(&legs).unwrap();
+    ///     let Some(StepProof::Proven { error_bound, .. }) = sample.proof else {
+    ///         unreachable!("an accepted sample is proven")
+    ///     };
+    ///     assert!(error_bound < 1.0);
+    /// }
+    /// ```
+    pub fn certified(mut self) -> Self {
+        self.certified = Some(crate::CertifiedSteps::new());
+        self
     }
 
     /// The last accepted pivot coordinates and joint inputs.
@@ -144,7 +204,23 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// Solves the next sample. On error the state is kept, and the next sample is reached
     /// from it by continuation only.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
-        let result = self.step(x);
+        // The state to return to if the step is solved but not proven.
+        let before = (self.v, self.x, self.det, self.factor);
+        let result = self.step(x).and_then(|mut sample| {
+            let Some(chain) = &mut self.certified else {
+                return Ok(sample);
+            };
+            match chain.prove(&self.sys, (&before.0, &before.1), (&sample.v, x)) {
+                proof @ StepProof::Proven { .. } => {
+                    sample.proof = Some(proof);
+                    Ok(sample)
+                }
+                StepProof::Unproven { pieces, reason } => {
+                    (self.v, self.x, self.det, self.factor) = before;
+                    Err(TrackError::Unproven { pieces, reason })
+                }
+            }
+        });
         self.refused = result.is_err();
         result
     }
@@ -266,6 +342,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             proximity: (det / self.start.det()).abs(),
             newton_iterations,
             fell_back,
+            proof: None,
         }
     }
 }

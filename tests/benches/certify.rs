@@ -1,9 +1,25 @@
 //! criterion benches of the Krawczyk certificates on the Stewart platform of Table III: one
-//! solution, and one 1 kHz tracking step. `cargo bench -p linkage-tests --bench certify`.
+//! solution, one 1 kHz tracking step, and the certified tracker's 1 kHz sample (solve and
+//! proof). `cargo bench -p linkage-tests --bench certify`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use linkage::{arc_length, certify, certify_step, Options, Start};
-use linkage_examples::stewart::{home_start, Stewart};
+use linkage::{arc_length, certify, certify_step, Options, Pose, Start, Tracker};
+use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
+
+/// A 2 s manoeuvre around home, periodic: sampled at 1 kHz it can be replayed in a loop.
+fn manoeuvre(t: f64) -> Pose {
+    let w = std::f64::consts::PI;
+    Pose::from_euler(
+        0.15 * (w * t).sin(),
+        0.1 * (2.0 * w * t).sin(),
+        -0.08 * (w * t).sin(),
+        [
+            58.971 + 15.0 * (w * t).sin(),
+            -11.739 + 10.0 * (1.0 - (w * t).cos()),
+            159.011 + 20.0 * (w * t).sin(),
+        ],
+    )
+}
 
 fn certificates(c: &mut Criterion) {
     let s = Stewart::new();
@@ -27,6 +43,20 @@ fn certificates(c: &mut Criterion) {
             )
         })
     });
+    // The tracker with every step proven, replaying the manoeuvre; a refused sample would
+    // be timed too, so the count of refusals is checked after.
+    let legs: Vec<[f64; 6]> = (0..2000)
+        .map(|k| legs_for_pose(&s, &manoeuvre(k as f64 * 1e-3)).unwrap().0)
+        .collect();
+    let mut tracker = Tracker::new(s.clone(), start, Options::TIGHT).certified();
+    let (mut k, mut refused) = (0, 0usize);
+    g.bench_function("tracker_certified_1khz", |b| {
+        b.iter(|| {
+            k = (k + 1) % legs.len();
+            refused += usize::from(tracker.update(black_box(&legs[k])).is_err());
+        })
+    });
+    assert_eq!(refused, 0, "samples refused while timing");
     g.finish();
 }
 

@@ -785,3 +785,59 @@ fn a_bad_row_in_the_middle_does_not_spoil_the_rows_after_it() {
         }
     }
 }
+
+// ---- Issue 12: `--certify` adds a proof to each ok row, and to each tracked step.
+
+#[test]
+fn solve_certify_adds_a_proof_to_every_ok_row() {
+    let input = csv(&[
+        HEADER,
+        HOME,
+        NEAR_HOME,
+        "nan,170,170,170,170,170",
+        FURTHER,
+        "175,x,170,168,171,176",
+        NEAR_HOME,
+    ]);
+    for method in ["ph", "nh", "nr"] {
+        for track in [false, true] {
+            let mut args = vec!["solve", "--certify", "--method", method, "--input", "-"];
+            if track {
+                args.push("--track");
+            }
+            let out = run(&args, &input);
+            assert!(out.status.success(), "{}", stderr(&out));
+            let (header, body) = rows(&out);
+            assert_eq!(
+                header[header.len() - 3..],
+                ["certified", "radius_mm", "error_bound_mm"]
+            );
+            let mut proven = 0;
+            for r in &body {
+                let certified = field(&header, r, "certified");
+                if field(&header, r, "status") != "ok" {
+                    assert_eq!(certified, "false", "{args:?}: {r:?}");
+                    assert_eq!(field(&header, r, "radius_mm"), "");
+                    continue;
+                }
+                // These rows are far from singularities: every ok answer is proven, the
+                // root unique within millimetres and the answer within 1e-9 mm of it.
+                assert_eq!(certified, "true", "{args:?}: {r:?}");
+                let radius: f64 = field(&header, r, "radius_mm").parse().unwrap();
+                let bound: f64 = field(&header, r, "error_bound_mm").parse().unwrap();
+                assert!(radius > 1.0 && bound < 1e-9, "{args:?}: {radius} {bound}");
+                proven += 1;
+            }
+            assert_eq!(proven, 4, "{args:?}");
+        }
+    }
+    // The header without `--certify` is unchanged.
+    let (header, _) = rows(&run(&["solve", "--input", "-"], &input));
+    assert_eq!(header.last().map(String::as_str), Some("via"));
+    // Not silently ignored where it is not available.
+    let out = run(
+        &["bench", "--method", "all", "--certify", "--input", "-"],
+        &input,
+    );
+    assert_refused(&out, "--certify is not available with --method all");
+}

@@ -2,7 +2,9 @@
 //! what a clean `cargo test` used to spend. Each file is a module named for what it checks.
 
 mod case_study;
+mod certified_tracking;
 mod certify;
+mod certify_adversarial;
 mod cli_regressions;
 mod front_end_robustness;
 mod generated_systems;

@@ -1,4 +1,5 @@
-//! No solve allocates: a counting global allocator watches every solver and the tracker.
+//! No solve allocates: a counting global allocator watches every solver, the tracker and the
+//! certificates.
 
 use linkage::{arc_length, newton_homotopy, newton_raphson, Options, Tracker};
 use linkage_examples::stewart::{home_start, Stewart};
@@ -51,6 +52,7 @@ fn solves_and_tracking_do_not_allocate() {
         [f64::NAN; 6],
     ];
     let mut tracker = Tracker::new(s.clone(), start, Options::TIGHT);
+    let mut certified = Tracker::new(s.clone(), start, Options::TIGHT).certified();
     let before = allocations();
     let mut checksum = 0.0;
     for x in &targets {
@@ -67,6 +69,13 @@ fn solves_and_tracking_do_not_allocate() {
         let x = [170.0 + 0.01 * k as f64; 6];
         if let Ok(sample) = tracker.update(&x) {
             checksum += sample.v[0];
+        }
+        // Certificates, and the tracker that proves each step.
+        if let Ok(sample) = certified.update(&x) {
+            checksum += sample.v[0];
+            if let Ok(c) = linkage::certify(&s, &sample.v, &x) {
+                checksum += c.radius;
+            }
         }
     }
     let after = allocations();

@@ -19,6 +19,9 @@ pub struct Outcome {
     /// along it ends where the solve did — the pose path and the segment end in different
     /// assembly modes without either meeting a singularity.
     pub path_dependent: bool,
+    /// Returned ok and proven by the Krawczyk test ([`linkage::certify`], not timed): the
+    /// only root near v, and within the proven error bound of it.
+    pub certified: bool,
 }
 
 /// Per-method summary, as in Table V plus what the paper does not count.
@@ -46,6 +49,12 @@ pub struct Summary {
     pub fold_reported: usize,
     /// Solves that ended with any other non-ok status.
     pub other_failures: usize,
+    /// Normal points returned ok, and of those the ones certified ([`Outcome::certified`]).
+    pub normal_ok: usize,
+    pub normal_certified: usize,
+    /// Near-singular points returned ok, and of those the ones certified.
+    pub near_singular_ok: usize,
+    pub near_singular_certified: usize,
 }
 
 fn rel_error(v: &[f64; 18], truth: &[f64; 18]) -> f64 {
@@ -76,16 +85,24 @@ pub fn solve_point(
     let relative_error = rel_error(&v, &p.v);
     let off_truth = status == Status::Converged && relative_error >= 1e-3;
     let path_dependent = off_truth && segment.1 == 0 && rel_error(&v, &segment.0) < 1e-6;
+    let certified = status == Status::Converged && linkage::certify(&sampler.sys, &v, &p.x).is_ok();
     Outcome {
         status,
         relative_error,
         seconds,
         off_truth,
         path_dependent,
+        certified,
     }
 }
 
 pub fn summarize(normal: &[Outcome], near: &[Outcome]) -> Summary {
+    // Returned ok (and, with `certified`, proven).
+    let count = |o: &[Outcome], certified: bool| {
+        o.iter()
+            .filter(|o| o.status == Status::Converged && (o.certified || !certified))
+            .count()
+    };
     let ok = |o: &&Outcome| o.status == Status::Converged && !o.off_truth;
     // `normal_*` errors average the results that match the true pivots.
     let normal_ok: Vec<&Outcome> = normal.iter().filter(ok).collect();
@@ -117,6 +134,10 @@ pub fn summarize(normal: &[Outcome], near: &[Outcome]) -> Summary {
         other_failures: all
             .filter(|o| !matches!(o.status, Status::Converged | Status::Fold { .. }))
             .count(),
+        normal_ok: count(normal, false),
+        normal_certified: count(normal, true),
+        near_singular_ok: count(near, false),
+        near_singular_certified: count(near, true),
     }
 }
 

@@ -37,6 +37,10 @@ pub struct Record<'a> {
     /// The smallest |det B| / |det B at the start| met on the way.
     pub min_det_ratio: Option<f64>,
     pub via: Option<Via>,
+    /// With `--certify`, for a proven answer: the radius (mm) within which it is the only
+    /// root (for a tracked step: the smallest along the step) and the proven bound on its
+    /// error (mm, largest coordinate).
+    pub certified: Option<(f64, f64)>,
 }
 
 impl<'a> Record<'a> {
@@ -50,6 +54,18 @@ impl<'a> Record<'a> {
             steps: None,
             min_det_ratio: None,
             via: None,
+            certified: None,
+        }
+    }
+
+    /// Appends the `--certify` columns: `,true,radius_mm,error_bound_mm` for a proven
+    /// answer, `,false,,` otherwise.
+    pub fn write_certificate(&self, line: &mut String) {
+        match self.certified {
+            Some((radius, bound)) => {
+                let _ = write!(line, ",true,{radius:.3e},{bound:.3e}");
+            }
+            None => line.push_str(",false,,"),
         }
     }
 
@@ -92,4 +108,9 @@ pub fn header() -> String {
     h.extend((1..=18).map(|i| format!("v{i}")));
     h.extend(["error_estimate", "steps", "min_det_ratio", "via"].map(String::from));
     h.join(",")
+}
+
+/// The header with the `--certify` columns.
+pub fn header_certified() -> String {
+    header() + ",certified,radius_mm,error_bound_mm"
 }
