@@ -3,6 +3,8 @@
 
 use linkage::Mechanism;
 
+pub mod invariants;
+
 pub use linkage_examples::case_study::sampling::Rng;
 
 /// Checks ∂F/∂v (sparse and dense) and ∂F/∂x against central finite differences at (v, x),

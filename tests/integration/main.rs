@@ -13,4 +13,5 @@ mod other_mechanisms;
 mod properties;
 mod solvers;
 mod stewart_cli;
+mod stress;
 mod tracking;
