@@ -5,6 +5,7 @@
 //! (`LINKAGE_STRESS=10` for ten times the cases); the counts print at the end of each test
 //! (`-- --nocapture`).
 
+mod arc;
 mod bad_values;
 mod check;
 mod fk;
@@ -73,7 +74,7 @@ fn bad_values_for_every_solver() {
     let mut tally = Tally::new(&run);
     for case in run.cases(3000) {
         let mut rng = run.rng(case);
-        let g = if rng.next_u64() % 2 == 0 {
+        let g = if rng.next_u64().is_multiple_of(2) {
             geometry::Geometry::table_iii()
         } else {
             random_geometry(&mut rng)

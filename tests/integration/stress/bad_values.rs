@@ -62,7 +62,7 @@ fn bad_leg(rng: &mut Rng, l: f64) -> f64 {
 
 /// `l` moved by a few ulps, or by a relative 1e-15 … 1e-6.
 fn near_leg(rng: &mut Rng, l: f64) -> f64 {
-    if rng.next_u64() % 2 == 0 {
+    if rng.next_u64().is_multiple_of(2) {
         let k = (rng.next_u64() % 9) as i64 - 4;
         f64::from_bits((l.to_bits() as i64 + k) as u64)
     } else {

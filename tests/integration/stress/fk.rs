@@ -36,7 +36,7 @@ struct Inputs<'a> {
 
 /// Options as users set them: mostly TIGHT or PAPER, sometimes anything sensible.
 pub fn random_options(rng: &mut Rng) -> Options {
-    let linear = if rng.next_u64() % 4 == 0 {
+    let linear = if rng.next_u64().is_multiple_of(4) {
         Linear::Dense
     } else {
         Linear::Generated
@@ -151,12 +151,27 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry,
         tally.count("straight segment ends in another mode than the pose path (README caveat)");
     }
     if seg.undecided(x_size) {
-        tally.count("straight segment ends within rounding of a fold (undecided)");
+        tally.count(
+            "straight segment undecided (oracle stuck, or the end within rounding of a fold)",
+        );
     }
     // What PH claims: the straight segment's truth. Where the segment's end lies within
     // rounding of a fold, also the pose's pivots (the only other truth there is).
+    // The same segment followed backwards from a result to the start: where it arrives at the
+    // start's pivots, the result is connected to the start along the segment, whatever the
+    // forward run said (a second, independent attempt of the oracle).
+    let contradicted = std::cell::Cell::new(0);
+    let unverified = std::cell::Cell::new(0);
+    let backwards = |v: &[f64; 18]| {
+        let back = follow_segment(&m.sys, (v, &x), m.det0, &m.x0, max_step);
+        let ok = back.allows(&m.v0, tol, sup(&m.x0));
+        if ok {
+            contradicted.set(contradicted.get() + 1);
+        }
+        ok
+    };
     let on_segment = |v: &[f64; 18]| -> Result<(), String> {
-        if seg.allows(v, tol, x_size) || (seg.undecided(x_size) && on_pose(v)) {
+        if seg.allows(v, tol, x_size) || (seg.undecided(x_size) && on_pose(v)) || backwards(v) {
             return Ok(());
         }
         Err(if seg.reached {
@@ -167,8 +182,9 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry,
             )
         } else {
             format!(
-                "fine continuation along the straight segment stops at λ = {} (min |det B|/|det0| {:e}){}",
+                "fine continuation along the straight segment stops at λ = {} ({}, min |det B|/|det0| {:e}){}",
                 seg.lambda,
+                if seg.stuck { "oracle stuck" } else { "a fold or crossing" },
                 seg.min_ratio,
                 match &pose_truth {
                     Some((vp, _)) => format!(", and it is {:e} from the pose's pivots", distance(v, vp)),
@@ -220,18 +236,40 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry,
                     return on_segment(v);
                 };
                 let (mut here, mut at) = (m.v0, m.x0);
-                for corner in [left_at, via] {
+                for (k, corner) in [left_at, via].into_iter().enumerate() {
                     let leg = follow_segment(&m.sys, (&here, &at), m.det0, &corner, max_step);
-                    if !leg.reached {
+                    if leg.reached {
+                        (here, at) = (leg.v, corner);
+                    } else if leg.near_end(x_size) || (k == 0 && leg.stuck) {
+                        // The detour leaves the straight segment at its last point before the
+                        // fold: where the oracle stops short of it without meeting the fold,
+                        // go on from there (the polyline moves by as little).
+                        let stop =
+                            std::array::from_fn(|j| at[j] + leg.lambda * (corner[j] - at[j]));
+                        (here, at) = (leg.v, stop);
+                    } else if leg.stuck {
+                        // Next to the fold the oracle may not get going at all: no verdict.
+                        unverified.set(unverified.get() + 1);
+                        return Ok(());
+                    } else {
                         return Err(format!(
-                            "the detour's polyline meets a singularity on the way to {corner:?} (λ = {})",
-                            leg.lambda
+                            "the detour's polyline meets a singularity on the way to {corner:?} (λ = {}, {})",
+                            leg.lambda,
+                            if leg.stuck { "oracle stuck" } else { "a fold or crossing" }
                         ));
                     }
-                    (here, at) = (leg.v, corner);
                 }
                 let last = follow_segment(&m.sys, (&here, &at), m.det0, &x, max_step);
-                if last.allows(v, tol, x_size) || (last.undecided(x_size) && on_pose(v)) {
+                // As for the straight segment: or followed backwards from the result.
+                let back = || {
+                    let back = follow_segment(&m.sys, (v, &x), m.det0, &at, max_step);
+                    let ok = back.allows(&here, tol, sup(&at));
+                    if ok {
+                        contradicted.set(contradicted.get() + 1);
+                    }
+                    ok
+                };
+                if last.allows(v, tol, x_size) || (last.undecided(x_size) && on_pose(v)) || back() {
                     Ok(())
                 } else if last.reached {
                     Err(format!(
@@ -240,8 +278,13 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry,
                     ))
                 } else {
                     Err(format!(
-                        "the detour's last segment meets a singularity at λ = {}",
-                        last.lambda
+                        "the detour's last segment meets a singularity at λ = {} ({})",
+                        last.lambda,
+                        if last.stuck {
+                            "oracle stuck"
+                        } else {
+                            "a fold or crossing"
+                        }
                     ))
                 }
             };
@@ -286,5 +329,11 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry,
                 tally.count("ok beyond a singularity, no truth known (unverifiable)");
             }
         }
+    }
+    for _ in 0..unverified.get() {
+        tally.count("detour ok unverified (the oracle could not start next to the fold)");
+    }
+    for _ in 0..contradicted.get() {
+        tally.count("ok confirmed by the segment followed backwards, not forwards");
     }
 }

@@ -5,8 +5,11 @@
 //! continuation with a tangent predictor and a Newton corrector that must contract at once
 //! (so that it cannot slide onto another sheet of the solution set) either reaches the end with
 //! det B of the start's sign at every point, or stops where the segment meets a singularity
-//! (det B changes sign, or the steps shrink to nothing at a fold).
+//! (det B changes sign). Where its steps shrink to nothing, pseudo-arc-length steps
+//! (`arc.rs`) decide between a fold (λ turns back, det B changes sign) and a near miss (the
+//! branch goes on), and continuation resumes past it.
 
+use super::arc::{pass, Pass};
 use linkage::Mechanism;
 
 /// The end of a segment followed by [`follow_segment`].
@@ -28,6 +31,8 @@ pub struct Truth<const N: usize> {
     /// get there, 4 |dv/dλ| (1 − λ) (near a fold v moves as √(λ_f − λ), whose integral is twice
     /// the tangent times the distance; twice that again for safety).
     pub reach: f64,
+    /// Neither reached nor shown to meet a singularity: the steps shrank to nothing.
+    pub stuck: bool,
 }
 
 fn sup(a: &[f64]) -> f64 {
@@ -122,6 +127,23 @@ fn correct<S: Mechanism<N, M>, const N: usize, const M: usize>(
     None
 }
 
+/// Whether (v, x) is a point of the branch of det0's sign to within what rounding allows next
+/// to a singularity: its Newton correction below 1e-6 of its size.
+fn stalled_near<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    det0: f64,
+) -> bool {
+    let Some((b, piv)) = factored(sys, v, x) else {
+        return false;
+    };
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    linkage::lu::solve(&b, &piv, &mut f);
+    sup(&f) <= 1e-6 * (1.0 + sup(v)) && piv.det * det0 > 0.0
+}
+
 /// Follows the start's branch from (v0, x0), where det B has the sign of `det0`, along the
 /// straight segment to `x1`, in steps of at most `max_step` in the inputs' largest component.
 pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
@@ -145,7 +167,7 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
             std::array::from_fn(|j| x0[j] + l * dx[j])
         }
     };
-    let stopped = |v: [f64; N], lambda: f64, min_ratio: f64, speed: f64| Truth {
+    let stopped = |v: [f64; N], lambda: f64, min_ratio: f64, speed: f64, stuck: bool| Truth {
         v,
         reached: false,
         lambda,
@@ -153,18 +175,22 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
         sensitivity: f64::INFINITY,
         remaining: (1.0 - lambda) * span,
         reach: 4.0 * speed * (1.0 - lambda),
+        stuck,
     };
-    // The first point may be a solver's result, accurate only to its tolerance: polish it.
+    // The first point may be a solver's result, accurate only to its tolerance: polish it
+    // (next to a fold, where rounding stalls Newton, keep it as it is if it is that close).
     let mut v = match correct(sys, *v0, x0, f64::INFINITY, 30) {
         Some((v, det)) if det * det0 > 0.0 => v,
-        _ => return stopped(*v0, 0.0, 0.0, f64::INFINITY),
+        _ if stalled_near(sys, v0, x0, det0) => *v0,
+        _ => return stopped(*v0, 0.0, 0.0, f64::INFINITY, true),
     };
     let mut lambda = 0.0;
     let mut h = h_max;
     let mut min_ratio = 1.0f64;
+    let mut passes = 0;
     while lambda < 1.0 {
         let Some(t) = tangent(sys, &v, &at(lambda), &dx) else {
-            return stopped(v, lambda, 0.0, f64::INFINITY);
+            return stopped(v, lambda, 0.0, f64::INFINITY, true);
         };
         let next = (lambda + h).min(1.0);
         let step = next - lambda;
@@ -181,13 +207,24 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
             }
             Some((_, det)) if h <= 1e-3 * h_max || det == 0.0 => {
                 // det B changed sign over a short step: the segment crosses a singularity.
-                return stopped(v, lambda, 0.0, sup(&t));
+                return stopped(v, lambda, 0.0, sup(&t), false);
             }
             _ => {
                 h *= 0.25;
                 if h < 1e-12 {
-                    // No nearby solution ahead: a fold.
-                    return stopped(v, lambda, min_ratio, sup(&t));
+                    // No nearby solution ahead: a fold, or a near miss that natural-parameter
+                    // steps cannot pass. Arc-length steps decide.
+                    passes += 1;
+                    let beyond = (lambda + 1e-6).min(1.0);
+                    match pass(sys, (x0, &dx), det0, &v, lambda, &t, beyond) {
+                        Pass::Beyond(w) if passes <= 100 => {
+                            let r = (linkage::det_b(sys, &w, &at(beyond)) / det0).abs();
+                            min_ratio = min_ratio.min(r);
+                            (v, lambda, h) = (w, beyond, h_max);
+                        }
+                        Pass::Turned => return stopped(v, lambda, 0.0, sup(&t), false),
+                        _ => return stopped(v, lambda, min_ratio, sup(&t), true),
+                    }
                 }
             }
         }
@@ -204,27 +241,32 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
         sensitivity: sensitivity(sys, &v, x1),
         remaining: 0.0,
         reach: 0.0,
+        stuck: false,
     }
 }
 
 impl<const N: usize> Truth<N> {
     /// Stopped so near the end (within 1e-6 of the segment, or 1e-8 of the inputs' size) that
     /// the end may lie within rounding of a fold: a target whose pose is ε from a singular
-    /// surface has legs O(ε²) from the workspace boundary, and whether the branch reaches it
-    /// is not decided in floating point by this oracle's steps.
-    pub fn undecided(&self, x_size: f64) -> bool {
+    /// surface has legs O(ε²) from the workspace boundary.
+    pub fn near_end(&self, x_size: f64) -> bool {
         !self.reached && (1.0 - self.lambda <= 1e-6 || self.remaining <= 1e-8 * x_size)
     }
 
+    /// Neither reached nor shown to meet a singularity before the end.
+    pub fn undecided(&self, x_size: f64) -> bool {
+        !self.reached && (self.stuck || self.near_end(x_size))
+    }
+
     /// Whether `v`, from a solve with `tolerance` at inputs of size `x_size`, is this branch's
-    /// point at the end: the end's truth when reached; when undecided, within `reach` of where
-    /// the oracle stopped.
+    /// point at the end: the end's truth when reached; when stopped near the end, within
+    /// `reach` of where it stopped.
     pub fn allows(&self, v: &[f64; N], tolerance: f64, x_size: f64) -> bool {
         let v_size = sup(&self.v);
         if self.reached {
             distance(v, &self.v) <= agreement(tolerance, self.sensitivity, x_size, v_size)
         } else {
-            self.undecided(x_size)
+            self.near_end(x_size)
                 && distance(v, &self.v) <= self.reach + agreement(tolerance, 0.0, x_size, v_size)
         }
     }

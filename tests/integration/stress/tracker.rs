@@ -56,7 +56,7 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
     tally.case();
     let tr = random_trajectory(&m, rng);
     tally.count(format!("trajectory {}", tr.kind));
-    let options = if rng.next_u64() % 5 == 0 {
+    let options = if rng.next_u64().is_multiple_of(5) {
         super::fk::random_options(rng)
     } else {
         Options::TIGHT
@@ -119,13 +119,22 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
                 let as_pose = pose_connected && near(&v_pose, sensitivity(&m.sys, &v_pose, &x));
                 if !as_pose {
                     let seg = follow_segment(&m.sys, (&v_a, &x_a), m.det0, &x, max_step);
-                    if !seg.allows(&sample.v, tol, sup(&x)) {
+                    // Or the segment followed backwards from the sample to the last one.
+                    let back = || {
+                        follow_segment(&m.sys, (&sample.v, &x), m.det0, &x_a, max_step).allows(
+                            &v_a,
+                            tol,
+                            sup(&x_a),
+                        )
+                    };
+                    if !seg.allows(&sample.v, tol, sup(&x)) && !back() {
                         tally.count("Tracker: WRONG BRANCH ok");
                         tally.fail(
                             "wrong_branch_ok",
                             case,
                             format!(
-                                "Tracker accepted a sample {:e} from the pose's pivots (pose path from the last accepted sample {}), and {}",
+                                "Tracker accepted a sample{} {:e} from the pose's pivots (pose path from the last accepted sample {}), and {}",
+                                if after_refusal { " after refusing the one before" } else { "" },
                                 distance(&sample.v, &v_pose),
                                 if pose_connected { "nonsingular" } else { "not known nonsingular" },
                                 if seg.reached {
