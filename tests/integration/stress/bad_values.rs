@@ -246,7 +246,7 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
             }
             Ok(_) => {}
             Err(e) => tally.fail(
-                "tracker_unusable_after_a_bad_sample",
+                "tracker_refused_the_start_legs_again",
                 case,
                 format!("the start's own legs refused afterwards: {e}"),
                 &inputs,
