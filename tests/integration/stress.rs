@@ -66,9 +66,9 @@ fn forward_kinematics_by_continuation() {
 ///
 /// Fails at 71447e1:
 /// - `ok_above_tolerance` (629 at ×1): as above, defect 10; expected to be cured.
-/// - `wrong_branch_ok` (17 at ×1: NR 13, NH 4; 198 at ×10): NR converges to another assembly
-///   mode of the start's det B sign (8 to 360 mm from every truth; e.g. cases 23, 304, 961), and
-///   NH jumps across a fold to such a mode (cases 450, 1330, 1814). The README admits it ("they
+/// - `wrong_branch_ok` (15 at ×1: NR 12, NH 3; 174 at ×10: NR 141, NH 33): NR converges to
+///   another assembly mode of the start's det B sign (8 to 360 mm from every truth; e.g. cases
+///   23, 304, 961), and NH jumps across a fold to such a mode (e.g. cases 1330, 1814). The README admits it ("they
 ///   cannot see a jump that keeps its sign"); issue 9 forbids it; NOT covered by the planned
 ///   fixes: it needs a decision (verify NR and NH results by continuation, or give them a status
 ///   that does not say ok).
@@ -86,10 +86,11 @@ fn forward_kinematics_by_newton() {
 ///   tolerance (1.0–10× it, mostly at the rounding floor of large random machines): the fast
 ///   path takes the predictor step as the zeroth correction and extrapolates from it (defect 10,
 ///   if its fix covers the tracker: ok must mean the tolerance met at the point returned).
-/// - `wrong_branch_ok` (at ×10: cases 314, 500, 541, 651, 658, 1065, 1339, 1392, 1570, 1775):
-///   right after a refused sample the tracker accepts one that no nonsingular path connects to
-///   the last accepted one, up to 131 mm from the pose (defect 2; case 658 with a pose path
-///   that never meets a singularity).
+/// - `wrong_branch_ok` (1 at ×1, case 314; 15 at ×10: also 500, 541, 651, 658, 1065, 1339,
+///   1392, 1570, 1775, 2477, 2758, 3098, 3102, 3391): every one right after a refused sample,
+///   the tracker accepts a sample that no nonsingular path connects to the last accepted one,
+///   up to 131 mm from the pose (defect 2; case 658 with a pose path that never meets a
+///   singularity, the others after the pose crossed a singular surface and came back).
 /// - `tracker_refused_reachable_sample` (at ×10: case 271): with `Linear::Dense` its fallback
 ///   PH reports a fold that the generated factorisation passes (defect 3 family).
 #[test]
