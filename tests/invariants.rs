@@ -73,7 +73,9 @@ pub fn point_violation<S: Mechanism<N, M>, const N: usize, const M: usize>(
             ),
         });
     }
-    let det = linkage::det_b(sys, v, x);
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    let det = crate::dense::Lu::new(b).map_or(0.0, |lu| lu.det);
     if !(det * det0 > 0.0) {
         return Some(Violation {
             kind: "ok_wrong_det_sign",

@@ -3,6 +3,7 @@
 
 use linkage::Mechanism;
 
+pub mod dense;
 pub mod invariants;
 
 pub use linkage_examples::case_study::sampling::Rng;

@@ -169,7 +169,7 @@ pub fn pass<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 Some(end) => {
                     let v: [f64; N] = std::array::from_fn(|i| end[i]);
                     let x = curve.x(end[N]);
-                    if linkage::det_b(sys, &v, &x) * det0 > 0.0 {
+                    if super::oracle::det(sys, &v, &x) * det0 > 0.0 {
                         return Pass::Beyond(v);
                     }
                     return Pass::Turned;
@@ -184,7 +184,7 @@ pub fn pass<S: Mechanism<N, M>, const N: usize, const M: usize>(
             }
         }
         let v: [f64; N] = std::array::from_fn(|i| z[i]);
-        if !(linkage::det_b(sys, &v, &curve.x(z[N])) * det0 > 0.0) {
+        if !(super::oracle::det(sys, &v, &curve.x(z[N])) * det0 > 0.0) {
             return Pass::Turned;
         }
         let Some(next) = curve.tangent(&z, &tau) else {

@@ -184,7 +184,7 @@ impl<S: SixSix> Machine<S> {
         if x.iter().any(|l| !(*l > 0.1 * self.size)) {
             return None;
         }
-        Some((x, v, linkage::det_b(&self.sys, &v, &x) / self.det0))
+        Some((x, v, super::oracle::det(&self.sys, &v, &x) / self.det0))
     }
 
     /// The smallest det B / det0 at `checks` + 1 evenly spaced points of the pose path from

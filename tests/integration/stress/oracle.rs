@@ -11,6 +11,7 @@
 
 use super::arc::{pass, Pass};
 use linkage::Mechanism;
+use linkage_tests::dense::Lu;
 
 /// The end of a segment followed by [`follow_segment`].
 #[derive(Clone, Copy, Debug)]
@@ -44,11 +45,19 @@ fn factored<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
     x: &[f64; M],
-) -> Option<([[f64; N]; N], linkage::lu::Pivots<N>)> {
+) -> Option<Lu<N>> {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
-    let piv = linkage::lu::factor::<N, _>(&mut b)?;
-    (piv.det.is_finite() && piv.det != 0.0).then_some((b, piv))
+    Lu::new(b).filter(|lu| lu.det.is_finite())
+}
+
+/// det B at (v, x), by this module's own factorisation (0 where singular).
+pub fn det<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> f64 {
+    factored(sys, v, x).map_or(0.0, |lu| lu.det)
 }
 
 /// dv/dλ along x(λ) = x0 + λ (x1 − x0): B dv = −(∂F/∂x)(x1 − x0).
@@ -58,11 +67,11 @@ fn tangent<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     dx: &[f64; M],
 ) -> Option<[f64; N]> {
-    let (b, piv) = factored(sys, v, x)?;
+    let lu = factored(sys, v, x)?;
     let mut a = [[0.0; M]; N];
     sys.input_jacobian(v, x, &mut a);
     let mut t: [f64; N] = std::array::from_fn(|i| -(0..M).map(|j| a[i][j] * dx[j]).sum::<f64>());
-    linkage::lu::solve(&b, &piv, &mut t);
+    lu.solve(&mut t);
     t.iter().all(|c| c.is_finite()).then_some(t)
 }
 
@@ -72,7 +81,7 @@ pub fn sensitivity<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> f64 {
-    let Some((b, piv)) = factored(sys, v, x) else {
+    let Some(lu) = factored(sys, v, x) else {
         return f64::INFINITY;
     };
     let mut a = [[0.0; M]; N];
@@ -80,7 +89,7 @@ pub fn sensitivity<S: Mechanism<N, M>, const N: usize, const M: usize>(
     (0..M)
         .map(|j| {
             let mut col: [f64; N] = std::array::from_fn(|i| a[i][j]);
-            linkage::lu::solve(&b, &piv, &mut col);
+            lu.solve(&mut col);
             sup(&col)
         })
         .fold(0.0, f64::max)
@@ -99,10 +108,10 @@ fn correct<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let scale = 1.0 + sup(&v);
     let (mut limit, mut last) = (first, f64::INFINITY);
     for _ in 0..iterations {
-        let (b, piv) = factored(sys, &v, x)?;
+        let lu = factored(sys, &v, x)?;
         let mut f = [0.0; N];
         sys.residual(&v, x, &mut f);
-        linkage::lu::solve(&b, &piv, &mut f);
+        lu.solve(&mut f);
         let size = sup(&f);
         if !size.is_finite() {
             return None;
@@ -114,7 +123,7 @@ fn correct<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     v[i] -= f[i];
                 }
             }
-            return Some((v, linkage::det_b(sys, &v, x)));
+            return Some((v, det(sys, &v, x)));
         }
         if size > limit {
             return None;
@@ -135,13 +144,13 @@ fn stalled_near<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     det0: f64,
 ) -> bool {
-    let Some((b, piv)) = factored(sys, v, x) else {
+    let Some(lu) = factored(sys, v, x) else {
         return false;
     };
     let mut f = [0.0; N];
     sys.residual(v, x, &mut f);
-    linkage::lu::solve(&b, &piv, &mut f);
-    sup(&f) <= 1e-6 * (1.0 + sup(v)) && piv.det * det0 > 0.0
+    lu.solve(&mut f);
+    sup(&f) <= 1e-6 * (1.0 + sup(v)) && lu.det * det0 > 0.0
 }
 
 /// Follows the start's branch from (v0, x0), where det B has the sign of `det0`, along the
@@ -218,7 +227,7 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     let beyond = (lambda + 1e-6).min(1.0);
                     match pass(sys, (x0, &dx), det0, &v, lambda, &t, beyond) {
                         Pass::Beyond(w) if passes <= 100 => {
-                            let r = (linkage::det_b(sys, &w, &at(beyond)) / det0).abs();
+                            let r = (det(sys, &w, &at(beyond)) / det0).abs();
                             min_ratio = min_ratio.min(r);
                             (v, lambda, h) = (w, beyond, h_max);
                         }
@@ -246,11 +255,12 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
 }
 
 impl<const N: usize> Truth<N> {
-    /// Stopped so near the end (within 1e-6 of the segment, or 1e-8 of the inputs' size) that
-    /// the end may lie within rounding of a fold: a target whose pose is ε from a singular
-    /// surface has legs O(ε²) from the workspace boundary.
+    /// Stopped so near the end that the end may lie within rounding of a fold: within 1e-6 of
+    /// the segment, or 1e-7 of the inputs' size (a fold's place is known to about √ε of the
+    /// size, 1.5e-8, since v moves as the square root of the distance to it; and a target whose
+    /// pose is δ from a singular surface has legs O(δ²) from the workspace boundary).
     pub fn near_end(&self, x_size: f64) -> bool {
-        !self.reached && (1.0 - self.lambda <= 1e-6 || self.remaining <= 1e-8 * x_size)
+        !self.reached && (1.0 - self.lambda <= 1e-6 || self.remaining <= 1e-7 * x_size)
     }
 
     /// Neither reached nor shown to meet a singularity before the end.

@@ -119,13 +119,13 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
         return;
     };
     let (vs, xs, det) = start_parts(&start);
-    if !(linkage::det_b(&m.sys, &vs, &xs) * det > 0.0) {
+    if !(super::oracle::det(&m.sys, &vs, &xs) * det > 0.0) {
         tally.fail(
             "start_sign_unstable",
             case,
             format!(
                 "the start's det B {det:e} and det B recomputed at its pivots {:e} differ in sign",
-                linkage::det_b(&m.sys, &vs, &xs)
+                super::oracle::det(&m.sys, &vs, &xs)
             ),
             &inputs,
         );
