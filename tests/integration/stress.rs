@@ -41,7 +41,7 @@ fn forward_kinematics(run: &Run, solvers: fk::Solvers) {
 /// Random targets for random machines, solved by PH and PH with detours.
 ///
 /// Fails at 71447e1, expected to be cured by the issue 9 fixes:
-/// - `ok_above_tolerance` (693 at ×1): `Converged` near singular targets with the error
+/// - `ok_above_tolerance` (683 at ×1): `Converged` near singular targets with the error
 ///   estimate, reported or measured again at the result, above the tolerance (defect 10).
 /// - `ph_refused_reachable_target` (5 at ×1, 10 at ×10): PH refuses targets whose straight
 ///   segment keeps |det B| above 1 % of the start's. Seven overshoot λ = 1 by 0.0004–0.012 and
@@ -65,8 +65,8 @@ fn forward_kinematics_by_continuation() {
 /// The same targets (same seed), solved by NH and NR.
 ///
 /// Fails at 71447e1:
-/// - `ok_above_tolerance` (629 at ×1): as above, defect 10; expected to be cured.
-/// - `wrong_branch_ok` (15 at ×1: NR 12, NH 3; 174 at ×10: NR 141, NH 33): NR converges to
+/// - `ok_above_tolerance` (628 at ×1): as above, defect 10; expected to be cured.
+/// - `wrong_branch_ok` (15 at ×1: NR 12, NH 3; 170 at ×10: NR 139, NH 31): NR converges to
 ///   another assembly mode of the start's det B sign (8 to 360 mm from every truth; e.g. cases
 ///   23, 304, 961), and NH jumps across a fold to such a mode (e.g. cases 1330, 1814). The README admits it ("they
 ///   cannot see a jump that keeps its sign"); issue 9 forbids it; NOT covered by the planned
@@ -117,7 +117,7 @@ fn tracker_on_random_trajectories() {
 ///   squares overflow (defect 1).
 /// - `ok_above_tolerance` (220): ok with tolerances no solve can meet (1e-300, 5e-324) or legs of
 ///   1.7e8 mm, 0.1 mm from converged (defects 10, 11).
-/// - `ok_wrong_det_sign` (4): NR and NH, with tolerances of 1e3 mm and more, ok after one step
+/// - `ok_wrong_det_sign` (3): NR and NH, with tolerances of 1e3 mm and more, ok after one step
 ///   with det B of the other sign (defect 11).
 /// - `refused_a_target_at_the_start` (882): PH and detours end `StepTooSmall` for legs a few ulps
 ///   from the start, or the start's own legs recomputed from its pose (defect 3a).
@@ -149,11 +149,11 @@ fn bad_values_for_every_solver() {
 ///
 /// Fails at 71447e1, expected to be cured by the scale-free singular-start test (defect 4)
 /// and the meaning of ok (defect 10):
-/// - `exact_start_called_inconsistent` (366 at ×1): an exact pose within 1e-12 of the surface
+/// - `exact_start_called_inconsistent` (367 at ×1): an exact pose within 1e-12 of the surface
 ///   refused as `InconsistentStart`.
-/// - `start_sign_unstable` (349): a start accepted, then rebuilt from its own refined pivots
+/// - `start_sign_unstable` (335): a start accepted, then rebuilt from its own refined pivots
 ///   (or those moved by 1e-12 of their size) accepted with det B of the other sign.
-/// - `ok_above_tolerance` (1785): solves from such starts, even to the start's own legs, ok with
+/// - `ok_above_tolerance` (1775): solves from such starts, even to the start's own legs, ok with
 ///   the next correction above the tolerance.
 #[test]
 fn starts_near_singular_surfaces() {
