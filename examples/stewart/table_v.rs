@@ -40,7 +40,7 @@ fn table(r: &Report) -> String {
     let n = r.normal.len();
     for (label, pick) in [
         ("paper settings (accuracy 0.0005, ≤ 150 iterations)", 0),
-        ("tight tolerance (1e-10 mm)", 1),
+        ("tight tolerance (1e-9 mm)", 1),
     ] {
         line!(
             "\nTable V, {label}: {} normal and {} near-singular points, seed {}",

@@ -147,7 +147,8 @@ pub struct Options {
     /// v). Finite, positive and at most 1e-3 of the start's ‖v‖ (or of 1, if larger): a looser
     /// tolerance would call answers ok that are visibly off. Where rounding forbids it — near a
     /// singularity, or below the floor the equations' rounding sets (about 1e-13 mm for the
-    /// Table III platform, 1e-10 to 2e-9 mm for the general model's rows) — the solve ends
+    /// Table III platform, about 1e-10 mm for the general model's rows at regular points of a
+    /// 200 mm machine, and up to 2e-9 mm near singular ones) — the solve ends
     /// [`Status::ToleranceNotMet`] with what was achieved.
     pub tolerance: f64,
     /// Newton iterations allowed for the final correction (and for NR altogether).
@@ -179,9 +180,13 @@ impl Options {
         homotopy_steps: 10,
         linear: Linear::Generated,
     };
-    /// Near machine precision for millimetre-sized mechanisms.
+    /// Near machine precision for millimetre-sized mechanisms: 1e-9, a few times above the
+    /// rounding floor the general model's equations leave at regular points of a 200 mm
+    /// machine (about 1e-10 mm), so that [`Status::ToleranceNotMet`] means what it says — a
+    /// point near a singularity, or a machine too large for this tolerance — and not rounding
+    /// at a regular point.
     pub const TIGHT: Options = Options {
-        tolerance: 1e-10,
+        tolerance: 1e-9,
         max_iterations: 50,
         max_steps: 2000,
         homotopy_steps: 10,

@@ -151,7 +151,7 @@ fn field<'a>(header: &[String], row: &'a [String], name: &str) -> &'a str {
 }
 
 /// Each row's status; and every `ok` row has a finite pose and an error estimate within
-/// `tolerance` (the default 1e-10 mm unless given).
+/// the default tolerance (`Options::TIGHT`, the CLI's default).
 fn statuses(out: &Output) -> Vec<String> {
     let (header, body) = rows(out);
     for r in &body {
@@ -162,7 +162,7 @@ fn statuses(out: &Output) -> Vec<String> {
             }
             let error: f64 = field(&header, r, "error_estimate").parse().unwrap();
             assert!(
-                error <= 1e-10,
+                error <= linkage::Options::TIGHT.tolerance,
                 "ok row with an error estimate of {error}: {r:?}"
             );
         }

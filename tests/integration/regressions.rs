@@ -278,7 +278,7 @@ fn ph_reaches_random_reachable_targets() {
                 _ if sol.is_ok() => counts[0] += 1,
                 linkage::Status::Fold { .. } => counts[1] += 1,
                 // Honest, at a target so near a singularity that rounding stops Newton just
-                // above 1e-10 mm (6 in 32 000 with REGRESSION_SEEDS=1,2,3,4): the answer is
+                // above the tolerance (6 in 32 000 at 1e-10 mm with REGRESSION_SEEDS=1,2,3,4): the answer is
                 // there, the tolerance is not met, and the status says so.
                 linkage::Status::ToleranceNotMet { achieved } => {
                     counts[2] += 1;

@@ -95,8 +95,11 @@ fn forward_kinematics_by_newton() {
 ///   PH reports a fold that the generated factorisation passes (defect 3 family).
 #[test]
 fn tracker_on_random_trajectories() {
-    let run = Run::new("tracker_on_random_trajectories", 0x5EED_0002);
-    let mut tally = Tally::new(&run);
+    trajectories(&Run::new("tracker_on_random_trajectories", 0x5EED_0002));
+}
+
+fn trajectories(run: &Run) {
+    let mut tally = Tally::new(run);
     for case in run.cases(400) {
         let mut rng = run.rng(case);
         let g = random_geometry(&mut rng);
@@ -126,8 +129,11 @@ fn tracker_on_random_trajectories() {
 ///   `StepTooSmall` at λ = 0.42 of a step of a few ulps: defect 3a).
 #[test]
 fn bad_values_for_every_solver() {
-    let run = Run::new("bad_values_for_every_solver", 0x5EED_0003);
-    let mut tally = Tally::new(&run);
+    bad_values(&Run::new("bad_values_for_every_solver", 0x5EED_0003));
+}
+
+fn bad_values(run: &Run) {
+    let mut tally = Tally::new(run);
     for case in run.cases(3000) {
         let mut rng = run.rng(case);
         let g = if rng.next_u64().is_multiple_of(2) {
@@ -157,8 +163,11 @@ fn bad_values_for_every_solver() {
 ///   the next correction above the tolerance.
 #[test]
 fn starts_near_singular_surfaces() {
-    let run = Run::new("starts_near_singular_surfaces", 0x5EED_0004);
-    let mut tally = Tally::new(&run);
+    starts(&Run::new("starts_near_singular_surfaces", 0x5EED_0004));
+}
+
+fn starts(run: &Run) {
+    let mut tally = Tally::new(run);
     for case in run.cases(1500) {
         let mut rng = run.rng(case);
         let g = random_geometry(&mut rng);
@@ -169,4 +178,25 @@ fn starts_near_singular_surfaces() {
         }
     }
     tally.finish();
+}
+
+// ---- Cases that found a defect, replayed alone as its regression test (each failed before
+// its fix, with the seed and the test named here).
+
+/// `Options::TIGHT` at 1e-10 mm sat at the rounding floor of the general model at regular
+/// points: the tracker refused samples (`tracker_refused_reachable_sample`,
+/// `tracker_refused_the_start_legs_again`) with `tolerance_not_met` at 1.0–6.7e-10 mm. Cured
+/// by `Options::TIGHT.tolerance` = 1e-9.
+#[test]
+fn known_cases_tight_tolerance_at_the_rounding_floor() {
+    trajectories(&Run::listed(
+        "tracker_on_random_trajectories",
+        0x5EED_0002,
+        &[39, 66, 83, 89, 121, 168],
+    ));
+    bad_values(&Run::listed(
+        "bad_values_for_every_solver",
+        0x5EED_0003,
+        &[1178, 1469],
+    ));
 }

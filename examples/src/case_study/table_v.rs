@@ -272,7 +272,7 @@ pub fn to_json(r: &Report) -> serde_json::Value {
             "path_checks": p.checks, "near_fraction": p.near_fraction, "mean_samples": p.mean_samples,
             "mean_abs_det": r.mean_det,
             "paper_settings": { "tolerance": 5e-4, "max_iterations": 150 },
-            "tight_settings": { "tolerance": 1e-10 },
+            "tight_settings": { "tolerance": Options::TIGHT.tolerance },
         },
     })
 }

@@ -26,7 +26,7 @@ pub struct Run {
     test: &'static str,
     pub seed: u64,
     scale: u64,
-    only: Option<u64>,
+    only: Option<Vec<u64>>,
 }
 
 impl Run {
@@ -35,14 +35,25 @@ impl Run {
             test,
             seed: env_number("LINKAGE_STRESS_SEED").unwrap_or(default_seed),
             scale: env_number("LINKAGE_STRESS").unwrap_or(1).max(1),
-            only: env_number("LINKAGE_STRESS_CASE"),
+            only: env_number("LINKAGE_STRESS_CASE").map(|i| vec![i]),
+        }
+    }
+
+    /// The listed cases of `test` at `seed` alone, whatever the environment: the cases that
+    /// found a defect, kept as its regression test.
+    pub fn listed(test: &'static str, seed: u64, cases: &[u64]) -> Run {
+        Run {
+            test,
+            seed,
+            scale: 1,
+            only: Some(cases.to_vec()),
         }
     }
 
     /// The case indices to run: `default` times the scale, or the one asked for.
     pub fn cases(&self, default: u64) -> Vec<u64> {
-        match self.only {
-            Some(i) => vec![i],
+        match &self.only {
+            Some(list) => list.clone(),
             None => (0..default * self.scale).collect(),
         }
     }
