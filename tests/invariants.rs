@@ -1,6 +1,14 @@
 //! What every `ok` must satisfy, whatever the solver and whatever the input: a finite solution,
 //! the requested tolerance met (as the solver reports it and as measured again here), and det B
-//! of the start's sign. Shared by the stress suite, the property tests and the fuzz targets.
+//! of the start's sign. An `unverified` result (NH, NR) makes the same promises but the branch,
+//! and is held to them too. Shared by the stress suite, the property tests and the fuzz targets.
+//!
+//! Measured again, the correction at a point at the rounding floor differs from the solver's
+//! measurement by about that floor: there a measured correction above the tolerance is rounding,
+//! not distance, when the solver's own measurement was within it and the correction after the
+//! next (how small rounding lets it get) is as large. A point truly off by more than the
+//! tolerance has a next-but-one correction far smaller than its correction (Newton converges
+//! quadratically there), so it still fails.
 
 use linkage::{Mechanism, Solution};
 
@@ -18,8 +26,9 @@ impl std::fmt::Display for Violation {
     }
 }
 
-/// Why an `ok` result breaks the promise, or `None` when it keeps it (or is not ok). `det0` is
-/// det B at the start (only its sign matters), `tolerance` the one the solve was given.
+/// Why an `ok` (or `unverified`) result breaks the promise, or `None` when it keeps it (or
+/// claims nothing). `det0` is det B at the start (only its sign matters), `tolerance` the one
+/// the solve was given.
 pub fn ok_violation<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     det0: f64,
@@ -27,7 +36,7 @@ pub fn ok_violation<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sol: &Solution<N>,
     tolerance: f64,
 ) -> Option<Violation> {
-    if !sol.is_ok() {
+    if !sol.status.meets_tolerance() {
         return None;
     }
     if !sol.v.iter().all(|c| c.is_finite()) {
@@ -66,6 +75,10 @@ pub fn point_violation<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let measured = linkage::error_estimate(sys, v, x);
     if !(measured <= tolerance) {
         let noise = correction_noise(sys, v, x);
+        // At the rounding floor (see the module's comment): the measurement's own noise.
+        if measured <= tolerance + 2.0 * noise {
+            return det_violation(sys, det0, x, v);
+        }
         return Some(Violation {
             kind: "ok_above_tolerance",
             what: format!(
@@ -73,6 +86,16 @@ pub fn point_violation<S: Mechanism<N, M>, const N: usize, const M: usize>(
             ),
         });
     }
+    det_violation(sys, det0, x, v)
+}
+
+/// det B at `v` of the sign of `det0`, or why not.
+fn det_violation<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    det0: f64,
+    x: &[f64; M],
+    v: &[f64; N],
+) -> Option<Violation> {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     let det = crate::dense::Lu::new(b).map_or(0.0, |lu| lu.det);

@@ -78,7 +78,8 @@ fn solve_stream<S: SixSix>(
 struct RowSolver<S: SixSix> {
     sys: S,
     start: Start<18, 6>,
-    /// Where NH and NR start from: the start, or with `--track` the last row solved ok.
+    /// Where NH and NR start from: the start, or with `--track` the last row solved to the
+    /// tolerance (`unverified`: these methods never establish the branch).
     current: Start<18, 6>,
     tracker: Tracker<S, 18, 6>,
     options: Options,
@@ -163,7 +164,9 @@ impl<S: SixSix> RowSolver<S> {
             min_det_ratio: Some(min_det_ratio),
             via: Some(via),
         };
-        if !sol.is_ok() {
+        // `unverified` rows (NH, NR: the tolerance met, the branch not established) carry
+        // their pose too, under their own word.
+        if !sol.status.meets_tolerance() {
             return record;
         }
         let record = with_pose(&self.sys, record, &sol.v, self.options.tolerance);

@@ -200,3 +200,22 @@ fn known_cases_tight_tolerance_at_the_rounding_floor() {
         &[1178, 1469],
     ));
 }
+
+/// NR and NH returned other assembly modes of the start's det B sign as ok (8 to 360 mm from
+/// every truth); NH also ok at the rounding floor with the correction measured again just
+/// above the tolerance. Cured by `Status::Unverified` (NR and NH cannot establish the branch)
+/// and an oracle that allows a re-measurement its own rounding noise.
+#[test]
+fn known_cases_newton_methods_claim_no_branch() {
+    forward_kinematics(
+        &Run::listed(
+            "forward_kinematics_by_newton",
+            0x5EED_0009,
+            &[
+                23, 261, 304, 320, 476, 672, 821, 961, 980, 1159, 1282, 1330, 1480, 1814, 1846,
+                2147, 2217, 2306, 2872,
+            ],
+        ),
+        fk::Solvers::Newton,
+    );
+}

@@ -17,7 +17,7 @@
 //! cannot decide (stuck next to a fold, or the end within rounding of one), the pose's pivots
 //! are the truth, or, with none, the result is counted as undecided rather than judged.
 
-use super::check::judge;
+use super::check::{judge, refused_at_rounding_floor};
 use super::geometry::{random_offset, Geometry, Machine};
 use super::oracle::{agreement, distance, follow_segment, sensitivity};
 use super::run::Tally;
@@ -221,7 +221,15 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry,
             let sane = options.tolerance >= 1e-10
                 && options.max_steps >= 500
                 && options.max_iterations >= 10;
-            if seg.reached && seg.min_ratio >= 1e-2 && sane && !ph_ok {
+            let floor = match &ph {
+                Ok(sol) if seg.reached => {
+                    refused_at_rounding_floor(&m, &sol.status, &seg.v, &x, options.tolerance)
+                }
+                _ => None,
+            };
+            if seg.reached && seg.min_ratio >= 1e-2 && sane && !ph_ok && floor.is_some() {
+                tally.count("PH: tolerance_not_met at the rounding floor of the truth");
+            } else if seg.reached && seg.min_ratio >= 1e-2 && sane && !ph_ok {
                 let other = Options {
                     linear: other_linear(options.linear),
                     ..options

@@ -12,6 +12,7 @@
 //! last accepted one keeps |det B| above 1 % of the start's is a sample wrongly refused; a
 //! refused sample must leave the tracker's state as it was.
 
+use super::check::refused_at_rounding_floor;
 use super::geometry::{Geometry, Machine};
 use super::oracle::{agreement, distance, follow_segment, sensitivity};
 use super::run::Tally;
@@ -183,7 +184,14 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
                 let sane = tol >= 1e-10 && options.max_steps >= 500 && options.max_iterations >= 10;
                 if pose_connected && grid_min >= 1e-2 && sane {
                     let seg = follow_segment(&m.sys, (&v_a, &x_a), m.det0, &x, max_step);
-                    if seg.reached && seg.min_ratio >= 1e-2 {
+                    let floor = match e {
+                        TrackError::Lost(s) => refused_at_rounding_floor(&m, &s, &seg.v, &x, tol),
+                        TrackError::Input(_) => None,
+                    };
+                    if seg.reached && seg.min_ratio >= 1e-2 && floor.is_some() {
+                        tally
+                            .count("refused: tolerance_not_met at the rounding floor of the truth");
+                    } else if seg.reached && seg.min_ratio >= 1e-2 {
                         // What PH itself says from a start rebuilt at the last accepted sample.
                         let ph = |o: &Options| {
                             linkage::Start::new(&m.sys, v_a, x_a).map(|st| {
