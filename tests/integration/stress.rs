@@ -219,3 +219,20 @@ fn known_cases_newton_methods_claim_no_branch() {
         fk::Solvers::Newton,
     );
 }
+
+/// With `Linear::Dense`, PH's corrector was full Newton on the dense bordered matrix: from a
+/// long first step (a quarter of the path) it contracted fast onto another sheet of the
+/// solution curve, det B of the other sign there, and PH reported a fold the segment does not
+/// have (|det B|/|det0| ≥ 0.04 all along; case 638 ≥ 1). Cured by the chord iteration on the
+/// bordered matrix factored at the last accepted point, as with the generated factorisation.
+#[test]
+fn known_cases_dense_corrector_false_folds() {
+    forward_kinematics(
+        &Run::listed(
+            "forward_kinematics_by_continuation",
+            0x5EED_0009,
+            &[220, 449, 638],
+        ),
+        fk::Solvers::Continuation,
+    );
+}

@@ -127,6 +127,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         ));
     };
     let mut t = first.tangent;
+    let mut dense = path.dense_frame(&p, &t, frame.as_ref());
     let mut det_prev = start.det();
     let mut previous: Option<Previous<N>> = None;
     let mut control = StepControl::new(length);
@@ -142,7 +143,15 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     while account.accepted + account.rejected < options.max_steps {
         let step = control.next(length, &p, &t, previous.as_ref());
-        match path.correct(&step.predicted, &t, step.end, step.length, frame.as_ref()) {
+        let corrected = path.correct(
+            &step.predicted,
+            &t,
+            step.end,
+            step.length,
+            frame.as_ref(),
+            dense.as_ref(),
+        );
+        match corrected {
             // A step that is not the last may still end past λ = 1: the corrector moves μ too.
             // Land on λ = 1 from p instead (the next step is the last, and shorter).
             Ok(c) if !step.end && c.point.mu > length => {
@@ -192,6 +201,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     p = q;
                     t = t1;
                     frame = next_frame;
+                    dense = path.dense_frame(&p, &t, frame.as_ref());
                     det_prev = next.det;
                     account.min_det_ratio =
                         account.min_det_ratio.min((next.det / start.det()).abs());
