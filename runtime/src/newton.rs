@@ -61,6 +61,9 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     Ok(unverified(conclude(sys, start, &run, x, account)))
 }
 
+/// Corrections that did not shrink at the rounding floor before a final run ends `Stalled`.
+const MAX_STALLS: u32 = 3;
+
 /// How a Newton run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Ending {
@@ -129,6 +132,7 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut best_here = false;
     let mut iterations = 0;
     let mut previous = f64::INFINITY;
+    let mut stalls = 0;
     let ending = loop {
         if iterations >= options.max_iterations {
             break Ending::Exhausted;
@@ -164,8 +168,14 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 });
                 best_here = true;
             }
+            // At the rounding floor the corrections scatter: one that did not shrink may be
+            // followed by one within the tolerance (seen where the floor is just below it).
+            // The best point is kept, so a few more tries cost nothing but time.
             if convergence.stalled(c.size, previous) {
-                break Ending::Stalled;
+                stalls += 1;
+                if stalls >= MAX_STALLS {
+                    break Ending::Stalled;
+                }
             }
         }
         if best_here {

@@ -22,7 +22,13 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let nominal = 1.0 / options.homotopy_steps as f64;
     let mut step = nominal;
     let mut account = Account::at(0.0);
+    // At λ = 1 the target itself: x0 + (x* − x0) may miss x* by an ulp, and near a
+    // singularity that ulp moves the root (and the correction measured there) by more than the
+    // tolerance.
     let at = |l: f64| -> [f64; M] {
+        if l >= 1.0 {
+            return *target;
+        }
         core::array::from_fn(|j| start.x()[j] + l * (target[j] - start.x()[j]))
     };
     loop {

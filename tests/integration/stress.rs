@@ -236,3 +236,54 @@ fn known_cases_dense_corrector_false_folds() {
         fk::Solvers::Continuation,
     );
 }
+
+/// An S-shaped straight segment (two folds within 3e-6 of λ near 0.97957, det B of one sign
+/// on either side): PH stepped over both folds in one step and called the far sheet ok, and
+/// detours built on that leg too. Cured by keeping steps within twice the extrapolated
+/// distance to det B = 0 and rejecting a step over which det B's parabola dips across zero.
+/// Found at ×10 (case 17803: the same, two folds near λ = 0.0157, PH at the pose's pivots).
+#[test]
+fn known_cases_two_folds_in_one_step() {
+    forward_kinematics(
+        &Run::listed(
+            "forward_kinematics_by_continuation",
+            0x5EED_0009,
+            &[5441, 17803],
+        ),
+        fk::Solvers::Continuation,
+    );
+}
+
+/// NH solved its last step at x0 + (x* − x0), an ulp from the target, and near a singularity
+/// the correction measured at the target was then 2–4× the tolerance (×10). Cured by solving
+/// the last step at the target itself.
+#[test]
+fn known_cases_newton_homotopy_ends_at_the_target_itself() {
+    forward_kinematics(
+        &Run::listed(
+            "forward_kinematics_by_newton",
+            0x5EED_0009,
+            &[6692, 10678, 15403, 15644, 19047, 23206, 28876],
+        ),
+        fk::Solvers::Newton,
+    );
+}
+
+/// At ×10: the tracker refused samples `tolerance_not_met` at 1.08e-9 and 1.18e-9 mm with the
+/// truth's rounding floor well below the tolerance: Newton stopped at the first correction that
+/// did not shrink, one scattered value at the floor. Cured by allowing three such before a
+/// final run ends `Stalled`. And (suite, not runtime) targets a few ulps from a start next to a
+/// singular surface, which every solver refuses: refusals there are counted, not failed.
+#[test]
+fn known_cases_rounding_floor_near_the_tolerance() {
+    trajectories(&Run::listed(
+        "tracker_on_random_trajectories",
+        0x5EED_0002,
+        &[2109, 3602],
+    ));
+    bad_values(&Run::listed(
+        "bad_values_for_every_solver",
+        0x5EED_0003,
+        &[4709, 23615, 29734],
+    ));
+}

@@ -58,7 +58,8 @@ pub fn judge<S: SixSix>(
 /// Whether a refusal `status` is `tolerance_not_met` where rounding at the truth `v` (at inputs
 /// `x`) comes within a factor of 4 of `tolerance`: the tolerance is then at the rounding floor
 /// there and a refusal for it is honest, not a reachable target refused. Returns the floor
-/// measured (the correction after the next at the truth) when so.
+/// measured when so: at the (polished) truth the Newton correction and the one after it are
+/// rounding alone, and the larger of the two is its size.
 pub fn refused_at_rounding_floor<S: SixSix>(
     m: &Machine<S>,
     status: &Status,
@@ -69,6 +70,6 @@ pub fn refused_at_rounding_floor<S: SixSix>(
     if !matches!(status, Status::ToleranceNotMet { .. }) {
         return None;
     }
-    let floor = correction_noise(&m.sys, v, x);
+    let floor = linkage::error_estimate(&m.sys, v, x).max(correction_noise(&m.sys, v, x));
     (4.0 * floor >= tolerance).then_some(floor)
 }
