@@ -205,10 +205,12 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
     };
     for (name, result) in &results {
         let ok = judge(tally, case, &inputs, name, &m, &x, &options, result, &truth);
-        let why = excused(result.as_ref().ok().map(|s| &s.status));
-        if let (false, Some(why)) = (ok, why) {
+        if !(near_start && sound && !ok) {
+            continue;
+        }
+        if let Some(why) = excused(result.as_ref().ok().map(|s| &s.status)) {
             tally.count(why);
-        } else if near_start && sound && !ok {
+        } else {
             tally.fail(
                 "refused_a_target_at_the_start",
                 case,
@@ -238,15 +240,15 @@ pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry)
                 TrackError::Lost(s) => Some(s),
                 TrackError::Input(_) => None,
             });
-            if let Some(why) = why {
-                tally.count(why);
-            } else if near_start && sound {
-                tally.fail(
+            match (near_start && sound, why) {
+                (false, _) => {}
+                (true, Some(why)) => tally.count(why),
+                (true, None) => tally.fail(
                     "refused_a_target_at_the_start",
                     case,
                     format!("Tracker refused: {e}"),
                     &inputs,
-                );
+                ),
             }
             if tracker.state() != (&m.v0, &m.x0) {
                 tally.fail(
