@@ -9,7 +9,7 @@
 //! runtime it was written against (commit 71447e1) and what cured it; the `known_cases_*` tests
 //! replay the cases that found a defect after that, each failing before its fix.
 //!
-//! All pass at ×1 (about 30 s for the suite on 2 cores) and at ×10 (438 s), no failure of any
+//! All pass at ×1 (about 30 s for the suite on 2 cores) and at ×10 (351–438 s), no failure of any
 //! kind:
 //! `LINKAGE_STRESS=10 cargo test -p linkage-tests --test integration stress:: -- --nocapture`.
 //! At ×10: PH 25 116 ok of 29 998 targets (2 626 fold, 2 109 tolerance_not_met), detours
