@@ -3,6 +3,9 @@
 
 use linkage::Mechanism;
 
+pub mod dense;
+pub mod invariants;
+
 pub use linkage_examples::case_study::sampling::Rng;
 
 /// Checks ∂F/∂v (sparse and dense) and ∂F/∂x against central finite differences at (v, x),

@@ -1,7 +1,6 @@
 //! `stewart errors`: Fig. 7, the relative error of every test point for each method.
 
 use crate::plot::{draw_err, init_fonts};
-use linkage::Status;
 use linkage_examples::case_study::sampling::Protocol;
 use linkage_examples::case_study::table_v;
 use plotters::prelude::*;
@@ -56,7 +55,7 @@ pub fn run(out: &Path, seed: u64) -> Result<(), String> {
         let ok = paper
             .iter()
             .enumerate()
-            .filter(|(_, o)| o.status == Status::Converged);
+            .filter(|(_, o)| o.status.meets_tolerance());
         chart
             .draw_series(
                 ok.map(|(i, o)| {
@@ -67,7 +66,7 @@ pub fn run(out: &Path, seed: u64) -> Result<(), String> {
         let refused = paper
             .iter()
             .enumerate()
-            .filter(|(_, o)| o.status != Status::Converged);
+            .filter(|(_, o)| !o.status.meets_tolerance());
         chart
             .draw_series(refused.map(|(i, o)| {
                 Cross::new(

@@ -142,7 +142,7 @@ pub struct SolveArgs {
     #[arg(long)]
     output: Option<PathBuf>,
     /// Convergence tolerance on the Newton correction, mm (above 0, at most 1).
-    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true, value_parser = args::tolerance)]
+    #[arg(long, default_value_t = linkage::Options::TIGHT.tolerance, allow_hyphen_values = true, value_parser = args::tolerance)]
     tolerance: f64,
     /// Continuation steps allowed per row (accepted plus rejected).
     #[arg(long, default_value_t = linkage::Options::TIGHT.max_steps, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..))]

@@ -90,7 +90,8 @@ fn solve_stream<S: SixSix>(
 struct RowSolver<S: SixSix> {
     sys: S,
     start: Start<18, 6>,
-    /// Where NH and NR start from: the start, or with `--track` the last row solved ok.
+    /// Where NH and NR start from: the start, or with `--track` the last row solved to the
+    /// tolerance (`unverified`: these methods never establish the branch).
     current: Start<18, 6>,
     tracker: Tracker<S, 18, 6>,
     options: Options,
@@ -188,7 +189,9 @@ impl<S: SixSix> RowSolver<S> {
             via: Some(via),
             certified: None,
         };
-        if !sol.is_ok() {
+        // `unverified` rows (NH, NR: the tolerance met, the branch not established) carry
+        // their pose too, under their own word.
+        if !sol.status.meets_tolerance() {
             return record;
         }
         let mut record = with_pose(&self.sys, record, &sol.v, self.options.tolerance);

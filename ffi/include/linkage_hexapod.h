@@ -28,6 +28,7 @@ extern "C" {
 #define LINKAGE_SINGULAR 5            /* B became singular and the method could not go on */
 #define LINKAGE_TOLERANCE_NOT_MET 6   /* stopped short of the requested tolerance */
 #define LINKAGE_FAILED 7              /* another non-ok solver outcome (never a success) */
+#define LINKAGE_UNVERIFIED 8          /* converged, but by a method that cannot establish the branch */
 #define LINKAGE_NULL_POINTER (-1)
 #define LINKAGE_NON_FINITE (-2)       /* a NaN or infinite leg, pose or option value */
 #define LINKAGE_INVALID_INPUT (-3)    /* a leg length out of range (not positive) */

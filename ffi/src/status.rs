@@ -25,6 +25,10 @@ pub const SINGULAR: i32 = 5;
 pub const TOLERANCE_NOT_MET: i32 = 6;
 /// A non-ok solver status this interface does not name (never counted as a success).
 pub const FAILED: i32 = 7;
+/// Converged to the tolerance by a method that cannot establish the branch (Newton–Raphson,
+/// Newton homotopy): possibly another assembly mode, so not a success. The hexapod interface
+/// tracks by continuation and does not return it today; the code keeps it apart if it ever does.
+pub const UNVERIFIED: i32 = 8;
 
 /// A pointer argument was null.
 pub const NULL_POINTER: i32 = -1;
@@ -59,6 +63,7 @@ pub fn of_status(status: &Status) -> i32 {
         "step_too_small" => STEP_TOO_SMALL,
         "singular" => SINGULAR,
         "tolerance_not_met" => TOLERANCE_NOT_MET,
+        "unverified" => UNVERIFIED,
         _ => FAILED,
     }
 }
@@ -86,6 +91,7 @@ pub fn name(code: i32) -> &'static CStr {
         SINGULAR => c"singular",
         TOLERANCE_NOT_MET => c"tolerance_not_met",
         FAILED => c"failed",
+        UNVERIFIED => c"unverified",
         NULL_POINTER => c"null_pointer",
         NON_FINITE => c"non_finite",
         INVALID_INPUT => c"invalid_input",
@@ -118,10 +124,13 @@ mod tests {
             (Status::NotConverged { residual_norm: 1.0 }, NOT_CONVERGED),
             (Status::StepTooSmall { lambda: 0.5 }, STEP_TOO_SMALL),
             (Status::Singular { lambda: 0.5 }, SINGULAR),
+            (Status::ToleranceNotMet { achieved: 1.0 }, TOLERANCE_NOT_MET),
+            (Status::Unverified, UNVERIFIED),
         ];
         for (status, code) in refusals {
             assert_eq!(of_status(&status), code, "{status:?}");
             assert!(code > 0);
+            assert_eq!(name(code).to_str().unwrap(), status.word());
         }
     }
 
@@ -144,7 +153,7 @@ mod tests {
 
     #[test]
     fn every_code_has_its_own_name() {
-        let names: Vec<_> = (-10..=7).map(name).collect();
+        let names: Vec<_> = (-10..=8).map(name).collect();
         for (i, a) in names.iter().enumerate() {
             assert_ne!(a.to_str().unwrap(), "unknown");
             assert!(names[i + 1..].iter().all(|b| b != a), "{a:?} twice");

@@ -1,15 +1,19 @@
 //! Newton's method at fixed inputs, ending by the rule every solver shares ([`newton`]), and
 //! Newton–Raphson (the paper's NRA), which is that method on F(v, x*) = 0 from the start's v.
 //! Fast, and with no notion of branch: near a singularity it may converge to another
-//! assembly mode. The det B sign check catches some of those, not all.
+//! assembly mode. The det B sign check catches some of those, not all, so a converged
+//! result is [`Status::Unverified`](crate::Status::Unverified), never `Converged`.
 
 use crate::convergence::Convergence;
 use crate::correction::{Correction, Failure};
 use crate::math::size;
-use crate::outcome::{conclude, Account};
+use crate::outcome::{conclude, unverified, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start};
 
-/// Solves F(v, x) = 0 by Newton's method from `start.v`.
+/// Solves F(v, x) = 0 by Newton's method from `start.v`. A result that meets the tolerance
+/// with det B of the start's sign is [`Status::Unverified`](crate::Status::Unverified):
+/// Newton's method may converge to another assembly mode of the same det B sign, and nothing
+/// here can tell (where the branch matters, solve with [`arc_length`](crate::arc_length)).
 ///
 /// ```
 /// use linkage::{newton_raphson, Mechanism, Options, Pose, Start, Status};
@@ -34,7 +38,8 @@ use crate::{Mechanism, Options, Solution, SolveError, Start};
 /// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
 /// let start = Start::new(&rps, v0, x0).unwrap();
 /// let sol = newton_raphson(&rps, &start, &[160.0, 155.0, 158.0], &Options::TIGHT).unwrap();
-/// assert_eq!(sol.status, Status::Converged);
+/// assert_eq!(sol.status, Status::Unverified);
+/// assert!(sol.status.meets_tolerance() && !sol.is_ok());
 /// assert!((rps.inverse(&sol.v, &x0).unwrap()[1] - 155.0).abs() < 1e-9);
 /// ```
 pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
@@ -53,8 +58,11 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
         iterations: run.iterations,
         ..Account::at(1.0)
     };
-    Ok(conclude(sys, start, &run, x, account))
+    Ok(unverified(conclude(sys, start, &run, x, account)))
 }
+
+/// Corrections that did not shrink at the rounding floor before a final run ends `Stalled`.
+const MAX_STALLS: u32 = 3;
 
 /// How a Newton run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,6 +132,7 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut best_here = false;
     let mut iterations = 0;
     let mut previous = f64::INFINITY;
+    let mut stalls = 0;
     let ending = loop {
         if iterations >= options.max_iterations {
             break Ending::Exhausted;
@@ -159,8 +168,14 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 });
                 best_here = true;
             }
+            // At the rounding floor the corrections scatter: one that did not shrink may be
+            // followed by one within the tolerance (seen where the floor is just below it).
+            // The best point is kept, so a few more tries cost nothing but time.
             if convergence.stalled(c.size, previous) {
-                break Ending::Stalled;
+                stalls += 1;
+                if stalls >= MAX_STALLS {
+                    break Ending::Stalled;
+                }
             }
         }
         if best_here {

@@ -1,10 +1,13 @@
 //! Newton homotopy (the paper's NH): λ goes from 0 to 1 in uniform steps along the straight
 //! joint-space segment, each step corrected by Newton's method at fixed λ. A step whose Newton
 //! iteration fails is halved. It follows the start's branch while steps are small compared with
-//! the distance to a singularity, and it cannot pass a fold.
+//! the distance to a singularity, and it cannot pass a fold — but nothing shows when a step
+//! was not small enough (it may jump across a fold to another assembly mode of the same det B
+//! sign), so a converged result is [`Status::Unverified`](crate::Status::Unverified), never
+//! `Converged`.
 
 use crate::newton::{newton, Ending, Rule};
-use crate::outcome::{conclude, finish, not_converged, Account};
+use crate::outcome::{conclude, finish, not_converged, unverified, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.
@@ -19,7 +22,13 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let nominal = 1.0 / options.homotopy_steps as f64;
     let mut step = nominal;
     let mut account = Account::at(0.0);
+    // At λ = 1 the target itself: x0 + (x* − x0) may miss x* by an ulp, and near a
+    // singularity that ulp moves the root (and the correction measured there) by more than the
+    // tolerance.
     let at = |l: f64| -> [f64; M] {
+        if l >= 1.0 {
+            return *target;
+        }
         core::array::from_fn(|j| start.x()[j] + l * (target[j] - start.x()[j]))
     };
     loop {
@@ -46,7 +55,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 account.lambda = next;
                 account.min_det_ratio = account.min_det_ratio.min((run.det / start.det()).abs());
                 if rule == Rule::Final {
-                    return Ok(conclude(sys, start, &run, &x, account));
+                    return Ok(unverified(conclude(sys, start, &run, &x, account)));
                 }
                 v = run.v;
                 step = (step * 2.0).min(nominal);

@@ -83,6 +83,15 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     finish(sys, start, run.v, x, status, account)
 }
 
+/// `sol` from a method that follows no path (NR, NH): [`Status::Converged`] becomes
+/// [`Status::Unverified`], since such a method cannot establish the branch.
+pub(crate) fn unverified<const N: usize>(mut sol: Solution<N>) -> Solution<N> {
+    if sol.status == Status::Converged {
+        sol.status = Status::Unverified;
+    }
+    sol
+}
+
 pub(crate) fn not_converged<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],

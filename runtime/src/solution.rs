@@ -3,12 +3,21 @@
 use core::fmt;
 
 /// How a solve ended. Only [`Status::Converged`] is a solution on the start's branch as far
-/// as the method can tell; every other variant says why not.
+/// as the method can tell; every other variant says why not. [`Status::Unverified`] is a
+/// solution to the tolerance whose branch the method cannot establish (NH and NR).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Status {
     /// Converged to the requested tolerance: the returned v is finite, the Newton correction
     /// measured there is within the tolerance, and det B there has the start's sign.
     Converged,
+    /// Converged to the requested tolerance, as [`Status::Converged`] (finite, the correction
+    /// within the tolerance, det B of the start's sign), but the method cannot tell whether
+    /// the result is on the start's branch: Newton–Raphson and Newton homotopy follow no path
+    /// that would show it, and near a singularity they may converge to another assembly mode
+    /// whose det B has the same sign. What [`newton_raphson`](crate::newton_raphson) and
+    /// [`newton_homotopy`](crate::newton_homotopy) return where [`arc_length`](crate::arc_length)
+    /// would return `Converged`; not ok.
+    Unverified,
     /// The straight joint-space path from the start to the target turns back in λ at this λ:
     /// it leaves the valid joint space through a fold (a direct singularity). Continuing
     /// along the curve would lead to another assembly mode.
@@ -32,6 +41,7 @@ impl Status {
     pub fn word(&self) -> &'static str {
         match self {
             Status::Converged => "ok",
+            Status::Unverified => "unverified",
             Status::Fold { .. } => "fold",
             Status::BranchChanged => "branch_changed",
             Status::NotConverged { .. } => "not_converged",
@@ -40,12 +50,29 @@ impl Status {
             Status::Singular { .. } => "singular",
         }
     }
+
+    /// Whether the result meets the requested tolerance ([`Status::Converged`] or
+    /// [`Status::Unverified`]): a solution of F(v, x) = 0, on the start's branch only if
+    /// `Converged`.
+    ///
+    /// ```
+    /// use linkage::Status;
+    /// assert!(Status::Unverified.meets_tolerance() && Status::Unverified != Status::Converged);
+    /// assert!(!Status::Fold { lambda: 0.5 }.meets_tolerance());
+    /// ```
+    pub fn meets_tolerance(&self) -> bool {
+        matches!(self, Status::Converged | Status::Unverified)
+    }
 }
 
 impl fmt::Display for Status {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Status::Converged => write!(f, "converged"),
+            Status::Unverified => write!(
+                f,
+                "converged, but this method cannot tell whether on the start's branch"
+            ),
             Status::Fold { lambda } => write!(
                 f,
                 "the joint-space path leaves the valid joint space at λ = {lambda:.4} (fold)"
@@ -147,7 +174,8 @@ pub struct Options {
     /// v). Finite, positive and at most 1e-3 of the start's ‖v‖ (or of 1, if larger): a looser
     /// tolerance would call answers ok that are visibly off. Where rounding forbids it — near a
     /// singularity, or below the floor the equations' rounding sets (about 1e-13 mm for the
-    /// Table III platform, 1e-10 to 2e-9 mm for the general model's rows) — the solve ends
+    /// Table III platform, about 1e-10 mm for the general model's rows at regular points of a
+    /// 200 mm machine, and up to 2e-9 mm near singular ones) — the solve ends
     /// [`Status::ToleranceNotMet`] with what was achieved.
     pub tolerance: f64,
     /// Newton iterations allowed for the final correction (and for NR altogether).
@@ -179,9 +207,13 @@ impl Options {
         homotopy_steps: 10,
         linear: Linear::Generated,
     };
-    /// Near machine precision for millimetre-sized mechanisms.
+    /// Near machine precision for millimetre-sized mechanisms: 1e-9, a few times above the
+    /// rounding floor the general model's equations leave at regular points of a 200 mm
+    /// machine (about 1e-10 mm), so that [`Status::ToleranceNotMet`] means what it says — a
+    /// point near a singularity, or a machine too large for this tolerance — and not rounding
+    /// at a regular point.
     pub const TIGHT: Options = Options {
-        tolerance: 1e-10,
+        tolerance: 1e-9,
         max_iterations: 50,
         max_steps: 2000,
         homotopy_steps: 10,

@@ -18,7 +18,7 @@ fn solutions_from_home_are_certified_and_the_truth_is_enclosed() {
     let mut radii = Vec::new();
     for sample in stewart_pose_samples(21, 60, 0.3, 40.0, 50) {
         let sol = newton_raphson(&s, &start, &sample.x, &Options::TIGHT).unwrap();
-        assert_eq!(sol.status, Status::Converged);
+        assert_eq!(sol.status, Status::Unverified);
         let proof =
             certify(&s, &sol.v, &sample.x).unwrap_or_else(|e| panic!("{e}: {:?}", sample.x));
         assert!(proof.error_bound < 1e-9, "{}", proof.error_bound);

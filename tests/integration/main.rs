@@ -17,4 +17,5 @@ mod properties;
 mod regressions;
 mod solvers;
 mod stewart_cli;
+mod stress;
 mod tracking;

@@ -20,6 +20,15 @@ const METHODS: [Method; 3] = [
 /// Rays in pose space from home on which det B changes sign (Table III platform), found by a
 /// seeded search (`Rng::new(7)`, offsets ±1.2 rad, ±150 mm, first sign change in 200 steps,
 /// then 80 bisections): the offset `u` and `t*`, the last parameter before the sign change.
+/// Whether `method` solved to the tolerance and said what it can: `Converged` from PH,
+/// `Unverified` from NH and NR (they cannot establish the branch).
+fn solved(method: Method, sol: &linkage::Solution<18>) -> bool {
+    match method {
+        Method::ArcLength => sol.is_ok(),
+        _ => sol.status == linkage::Status::Unverified,
+    }
+}
+
 const SINGULAR_RAYS: [([f64; 6], f64); 4] = [
     (
         [
@@ -92,7 +101,7 @@ fn overflowing_inputs_are_never_converged() {
                 continue;
             };
             assert!(
-                !sol.is_ok(),
+                !sol.status.meets_tolerance(),
                 "{method:?} at {leg:e}: {:?} with v[0] = {}",
                 sol.status,
                 sol.v[0]
@@ -118,7 +127,7 @@ fn ok_means_the_tolerance_was_met_at_the_returned_point() {
         let (x, _) = legs_for_pose(&s, &on_ray(&s, &st, &u, t)).unwrap();
         for method in METHODS {
             let sol = method.solve(&s, &st, &x, &Options::TIGHT).unwrap();
-            if !sol.is_ok() {
+            if !sol.status.meets_tolerance() {
                 not_ok += 1;
                 continue;
             }
@@ -153,7 +162,11 @@ fn targets_within_rounding_of_the_start_converge() {
     for x in [printed, nudged, tiny, HOME_LEGS] {
         for method in METHODS {
             let sol = method.solve(&s, &st, &x, &Options::TIGHT).unwrap();
-            assert!(sol.is_ok(), "{method:?} at {x:?}: {:?}", sol.status);
+            assert!(
+                solved(method, &sol),
+                "{method:?} at {x:?}: {:?}",
+                sol.status
+            );
             assert!(max_diff(&sol.v, st.v()) < 1e-6);
         }
     }
@@ -278,7 +291,7 @@ fn ph_reaches_random_reachable_targets() {
                 _ if sol.is_ok() => counts[0] += 1,
                 linkage::Status::Fold { .. } => counts[1] += 1,
                 // Honest, at a target so near a singularity that rounding stops Newton just
-                // above 1e-10 mm (6 in 32 000 with REGRESSION_SEEDS=1,2,3,4): the answer is
+                // above the tolerance (6 in 32 000 at 1e-10 mm with REGRESSION_SEEDS=1,2,3,4): the answer is
                 // there, the tolerance is not met, and the status says so.
                 linkage::Status::ToleranceNotMet { achieved } => {
                     counts[2] += 1;
@@ -407,7 +420,7 @@ fn absurd_tolerances_are_refused_and_sane_ones_are_met() {
         };
         for method in METHODS {
             let sol = method.solve(&s, &st, &x, &o).unwrap();
-            assert!(sol.is_ok() && sol.error_estimate <= tolerance);
+            assert!(solved(method, &sol) && sol.error_estimate <= tolerance);
             let off = max_diff(&sol.v, &truth);
             assert!(
                 off <= 2.0 * tolerance,

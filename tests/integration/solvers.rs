@@ -54,7 +54,13 @@ fn stewart_fk_equals_ik_on_random_poses_for_every_method() {
                 newton_raphson(&s, &st, &sample.x, &dense).unwrap(),
             ),
         ] {
-            assert_eq!(sol.status, Status::Converged, "{name}");
+            // NH and NR cannot establish the branch: they say so.
+            let expected = if name.starts_with('N') {
+                Status::Unverified
+            } else {
+                Status::Converged
+            };
+            assert_eq!(sol.status, expected, "{name}");
             assert!(
                 max_diff(&sol.v, &sample.v) < 1e-7,
                 "{name}: {}",
@@ -118,15 +124,19 @@ fn arc_length_never_crosses_a_singularity_labelled_ok() {
 #[test]
 fn newton_raphson_can_land_on_another_branch_and_is_then_not_ok_or_off_truth() {
     // Documented behaviour of the baselines: far targets may converge elsewhere. When det B
-    // changed sign, the status says so.
+    // changed sign, the status says so; otherwise it says the branch is not established.
     let s = stewart::Stewart::new();
     let st = stewart::home_start(&s).unwrap();
+    let mut unverified = 0;
     for sample in stewart_pose_samples(3, 100, 1.0, 120.0, 100) {
         let sol = newton_raphson(&s, &st, &sample.x, &Options::PAPER).unwrap();
-        if sol.status == Status::Converged {
+        assert!(!sol.is_ok(), "NR never claims the branch: {:?}", sol.status);
+        if sol.status == Status::Unverified {
+            unverified += 1;
             assert!(linkage::det_b(&s, &sol.v, &sample.x) * st.det() > 0.0);
         }
     }
+    assert!(unverified > 50, "{unverified}");
 }
 
 #[test]
@@ -173,8 +183,9 @@ fn rps_fk_equals_ik_on_random_inputs() {
             newton_homotopy(&r, &st, &x, &Options::TIGHT).unwrap(),
             newton_raphson(&r, &st, &x, &Options::TIGHT).unwrap(),
         ] {
-            assert_eq!(sol.status, Status::Converged);
-            assert!(residual_norm(&r, &sol.v, &x) < 1e-7);
+            assert!(sol.status.meets_tolerance(), "{:?}", sol.status);
+            // ‖F‖ ≤ ‖B‖ ‖Δv‖: a correction within 1e-9 mm, B of a few hundred mm.
+            assert!(residual_norm(&r, &sol.v, &x) < 1e-6);
             let back = r.inverse(&sol.v, st.x()).unwrap();
             assert!(max_diff(&back, &x) < 1e-9);
             let (truth, flips) = straight_path_truth(&r, &st, &x, 500);

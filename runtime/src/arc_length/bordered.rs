@@ -19,6 +19,11 @@ pub(super) struct Frame<F, const N: usize> {
     pub y2: [f64; N],
 }
 
+/// The dense bordered matrix `[[B, H_μ], [tᵀ]]` at an accepted point, factored once for every
+/// corrector iteration from there (the chord iteration of Eq. 11, as with a [`Frame`]) where
+/// the generated factorisation is not used.
+pub(super) type DenseFrame<const N: usize> = BorderedLu<N>;
+
 /// The unit tangent at a point, and det B there.
 pub(super) struct TangentAt<const N: usize> {
     pub tangent: Tangent<N>,
@@ -44,6 +49,19 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
             det: info.det,
             y2,
         })
+    }
+
+    /// The [`DenseFrame`] at `p` with the row `t`, when there is no `frame`.
+    pub fn dense_frame(
+        &self,
+        p: &Point<N>,
+        t: &Tangent<N>,
+        frame: Option<&Frame<S::Factor, N>>,
+    ) -> Option<DenseFrame<N>> {
+        if frame.is_some() {
+            return None;
+        }
+        BorderedLu::new(self.bordered(p, t).1)
     }
 
     /// The dense bordered matrix `[[B, H_μ], [rowᵀ]]` at `p`, and H at `p`.

@@ -2,11 +2,11 @@
 //! (Keller's constraint, Eq. 8 as corrected in ERRATA.md), or on H at fixed μ for the last
 //! step, under the [`Contraction`] test.
 
-use super::bordered::Frame;
+use super::bordered::{DenseFrame, Frame};
 use super::path::{dot, Path, Point, Tangent};
 use crate::convergence::Contraction;
 use crate::correction::correction_in;
-use crate::lu::{BorderedLu, Extended};
+use crate::lu::Extended;
 use crate::Mechanism;
 
 /// Most corrections of one step.
@@ -22,9 +22,13 @@ pub(super) struct Corrected<const N: usize> {
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
     /// Corrects `pred`, predicted by a step of length `step`, on `[H; t·(y − pred)] = 0` (or on
-    /// H at fixed μ), under the [`Contraction`] test. With a frame the iteration is the chord
-    /// method of Eq. 11; without, full Newton on the dense bordered matrix. `Err` holds the
-    /// iterations spent on a corrector that failed.
+    /// H at fixed μ), under the [`Contraction`] test. The iteration is the chord method of
+    /// Eq. 11: the matrix is the one factored at the last accepted point, by the generated
+    /// factorisation (`frame`) or densely (`dense`, the bordered matrix with the row `t`). Full
+    /// Newton would contract fast onto a neighbouring sheet of the solution curve from a long
+    /// step (seen with `Linear::Dense`: a false fold); the chord's rate grows with the step, so
+    /// the contraction test refuses such steps. Only the last step at fixed μ without a frame
+    /// is corrected by Newton on B. `Err` holds the iterations spent on a corrector that failed.
     pub fn correct(
         &self,
         pred: &Point<N>,
@@ -32,6 +36,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         fixed_mu: bool,
         step: f64,
         frame: Option<&Frame<S::Factor, N>>,
+        dense: Option<&DenseFrame<N>>,
     ) -> Result<Corrected<N>, u32> {
         let mut p = *pred;
         let mut contraction = Contraction::new(step, self.tol);
@@ -58,14 +63,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
                     head: c.delta,
                     tail: 0.0,
                 }),
-                (None, false) => {
-                    let (f, m) = self.bordered(&p, t);
-                    BorderedLu::new(m).map(|lu| {
-                        let mut rhs = Extended { head: f, tail: g };
-                        lu.solve(&mut rhs);
-                        rhs
-                    })
-                }
+                (None, false) => dense.map(|lu| {
+                    let mut rhs = Extended {
+                        head: self.residual(&p),
+                        tail: g,
+                    };
+                    lu.solve(&mut rhs);
+                    rhs
+                }),
             };
             let Some(d) = d else {
                 return Err(its);

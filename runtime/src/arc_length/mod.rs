@@ -11,6 +11,10 @@
 //!   small against the step and each next one at most a quarter of the previous. A corrector
 //!   that would slide onto a neighbouring branch fails this test and the step is halved;
 //! - rejects a step that turns the tangent by more than ~37°;
+//! - keeps a step within twice the distance to det B = 0 extrapolated from the last chord,
+//!   where |det B| falls, and rejects a step over which the parabola through the last three
+//!   values of det B dips across zero: two folds close together leave det B of one sign at
+//!   both ends of a step that passes both (an S-shaped segment, found by the stress suite);
 //! - watches the sign of det B: it flips exactly where λ turns back (a fold). A fold means the
 //!   straight joint-space path leaves the valid joint space, and the curve beyond it belongs to
 //!   another assembly mode, so the solve stops there with [`Status::Fold`].
@@ -34,7 +38,7 @@ use crate::newton::{newton, Rule};
 use crate::outcome::{conclude, finish, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 use path::{dot, first_order_travel, Path, Point, Tangent};
-use step::{Previous, StepControl};
+use step::{det_dips, Previous, StepControl};
 
 /// Below this cosine between successive tangents (about 37°) a step is rejected.
 const MIN_TANGENT_COS: f64 = 0.8;
@@ -127,6 +131,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
         ));
     };
     let mut t = first.tangent;
+    let mut dense = path.dense_frame(&p, &t, frame.as_ref());
     let mut det_prev = start.det();
     let mut previous: Option<Previous<N>> = None;
     let mut control = StepControl::new(length);
@@ -142,7 +147,15 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     while account.accepted + account.rejected < options.max_steps {
         let step = control.next(length, &p, &t, previous.as_ref());
-        match path.correct(&step.predicted, &t, step.end, step.length, frame.as_ref()) {
+        let corrected = path.correct(
+            &step.predicted,
+            &t,
+            step.end,
+            step.length,
+            frame.as_ref(),
+            dense.as_ref(),
+        );
+        match corrected {
             // A step that is not the last may still end past λ = 1: the corrector moves μ too.
             // Land on λ = 1 from p instead (the next step is the last, and shorter).
             Ok(c) if !step.end && c.point.mu > length => {
@@ -173,25 +186,33 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     };
                     return stop(&p, status, account);
                 }
-                if dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !step.end {
+                let chord = crate::math::sqrt(
+                    (0..N)
+                        .map(|i| (q.v[i] - p.v[i]) * (q.v[i] - p.v[i]))
+                        .sum::<f64>()
+                        + (q.mu - p.mu) * (q.mu - p.mu),
+                );
+                // det B of one sign at both ends may still hide two folds in between: where
+                // the parabola through the last three values of det B dips across zero within
+                // the step, take a shorter one.
+                let dips = previous
+                    .as_ref()
+                    .is_some_and(|pr| det_dips(pr.det, pr.chord, det_prev, chord, next.det));
+                if dips || (dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !step.end) {
                     account.rejected += 1;
                     control.turned(&step);
                 } else {
                     account.accepted += 1;
-                    let chord = crate::math::sqrt(
-                        (0..N)
-                            .map(|i| (q.v[i] - p.v[i]) * (q.v[i] - p.v[i]))
-                            .sum::<f64>()
-                            + (q.mu - p.mu) * (q.mu - p.mu),
-                    );
                     previous = Some(Previous {
                         point: p,
                         tangent: t,
                         chord,
+                        det: det_prev,
                     });
                     p = q;
                     t = t1;
                     frame = next_frame;
+                    dense = path.dense_frame(&p, &t, frame.as_ref());
                     det_prev = next.det;
                     account.min_det_ratio =
                         account.min_det_ratio.min((next.det / start.det()).abs());
@@ -200,6 +221,9 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
                         return Ok(polish(sys, start, p.v, target, options, account));
                     }
                     control.accepted(&step, c.first, c.iterations);
+                    if let Some(prev) = previous.as_ref() {
+                        control.toward_singularity(prev, det_prev);
+                    }
                 }
             }
             Err(iterations) => {
