@@ -9,7 +9,8 @@ the kinematics pin prefix (LINKAGE_KINS). Each sample holds the joint feedback, 
 feedback the module's kinematicsForward computed from it in the same servo cycle (task copies
 both from one motion status), the commanded pose, the fwd-kins-fail pin, and for
 linkagehexkins its proximity, failures (a count: a failed call between two samples leaves the
-Cartesian feedback stale while fwd-kins-fail may already be clear again) and last-failure pins.
+Cartesian feedback stale while fwd-kins-fail may already be clear again), last-failure and
+certified pins.
 """
 import os
 import sys
@@ -55,34 +56,26 @@ def errors():
         print("linuxcnc error:", msg[1], flush=True)
 
 
-out.write("step,t,j0,j1,j2,j3,j4,j5,x,y,z,a,b,c,cx,cy,cz,ca,cb,cc,fail,proximity,failures,last_failure\n")
+out.write("step,t,j0,j1,j2,j3,j4,j5,x,y,z,a,b,c,cx,cy,cz,ca,cb,cc,fail,proximity,failures,last_failure,certified\n")
 t0 = time.time()
 has_proximity = any(p["NAME"] == kins + ".proximity" for p in hal.get_info_pins())
 
 
-def status():
-    s.poll()
-    return s.joint_actual_position[:6], s.actual_position[:6], s.position[:6]
-
-
 def sample(step):
-    # Task copies the motion status while the servo thread may be writing it; a copy torn
-    # across two servo cycles pairs joints of one cycle with the pose of the other. Take the
-    # status when two successive reads agree (a stale or wrong pose agrees with itself, so
-    # this hides no module's answer; failed calls are counted by the failures pin).
-    j, p, q = status()
-    for _ in range(50):
-        again = status()
-        if again == (j, p, q):
-            break
-        j, p, q = again
+    # One status copy: joints and pose as task copied them from the motion controller (a copy
+    # torn across a servo cycle pairs them from adjacent cycles; the report recognises those).
+    s.poll()
+    j = s.joint_actual_position[:6]
+    p = s.actual_position[:6]
+    q = s.position[:6]
     f = int(bool(hal.get_value(kins + ".fwd-kins-fail")))
     # linkagehexkins' singularity proximity pin (genhexkins has none).
     prox = hal.get_value(kins + ".proximity") if has_proximity else float("nan")
     failures = hal.get_value(kins + ".failures") if has_proximity else 0
     last = hal.get_value(kins + ".last-failure") if has_proximity else 0
-    out.write("%d,%.4f,%s,%s,%s,%d,%.6g,%d,%d\n" % (step, time.time() - t0, ",".join("%.12g" % v for v in j),
-              ",".join("%.12g" % v for v in p), ",".join("%.12g" % v for v in q), f, prox, failures, last))
+    certified = int(bool(hal.get_value(kins + ".certified"))) if has_proximity else 0
+    out.write("%d,%.4f,%s,%s,%s,%d,%.6g,%d,%d,%d\n" % (step, time.time() - t0, ",".join("%.12g" % v for v in j),
+              ",".join("%.12g" % v for v in p), ",".join("%.12g" % v for v in q), f, prox, failures, last, certified))
 
 
 def run_until_done(step, done, seconds):

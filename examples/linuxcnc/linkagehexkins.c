@@ -37,6 +37,9 @@
  *   PREFIX.min-proximity (float out) its smallest value since tracking started
  *   PREFIX.fell-back (bit out)       the last call needed continuation (a hard step)
  *   PREFIX.reset (bit in)            while true, every forward call starts afresh
+ *   PREFIX.certify (bit in)          prove every forward step by interval certificates (an
+ *                                    unproven step is refused, status 9 unproven)
+ *   PREFIX.certified (bit out)       the last forward call's step was proven
  */
 
 #include "rtapi.h"
@@ -67,7 +70,7 @@ static struct haldata {
     hal_u32_t *iter_limit, *last_iter, *max_iter;
     hal_bit_t *fwd_kins_fail;
     hal_s32_t *status, *last_failure;
-    hal_bit_t *refused, *tracking, *fell_back, *reset;
+    hal_bit_t *refused, *tracking, *fell_back, *reset, *certify, *certified;
     hal_u32_t *refusals, *failures;
     hal_float_t *proximity, *min_proximity;
 } *haldata;
@@ -115,6 +118,10 @@ static int sync_pins(void)
         }
         current_correction = c;
     }
+    rc = linkage_hexapod_set_certify(&hex, *haldata->certify ? 1 : 0);
+    if (rc != LINKAGE_OK) {
+        return rc;
+    }
     rc = linkage_hexapod_set_options(&hex, *haldata->conv_criterion, *haldata->iter_limit);
     if (rc != LINKAGE_OK) {
         return rc;
@@ -146,6 +153,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     *haldata->last_iter = report.newton_iterations;
     if (rc != LINKAGE_OK) {
         *haldata->fwd_kins_fail = 1;
+        *haldata->certified = 0;
         *haldata->failures += 1;
         *haldata->last_failure = rc;
         *haldata->refused = rc > 0;
@@ -165,6 +173,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
         *haldata->min_proximity = report.proximity;
     }
     *haldata->fell_back = report.fell_back != 0;
+    *haldata->certified = report.certified != 0;
     *haldata->fwd_kins_fail = 0;
     *haldata->refused = 0;
     pos->tran.x = p.x; pos->tran.y = p.y; pos->tran.z = p.z;
@@ -302,6 +311,8 @@ static int make_pins(void)
     r |= hal_pin_float_newf(HAL_OUT, &haldata->min_proximity, comp_id, "%s.min-proximity", prefix);
     r |= hal_pin_bit_newf(HAL_OUT, &haldata->fell_back, comp_id, "%s.fell-back", prefix);
     r |= hal_pin_bit_newf(HAL_IN, &haldata->reset, comp_id, "%s.reset", prefix);
+    r |= hal_pin_bit_newf(HAL_IN, &haldata->certify, comp_id, "%s.certify", prefix);
+    r |= hal_pin_bit_newf(HAL_OUT, &haldata->certified, comp_id, "%s.certified", prefix);
     if (r) return r;
     *haldata->screw_lead = DEFAULT_SCREW_LEAD;
     *haldata->spindle_offset = 0.0;
@@ -316,6 +327,8 @@ static int make_pins(void)
     *haldata->refused = 0;
     *haldata->refusals = 0;
     *haldata->failures = 0;
+    *haldata->certify = 0;
+    *haldata->certified = 0;
     *haldata->last_failure = 0;
     *haldata->tracking = 0;
     *haldata->proximity = 0.0;

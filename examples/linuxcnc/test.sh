@@ -68,10 +68,13 @@ run() { # run KINS PATH_NAME -> $work/NAME-KINS.csv
     sed -e "s|@KINS@|$kins|" -e "s|@DRIVER@|$here/drive.py|" "$here/sim/hexapod.ini" > "$dir/hexapod.ini"
     cp "$here/sim/hexapod.hal" "$here/sim/hexapod.tbl" "$dir/"
     sed "s/PREFIX/$kins/" "$here/sim/geometry.hal" > "$dir/geometry.hal"
-    # A path may come with pins of its own (paths/NAME.hal), set after the geometry's.
-    if [ -f "$here/paths/$name.hal" ]; then
-        sed "s/PREFIX/$kins/" "$here/paths/$name.hal" >> "$dir/geometry.hal"
-    fi
+    # A path may come with pins of its own (paths/NAME.hal for both modules,
+    # paths/NAME.KINS.hal for one), set after the geometry's.
+    for extra in "$here/paths/$name.hal" "$here/paths/$name.$kins.hal"; do
+        if [ -f "$extra" ]; then
+            sed "s/PREFIX/$kins/" "$extra" >> "$dir/geometry.hal"
+        fi
+    done
     [ -n "${RTAPI_UID:-}" ] && chown "$RTAPI_UID" "$dir"
     local t0=$SECONDS rc=0
     (cd "$dir" && RTAPI_FIFO_PATH="$dir/rtapi_fifo" LINKAGE_PATH="$here/paths/$name.path" \

@@ -10,11 +10,14 @@
 //! inverse kinematics (linkage's) on that pose: it must give back the joints. In coordinated
 //! moves the pose must also follow the commanded one (to a few servo cycles of lag). The
 //! A path with a HAL file of its own beside it (PATH with the extension `.hal`) sets the
-//! strut correction there; the check's inverse kinematics then adds it too. The
+//! strut correction there; the check's inverse kinematics then adds it too. One beside it
+//! for linkagehexkins alone (`.linkagehexkins.hal`) that switches `certify` on makes every
+//! answered sample of that path require the module's certified pin. The
 //! linkagehexkins runs must pass every check; the genhexkins runs are measured the same way
 //! and reported. Ends with one line starting `linuxcnc:`; exits 1 if a check failed.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 use std::process::ExitCode;
 
 use linkage_ffi::{Hexapod, LinkageGeometry, LinkagePose, LinkageStrutCorrection};
@@ -29,6 +32,8 @@ const LAG_ANGULAR: f64 = 0.5;
 const MIN_SAMPLES: usize = 20;
 
 struct Sample {
+    /// Where it is: the CSV file and line.
+    at: String,
     step: usize,
     joints: [f64; 6],
     pose: LinkagePose,
@@ -40,6 +45,8 @@ struct Sample {
     proximity: f64,
     /// linkagehexkins' last-failure pin when a call failed since the sample before.
     failure: Option<i32>,
+    /// linkagehexkins' certified pin: the last forward step was proven.
+    certified: bool,
 }
 
 #[derive(Clone)]
@@ -48,6 +55,11 @@ struct Stats {
     failed: usize,
     /// linkagehexkins' failed calls seen, by status code.
     failures: BTreeMap<i32, usize>,
+    /// Samples whose step was certified (linkagehexkins' certified pin).
+    certified: usize,
+    /// Samples whose pose and joints came from adjacent servo cycles ([`torn_read`]): not
+    /// checked against each other, and not in `max_leg_error`.
+    torn: usize,
     /// Samples whose pose is wrong though the pin says success (it does not give back the
     /// joints), or, in coordinated moves, is off the commanded pose; each counted once.
     bad: usize,
@@ -64,6 +76,8 @@ impl Default for Stats {
             samples: 0,
             failed: 0,
             failures: BTreeMap::new(),
+            certified: 0,
+            torn: 0,
             bad: 0,
             max_leg_error: 0.0,
             max_lag: 0.0,
@@ -77,6 +91,8 @@ impl Stats {
     fn add(&mut self, o: &Stats) {
         self.samples += o.samples;
         self.failed += o.failed;
+        self.certified += o.certified;
+        self.torn += o.torn;
         for (code, n) in &o.failures {
             *self.failures.entry(*code).or_default() += n;
         }
@@ -143,7 +159,7 @@ fn geometry(file: &str) -> Result<LinkageGeometry, String> {
 /// The strut correction a path's own HAL file sets (every joint axis and the screw lead),
 /// or None when the path has no HAL file.
 fn strut_correction(path: &str) -> Result<Option<LinkageStrutCorrection>, String> {
-    let file = std::path::Path::new(path).with_extension("hal");
+    let file = Path::new(path).with_extension("hal");
     if !file.exists() {
         return Ok(None);
     }
@@ -187,8 +203,8 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
             .map(|w| w.parse::<f64>())
             .collect::<Result<_, _>>()
             .map_err(|_| format!("{file}:{}: not a sample", n + 1))?;
-        if v.len() != 24 {
-            return Err(format!("{file}:{}: {} fields, not 24", n + 1, v.len()));
+        if v.len() != 25 {
+            return Err(format!("{file}:{}: {} fields, not 25", n + 1, v.len()));
         }
         let failed_since = !failures.is_nan() && v[22] != failures;
         failures = v[22];
@@ -201,6 +217,7 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
             c: v[i + 5],
         };
         out.push(Sample {
+            at: format!("{file}:{}", n + 1),
             step: v[0] as usize,
             joints: std::array::from_fn(|j| v[2 + j]),
             pose: pose(8),
@@ -208,15 +225,50 @@ fn samples(file: &str) -> Result<Vec<Sample>, String> {
             fail: v[20] != 0.0 || failed_since,
             proximity: v[21],
             failure: failed_since.then_some(v[23] as i32),
+            certified: v[24] != 0.0,
         });
     }
     Ok(out)
 }
 
-fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> bool) -> Vec<Stats> {
+/// Whether sample `n`'s pose belongs to joints between those of the samples before and after
+/// it: the pose and the joints of adjacent servo cycles, as a copy of the motion status torn
+/// across a cycle gives them (seen: the pose one cycle ahead of the joints, which no forward
+/// kinematics can be, since it only ever sees the joints of its own cycle). `legs` is the
+/// inverse kinematics of the pose; the joints move by a few thousandths per cycle, so a pose
+/// within a twentieth of that span of the segment between the neighbours' joints is counted
+/// torn, not wrong.
+fn torn_read(legs: &[f64; 6], samples: &[Sample], n: usize) -> bool {
+    let (Some(before), Some(after)) = (n.checked_sub(1).map(|p| &samples[p]), samples.get(n + 1))
+    else {
+        return false;
+    };
+    if before.step != samples[n].step || after.step != samples[n].step {
+        return false;
+    }
+    let (a, b) = (&before.joints, &after.joints);
+    let d: [f64; 6] = std::array::from_fn(|i| b[i] - a[i]);
+    let dd: f64 = d.iter().map(|v| v * v).sum();
+    let span = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(dd > 0.0) {
+        return false;
+    }
+    let t = ((0..6).map(|i| (legs[i] - a[i]) * d[i]).sum::<f64>() / dd).clamp(0.0, 1.0);
+    let off = (0..6).fold(0.0f64, |m, i| m.max((legs[i] - a[i] - t * d[i]).abs()));
+    off <= LEG_TOLERANCE + 0.05 * span
+}
+
+/// Each step's statistics; `show` prints the first wrong samples (for linkagehexkins, whose
+/// runs must have none).
+fn measure(
+    hex: &Hexapod,
+    samples: &[Sample],
+    coordinated: &dyn Fn(usize) -> bool,
+    show: bool,
+) -> Vec<Stats> {
     let steps = samples.iter().map(|s| s.step).max().unwrap_or(0) + 1;
     let mut stats = vec![Stats::default(); steps];
-    for s in samples {
+    for (n, s) in samples.iter().enumerate() {
         let st = &mut stats[s.step];
         st.samples += 1;
         st.min_proximity = st.min_proximity.min(s.proximity);
@@ -226,13 +278,21 @@ fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> boo
         if let Some(code) = s.failure {
             *st.failures.entry(code).or_default() += 1;
         }
-        let error = hex.inverse(&s.pose).map_or(f64::INFINITY, |legs| {
+        st.certified += usize::from(s.certified);
+        let legs = hex.inverse(&s.pose).ok();
+        let error = legs.map_or(f64::INFINITY, |legs| {
             (0..6)
                 .map(|i| (legs[i] - s.joints[i]).abs())
                 .fold(0.0, f64::max)
         });
-        st.max_leg_error = st.max_leg_error.max(error);
-        let mut bad = !s.fail && !(error <= LEG_TOLERANCE);
+        let torn =
+            !(error <= LEG_TOLERANCE) && legs.is_some_and(|legs| torn_read(&legs, samples, n));
+        if torn {
+            st.torn += 1;
+        } else {
+            st.max_leg_error = st.max_leg_error.max(error);
+        }
+        let mut bad = !s.fail && !torn && !(error <= LEG_TOLERANCE);
         if coordinated(s.step) {
             let (p, q) = (&s.pose, &s.command);
             let lag = [p.x - q.x, p.y - q.y, p.z - q.z]
@@ -246,6 +306,13 @@ fn measure(hex: &Hexapod, samples: &[Sample], coordinated: &dyn Fn(usize) -> boo
             bad |= !(lag <= LAG_LINEAR && turn <= LAG_ANGULAR);
         }
         st.bad += usize::from(bad);
+        // The first few, for whoever has to find out why.
+        if show && bad && st.bad <= 3 {
+            println!(
+                "wrong or off-path: {} |IK(pose) - joints| {error:.1e}, pose {:?}, command {:?}",
+                s.at, s.pose, s.command
+            );
+        }
     }
     stats
 }
@@ -297,12 +364,19 @@ fn run() -> Result<bool, String> {
             hex.set_strut_correction(c)
                 .map_err(|code| format!("{path}: strut correction: status {code}"))?;
         }
-        let a = measure(&hex, &samples(ours)?, &coordinated);
-        let b = measure(&hex, &samples(theirs)?, &coordinated);
+        let a = measure(&hex, &samples(ours)?, &coordinated, true);
+        let b = measure(&hex, &samples(theirs)?, &coordinated, false);
         println!("\npath {name} ({path})");
         if let Some(c) = correction {
             println!("with screw-driven struts (lead {} per turn)", c.screw_lead);
         }
+        // linkagehexkins proves every step on a path whose own pins for it switch `certify` on.
+        let certify = std::fs::read_to_string(Path::new(path).with_extension("linkagehexkins.hal"))
+            .is_ok_and(|t| t.lines().any(|l| l.starts_with("setp PREFIX.certify 1")));
+        if certify {
+            println!("linkagehexkins proving every step (certify)");
+        }
+        let mut ours_path = Stats::default();
         let width = commands.iter().map(String::len).max().unwrap_or(0).max(34);
         println!(
             "{:<width$} | {:^47} | {:^38}",
@@ -328,9 +402,25 @@ fn run() -> Result<bool, String> {
             if step > 0 && sa.samples < MIN_SAMPLES {
                 problems.push(format!("{name} step {step}: only {} samples", sa.samples));
             }
-            ours_all.add(&sa);
+            ours_path.add(&sa);
             theirs_all.add(&sb);
         }
+        let answered = ours_path.samples - ours_path.failed;
+        if certify {
+            println!(
+                "linkagehexkins: {} of {answered} answered samples certified",
+                ours_path.certified
+            );
+            if ours_path.certified != answered {
+                problems.push(format!(
+                    "{name}: {} answered samples not certified",
+                    answered - ours_path.certified
+                ));
+            }
+        } else if ours_path.certified > 0 {
+            problems.push(format!("{name}: certified samples without certify"));
+        }
+        ours_all.add(&ours_path);
     }
     if !(ours_all.min_proximity > 0.0) {
         problems.push("the proximity pin was not read or not positive".to_string());
@@ -358,11 +448,11 @@ fn run() -> Result<bool, String> {
         println!("\nlinkagehexkins failed: {}", problems.join("; "));
     }
     println!(
-        "\nlinuxcnc: {} — linkagehexkins: {} samples, {} failed, {} wrong or off-path, max |IK(pose) - joints| {:.1e} in, proximity down to {:.1e}; \
-         genhexkins: {} samples, {} failed, {} wrong or off-path, feedback up to {:.3} off the command",
+        "\nlinuxcnc: {} — linkagehexkins: {} samples, {} failed, {} wrong or off-path, {} torn reads, {} certified, max |IK(pose) - joints| {:.1e} in, proximity down to {:.1e}; \
+         genhexkins: {} samples, {} failed, {} wrong or off-path, {} torn reads, feedback up to {:.3} off the command",
         if ok { "ok" } else { "FAILED" },
-        ours_all.samples, ours_all.failed, ours_all.bad, ours_all.max_leg_error, ours_all.min_proximity,
-        theirs_all.samples, theirs_all.failed, theirs_all.bad,
+        ours_all.samples, ours_all.failed, ours_all.bad, ours_all.torn, ours_all.certified, ours_all.max_leg_error, ours_all.min_proximity,
+        theirs_all.samples, theirs_all.failed, theirs_all.bad, theirs_all.torn,
         theirs_all.max_lag.max(theirs_all.max_lag_angle),
     );
     Ok(ok)

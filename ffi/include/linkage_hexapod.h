@@ -29,6 +29,7 @@ extern "C" {
 #define LINKAGE_TOLERANCE_NOT_MET 6   /* stopped short of the requested tolerance */
 #define LINKAGE_FAILED 7              /* another non-ok solver outcome (never a success) */
 #define LINKAGE_UNVERIFIED 8          /* converged, but by a method that cannot establish the branch */
+#define LINKAGE_UNPROVEN 9            /* certification on: the step was not proven to keep the branch */
 #define LINKAGE_NULL_POINTER (-1)
 #define LINKAGE_NON_FINITE (-2)       /* a NaN or infinite leg, pose or option value */
 #define LINKAGE_INVALID_INPUT (-3)    /* a leg length out of range (not positive) */
@@ -67,6 +68,7 @@ typedef struct linkage_report {
     uint32_t newton_iterations; /* Newton iterations spent */
     int32_t fell_back;          /* 1: the fast path failed and continuation took over */
     int32_t started;            /* 1: this call started tracking */
+    int32_t certified;          /* 1: certification on and the step proven (interval certificate) */
 } linkage_report;
 
 size_t linkage_hexapod_size(void);
@@ -99,6 +101,12 @@ int32_t linkage_hexapod_set_strut_correction(linkage_hexapod *h,
    out is written only on 0. */
 int32_t linkage_hexapod_strut_corrections(const linkage_hexapod *h, const linkage_pose *pose,
                                           double out[6]);
+
+/* Certification of every forward step (0 off, the default; 1 on): each accepted sample's
+   step from the last one is proven by interval arithmetic to stay on the tracked branch
+   (report.certified), and a step that cannot be proven is refused with LINKAGE_UNPROVEN.
+   A change restarts tracking. */
+int32_t linkage_hexapod_set_certify(linkage_hexapod *h, int32_t on);
 
 /* Forgets the tracked branch. */
 int32_t linkage_hexapod_reset(linkage_hexapod *h);

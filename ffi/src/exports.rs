@@ -94,6 +94,22 @@ pub extern "C" fn linkage_hexapod_set_strut_correction(
     code(h.set_strut_correction(correction))
 }
 
+/// Certification of every forward step: 0 off (the default), 1 on; a change restarts
+/// tracking at the next forward call. Any other value is `INVALID_OPTIONS`.
+#[no_mangle]
+pub extern "C" fn linkage_hexapod_set_certify(h: Option<&mut Hexapod>, on: i32) -> i32 {
+    let Some(h) = h else {
+        return status::NULL_POINTER;
+    };
+    match on {
+        0 | 1 => {
+            h.set_certify(on == 1);
+            status::OK
+        }
+        _ => status::INVALID_OPTIONS,
+    }
+}
+
 /// Forgets the tracked branch: the next forward call starts at the pose it is given.
 #[no_mangle]
 pub extern "C" fn linkage_hexapod_reset(h: Option<&mut Hexapod>) -> i32 {
@@ -211,6 +227,21 @@ mod tests {
             linkage_hexapod_set_geometry(None, Some(&g)),
             status::NULL_POINTER
         );
+        assert_eq!(linkage_hexapod_set_certify(None, 1), status::NULL_POINTER);
+        assert_eq!(
+            linkage_hexapod_set_strut_correction(Some(h), None),
+            status::NULL_POINTER
+        );
+        assert_eq!(
+            linkage_hexapod_strut_corrections(Some(h), None, None),
+            status::NULL_POINTER
+        );
+        // Only 0 and 1 switch certification.
+        assert_eq!(
+            linkage_hexapod_set_certify(Some(h), 2),
+            status::INVALID_OPTIONS
+        );
+        assert_eq!(linkage_hexapod_set_certify(Some(h), 1), status::OK);
     }
 
     #[test]

@@ -34,6 +34,8 @@ pub struct LinkageReport {
     pub fell_back: i32,
     /// 1 when this call started tracking (at the pose passed in).
     pub started: i32,
+    /// 1 when certification is on and this call's step was proven to keep the branch.
+    pub certified: i32,
 }
 
 /// The rigid-body form the geometry needs: the coplanar one is the paper's Eq. 19.
@@ -60,6 +62,7 @@ pub struct Hexapod {
     tracking: Option<Tracking>,
     options: Options,
     correction: LinkageStrutCorrection,
+    certify: bool,
 }
 
 /// Most passes of the strut-correction fixed point (each one tracker update); the
@@ -108,12 +111,18 @@ fn start_with<S: SixSix>(
     legs: &[f64; 6],
     at: &LinkagePose,
     options: Options,
+    certify: bool,
 ) -> Result<Tracker<S, 18, 6>, i32> {
     let start = find_start(sys, *legs, Some(at.to_pose())).map_err(|e| match e {
         StartError::Solve(e) => status::of_error(&e),
         StartError::PoseMismatch | StartError::NoAssemblyMode => status::POSE_MISMATCH,
     })?;
-    Ok(Tracker::new(sys.clone(), start, options))
+    let tracker = Tracker::new(sys.clone(), start, options);
+    Ok(if certify {
+        tracker.certified()
+    } else {
+        tracker
+    })
 }
 
 fn track<S: SixSix>(
@@ -131,13 +140,14 @@ fn track<S: SixSix>(
             report.proximity = sample.proximity;
             report.newton_iterations = sample.newton_iterations;
             report.fell_back = i32::from(sample.fell_back);
+            report.certified = i32::from(sample.proof.is_some_and(|p| p.is_proven()));
             status::OK
         }
         Err(linkage::TrackError::Input(e)) => status::of_error(&e),
         Err(linkage::TrackError::Lost(s)) => status::of_status(&s),
         // Only a certified tracker refuses a sample as unproven; this one is not: a refusal
         // all the same, never ok.
-        Err(linkage::TrackError::Unproven { .. }) => status::FAILED,
+        Err(linkage::TrackError::Unproven { .. }) => status::UNPROVEN,
     }
 }
 
@@ -150,6 +160,7 @@ impl Hexapod {
             tracking: None,
             options: Options::TIGHT,
             correction: LinkageStrutCorrection::NONE,
+            certify: false,
         })
     }
 
@@ -184,6 +195,16 @@ impl Hexapod {
             self.tracking = None;
         }
         Ok(())
+    }
+
+    /// Certification of every forward step: each accepted step proven (interval
+    /// certificates chained from the start) to stay on the branch, an unproven one refused
+    /// (`UNPROVEN`). A change restarts tracking at the next forward call.
+    pub fn set_certify(&mut self, on: bool) {
+        if on != self.certify {
+            self.certify = on;
+            self.tracking = None;
+        }
     }
 
     /// Forgets the tracked branch: the next forward call starts again.
@@ -242,6 +263,7 @@ impl Hexapod {
         report.started = 0;
         report.newton_iterations = 0;
         report.fell_back = 0;
+        report.certified = 0;
         if let Err(code) = check_legs(legs) {
             return code;
         }
@@ -267,6 +289,8 @@ impl Hexapod {
         let saved = self.tracking.clone();
         let tolerance = self.options.tolerance;
         let (mut iterations, mut started, mut fell_back) = (0, 0, 0);
+        // Proven only if every pass's step is.
+        let mut certified = 1;
         let mut out = *pose;
         let mut previous_change = f64::INFINITY;
         let code = 'passes: {
@@ -283,6 +307,7 @@ impl Hexapod {
                 iterations += report.newton_iterations;
                 started |= report.started;
                 fell_back |= report.fell_back;
+                certified &= report.certified;
                 if code != status::OK {
                     break 'passes code;
                 }
@@ -309,6 +334,7 @@ impl Hexapod {
         report.newton_iterations = iterations;
         report.started = started;
         report.fell_back = fell_back;
+        report.certified = if code == status::OK { certified } else { 0 };
         if code == status::OK {
             *pose = out;
         } else {
@@ -328,9 +354,11 @@ impl Hexapod {
         if self.tracking.is_none() {
             let started = match &self.model {
                 Model::Coplanar(s) => {
-                    start_with(s, legs, pose, self.options).map(Tracking::Coplanar)
+                    start_with(s, legs, pose, self.options, self.certify).map(Tracking::Coplanar)
                 }
-                Model::General(s) => start_with(s, legs, pose, self.options).map(Tracking::General),
+                Model::General(s) => {
+                    start_with(s, legs, pose, self.options, self.certify).map(Tracking::General)
+                }
             };
             match started {
                 Ok(t) => self.tracking = Some(t),
@@ -745,5 +773,46 @@ pub(crate) mod tests {
         bad.base_n[2] = [f64::NAN, 0.0, 1.0];
         assert_eq!(h.set_strut_correction(&bad), Err(status::NON_FINITE));
         assert_eq!(h.inverse(&HOME).unwrap(), home);
+    }
+
+    #[test]
+    fn certified_tracking_proves_every_step_or_refuses() {
+        let g = genhex();
+        for correction in [LinkageStrutCorrection::NONE, screws()] {
+            let mut h = Hexapod::new(&g).unwrap();
+            h.set_strut_correction(&correction).unwrap();
+            h.set_certify(true);
+            let mut report = LinkageReport::default();
+            let mut pose = HOME;
+            assert_eq!(
+                h.forward(&h.inverse(&HOME).unwrap(), &mut pose, &mut report),
+                status::OK
+            );
+            for k in 1..=100 {
+                let want = along_path(k as f64 / 100.0);
+                let joints = h.inverse(&want).unwrap();
+                assert_eq!(
+                    h.forward(&joints, &mut pose, &mut report),
+                    status::OK,
+                    "step {k}"
+                );
+                assert_eq!(
+                    report.certified, 1,
+                    "step {k}: an accepted step is a proven one"
+                );
+                assert!(max_diff(&pose, &want) < 1e-7, "step {k}");
+            }
+            // Off again: tracking restarts and samples are no longer certified.
+            h.set_certify(false);
+            assert!(!h.is_tracking());
+            let mut report = LinkageReport::default();
+            let back = along_path(1.0);
+            assert_eq!(
+                h.forward(&h.inverse(&back).unwrap(), &mut pose, &mut report),
+                status::OK
+            );
+            assert_eq!(report.certified, 0);
+        }
+        assert_eq!(status::name(status::UNPROVEN).to_str().unwrap(), "unproven");
     }
 }

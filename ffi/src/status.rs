@@ -29,6 +29,9 @@ pub const FAILED: i32 = 7;
 /// Newton homotopy): possibly another assembly mode, so not a success. The hexapod interface
 /// tracks by continuation and does not return it today; the code keeps it apart if it ever does.
 pub const UNVERIFIED: i32 = 8;
+/// With certification on: the step to the sample was solved but not proven to keep the
+/// branch (interval certificates), so it is refused.
+pub const UNPROVEN: i32 = 9;
 
 /// A pointer argument was null.
 pub const NULL_POINTER: i32 = -1;
@@ -92,6 +95,7 @@ pub fn name(code: i32) -> &'static CStr {
         TOLERANCE_NOT_MET => c"tolerance_not_met",
         FAILED => c"failed",
         UNVERIFIED => c"unverified",
+        UNPROVEN => c"unproven",
         NULL_POINTER => c"null_pointer",
         NON_FINITE => c"non_finite",
         INVALID_INPUT => c"invalid_input",
