@@ -39,7 +39,7 @@ pub(crate) fn classify<S: Mechanism<N, M>, const N: usize, const M: usize>(
     match tracked.outcome {
         Outcome::Reached => {
             let mut polished = *z;
-            if polish(model, &mut polished, p, ws) {
+            if polish(model, &mut polished, p, ws, true) {
                 e.v = model.leave(&polished);
                 e.z = polished;
                 e.kind = if !(model.size(&polished) <= AT_INFINITY) {

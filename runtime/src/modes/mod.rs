@@ -295,7 +295,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
                 *v = from;
                 model.track(&path, v, &mut ws, set).outcome == track::Outcome::Reached
-                    && monodromy::polish(&model, v, p1, &mut ws)
+                    && monodromy::polish(&model, v, p1, &mut ws, true)
                     && model.size(v) <= 1e8
             });
             if !reached {
@@ -332,7 +332,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         for (index, s) in starts.iter().enumerate() {
             let model = me.model();
             let mut z = model.enter(s);
-            if !monodromy::polish(&model, &mut z, &p0, &mut ws)
+            if !monodromy::polish(&model, &mut z, &p0, &mut ws, false)
                 || !(model.size(&z) <= 1e8)
                 || contains(&model, &me.starts[..me.count], &z, SAME)
             {
