@@ -125,9 +125,9 @@ pub(crate) fn contains<S, const N: usize>(
 ) -> bool {
     // The weighted norm of v − w, without divisions and stopping at the first coordinate
     // that differs (most do).
-    known.iter().any(|w| {
-        (0..N).all(|i| (v[i] - w[i]).abs_max() <= tol * model.scale.max(w[i].abs_max()))
-    })
+    known
+        .iter()
+        .any(|w| (0..N).all(|i| (v[i] - w[i]).abs_max() <= tol * model.scale.max(w[i].abs_max())))
 }
 
 /// Fills `out` with the solutions at `p0` in tracking coordinates, starting from `out[0]`
