@@ -1,6 +1,7 @@
 //! `stewart bench`: time per solve over every row of a leg-length CSV, repeated until the
 //! timing is stable.
 
+use crate::modes::CAPACITY;
 use crate::Method;
 use linkage::{Options, Start, Tracker};
 use linkage_examples::cli::legs_csv::{self, LegRows};
@@ -108,29 +109,28 @@ pub fn run_all(geometry: Option<&Path>, input: &Path, json: bool) -> Result<(), 
     use linkage_examples::stewart::{platform_is_coplanar, SixSix, StewartGeneral};
     let rows = legs_csv::read(input)?;
     match geometry {
-        None => time_all(Stewart::new(), &rows, input, json),
+        None => time_all(|| crate::modes::table_iii(&rows), &rows, input, json),
         Some(path) => {
             let (base, platform) = geometry::load_joints(path)?;
             if platform_is_coplanar(&platform) {
                 let sys = Stewart::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                time_all(sys, &rows, input, json)
+                time_all(|| crate::modes::solver(sys, &rows), &rows, input, json)
             } else {
                 let sys = StewartGeneral::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                time_all(sys, &rows, input, json)
+                time_all(|| crate::modes::solver(sys, &rows), &rows, input, json)
             }
         }
     }
 }
 
 fn time_all<S: linkage_examples::stewart::SixSix>(
-    sys: S,
+    setup: impl FnOnce() -> Result<Box<linkage::modes::AllModes<S, 18, 6, CAPACITY>>, String>,
     rows: &[legs_csv::Row],
     input: &Path,
     json: bool,
 ) -> Result<(), String> {
-    use crate::modes::{solver, CAPACITY};
     use linkage::modes::Roots;
     let points: Vec<[f64; 6]> = rows
         .iter()
@@ -140,7 +140,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
         return Err(format!("{}: no valid rows", input.display()));
     }
     let began = Instant::now();
-    let modes = solver(sys, rows)?;
+    let modes = setup()?;
     let setup = began.elapsed().as_secs_f64();
     let mut roots = Box::new(Roots::<18, CAPACITY>::new());
     let mut times: Vec<f64> = Vec::new();

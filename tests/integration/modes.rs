@@ -359,3 +359,56 @@ fn the_modes_command_needs_no_start_section() {
     let err = geometry::parse_joints(&joints.replace("[5,0,2]", "[5,0,nan]")).unwrap_err();
     assert!(err.contains("finite"), "{err}");
 }
+
+/// The committed start sets (`examples/src/start_sets/*_data.rs`) against a fresh run of their
+/// generator: the same base point and γ (they depend only on the seeds), and the same roots as
+/// sets (to 1e-8 of the scale: the digits may move if the tracker changes, the roots not).
+#[test]
+fn embedded_start_sets_are_the_generator_output() {
+    use linkage_examples::start_sets;
+    fn same<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize, const L: usize>(
+        stored: &AllModes<S, N, M, K>,
+        fresh: &AllModes<S, N, M, L>,
+        expected: usize,
+        label: &str,
+    ) {
+        assert_eq!(stored.base_point(), fresh.base_point(), "{label}");
+        assert_eq!(fresh.start_count(), expected, "{label}");
+        assert_eq!(stored.start_count(), expected, "{label}");
+        let near = |a: &[Complex; N], b: &[Complex; N]| {
+            (0..N).all(|k| (a[k] - b[k]).abs() <= 1e-8 * stored.scale().max(b[k].abs()))
+        };
+        for i in 0..expected {
+            let s = stored.start(i).unwrap();
+            let f = fresh.start(i).unwrap();
+            assert!(
+                (0..expected).any(|j| near(&s, &fresh.start(j).unwrap())),
+                "{label}: stored start {i} is not among the fresh ones: regenerate with `cargo run --release --example start_sets`"
+            );
+            assert!(
+                (0..expected).any(|j| near(&f, &stored.start(j).unwrap())),
+                "{label}: fresh start {i} is not stored: regenerate with `cargo run --release --example start_sets`"
+            );
+        }
+    }
+    let stored = start_sets::table_iii::<64>().unwrap();
+    let fresh =
+        start_sets::compute::<_, 18, 6, 64>(Stewart::new(), &start_sets::TABLE_III_CENTRE).unwrap();
+    same(&stored, &fresh, 28, "Table III");
+    let stored = start_sets::rps3::<32>().unwrap();
+    let fresh = start_sets::compute::<_, 9, 3, 32>(Rps3::new(), &start_sets::RPS3_CENTRE).unwrap();
+    same(&stored, &fresh, 16, "3-RPS");
+    // A tampered start is refused, not tracked.
+    let (p0, gamma) = stored.base_point();
+    let mut starts: Vec<[Complex; 9]> = (0..16).map(|i| stored.start(i).unwrap()).collect();
+    starts[5][4] += Complex::new(1e-3, 0.0);
+    let err = AllModes::<_, 9, 3, 32>::from_starts(
+        Rps3::new(),
+        *p0,
+        gamma,
+        &starts,
+        &ModesOptions::default(),
+    )
+    .err();
+    assert_eq!(err, Some(ModesError::BadStart { index: 5 }));
+}
