@@ -14,6 +14,7 @@ mod bench;
 mod equations;
 mod errors;
 mod map;
+mod mode_check;
 mod modes;
 mod plot;
 mod solve;
@@ -147,6 +148,11 @@ pub struct SolveArgs {
     /// Newton iterations allowed for the final correction (and for NR altogether).
     #[arg(long, default_value_t = linkage::Options::TIGHT.max_iterations, allow_hyphen_values = true, value_parser = clap::value_parser!(u32).range(1..))]
     max_iterations: u32,
+    /// For each ok row, whether another real assembly mode lies within this distance (mm, in
+    /// v): adds the columns `modes` (other_within, none_within, incomplete, unmatched) and
+    /// `nearest_other_mode`.
+    #[arg(long, allow_hyphen_values = true, value_parser = args::positive)]
+    modes_within: Option<f64>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
