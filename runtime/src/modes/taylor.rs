@@ -126,7 +126,7 @@ impl<const K: usize> crate::Scalar for Series<K> {
         let mut r = Self::ZERO;
         for k in 0..K {
             let mut s = Complex::ZERO;
-            for i in 0..(k + 1) / 2 {
+            for i in 0..k.div_ceil(2) {
                 s += self.0[i] * self.0[k - i];
             }
             s = s.scale(2.0);
