@@ -12,21 +12,36 @@ use std::path::Path;
 /// (wrongly) seems to have more.
 pub const CAPACITY: usize = 64;
 
-pub fn run(geometry: Option<&Path>, input: &Path, json: bool) -> Result<(), String> {
+/// `png`: where to draw the real modes of which row (1-based).
+pub fn run(
+    geometry: Option<&Path>,
+    input: &Path,
+    json: bool,
+    png: Option<(&Path, usize)>,
+) -> Result<(), String> {
     let rows = legs_csv::read(input)?;
+    if let Some((_, row)) = png {
+        if row > rows.len() {
+            return Err(format!(
+                "--row {row}: {} has {} rows",
+                input.display(),
+                rows.len()
+            ));
+        }
+    }
     match geometry {
-        None => run_on(table_iii(&rows)?, &rows, json),
+        None => run_on(table_iii(&rows)?, &rows, json, png),
         Some(path) => {
             let (base, platform) = geometry::load_joints(path)?;
             // Coplanar platforms use Eq. 19's form; others the general, mirror-free form.
             if platform_is_coplanar(&platform) {
                 let sys = Stewart::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                run_on(solver(sys, &rows)?, &rows, json)
+                run_on(solver(sys, &rows)?, &rows, json, png)
             } else {
                 let sys = StewartGeneral::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                run_on(solver(sys, &rows)?, &rows, json)
+                run_on(solver(sys, &rows)?, &rows, json, png)
             }
         }
     }
@@ -79,6 +94,7 @@ fn run_on<S: SixSix>(
     modes: Box<AllModes<S, 18, 6, CAPACITY>>,
     rows: &[legs_csv::Row],
     json: bool,
+    png: Option<(&Path, usize)>,
 ) -> Result<(), String> {
     let mut roots = Box::new(Roots::<18, CAPACITY>::new());
     for (i, row) in rows.iter().enumerate() {
@@ -90,6 +106,16 @@ fn run_on<S: SixSix>(
             }),
             Err(word) => Err(*word),
         };
+        if let Some((file, _)) = png.filter(|(_, r)| *r == n) {
+            let Ok(x) = row else {
+                return Err(format!("--row {n}: the row is not valid legs"));
+            };
+            if result.is_err() {
+                return Err(format!("--row {n}: the row could not be solved"));
+            }
+            crate::modes_png::draw(modes.mechanism(), x, roots.real(), n, file)?;
+            eprintln!("modes: wrote {}", file.display());
+        }
         match result {
             Err(word) => {
                 if json {

@@ -834,3 +834,24 @@ fn modes_within_reports_other_real_modes_near_an_answer() {
     });
     assert!(found, "no second root found at {d} mm from the answer");
 }
+
+#[test]
+fn modes_png_draws_every_real_mode_of_the_row_asked_for() {
+    let dir = scratch("modes-png");
+    let legs = dir.join("legs.csv");
+    std::fs::write(&legs, csv(&[HEADER, HOME, NEAR_HOME])).unwrap();
+    let png = dir.join("modes.png");
+    let (l, p) = (legs.to_str().unwrap(), png.to_str().unwrap());
+    let out = run(&["modes", "--input", l, "--png", p, "--row", "2"], b"");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    // Eight real modes near home: two rows of four 300-pixel panels under a 30-pixel title.
+    let (w, h) = (
+        u32::from_be_bytes(bytes[16..20].try_into().unwrap()),
+        u32::from_be_bytes(bytes[20..24].try_into().unwrap()),
+    );
+    assert_eq!((w, h), (1200, 630));
+    let out = run(&["modes", "--input", l, "--png", p, "--row", "3"], b"");
+    assert_refused(&out, "--row 3");
+}
