@@ -2,6 +2,7 @@
 //! joint-space maps of Figs. 5–6 (`joint_map`).
 
 pub mod joint_map;
+pub mod path_dependence;
 pub mod sampling;
 pub mod table_v;
 

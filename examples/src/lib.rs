@@ -5,4 +5,5 @@ pub mod cli;
 pub mod demo;
 pub mod rps;
 pub mod rss_hexapod;
+pub mod start_sets;
 pub mod stewart;

@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! cargo run --release --example stewart -- equations [--json]
-//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] [--certify] --input legs.csv|- [--output out.csv]
-//! cargo run --release --example stewart -- modes [--geometry FILE] --input legs.csv [--json]
+//! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] [--certify] [--modes-within MM] --input legs.csv|- [--output out.csv]
+//! cargo run --release --example stewart -- modes [--geometry FILE] --input legs.csv [--json] [--png FILE [--row N]]
 //! cargo run --release --example stewart -- table-v [--seed S] [--json]
 //! cargo run --release --example stewart -- map --out DIR
 //! cargo run --release --example stewart -- errors --out DIR
@@ -14,7 +14,9 @@ mod bench;
 mod equations;
 mod errors;
 mod map;
+mod mode_check;
 mod modes;
+mod modes_png;
 mod plot;
 mod solve;
 mod table_v;
@@ -57,6 +59,12 @@ enum Command {
         /// "pitch", "roll", "x", "y", "z", "det_sign", "residual", "nearest", ...}], ...}.
         #[arg(long)]
         json: bool,
+        /// Also draw every real mode of row --row side by side, as PNG.
+        #[arg(long)]
+        png: Option<PathBuf>,
+        /// The row --png draws (1-based).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        row: u64,
     },
     /// Reproduce Table V: 100 normal and 100 near-singular points solved by PH, NH and NR.
     TableV {
@@ -155,6 +163,11 @@ pub struct SolveArgs {
     /// and refuse a row (`unproven`) whose step is not proven.
     #[arg(long)]
     certify: bool,
+    /// For each ok row, whether another real assembly mode lies within this distance (mm, in
+    /// v): adds the columns `modes` (other_within, none_within, incomplete, unmatched) and
+    /// `nearest_other_mode`.
+    #[arg(long, allow_hyphen_values = true, value_parser = args::positive)]
+    modes_within: Option<f64>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -209,7 +222,14 @@ fn main() -> ExitCode {
             geometry,
             input,
             json,
-        } => modes::run(geometry.as_deref(), &input, json),
+            png,
+            row,
+        } => modes::run(
+            geometry.as_deref(),
+            &input,
+            json,
+            png.as_deref().map(|p| (p, row as usize)),
+        ),
         Command::Bench {
             method,
             geometry,

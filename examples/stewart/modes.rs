@@ -12,35 +12,70 @@ use std::path::Path;
 /// (wrongly) seems to have more.
 pub const CAPACITY: usize = 64;
 
-pub fn run(geometry: Option<&Path>, input: &Path, json: bool) -> Result<(), String> {
+/// `png`: where to draw the real modes of which row (1-based).
+pub fn run(
+    geometry: Option<&Path>,
+    input: &Path,
+    json: bool,
+    png: Option<(&Path, usize)>,
+) -> Result<(), String> {
     let rows = legs_csv::read(input)?;
+    if let Some((_, row)) = png {
+        if row > rows.len() {
+            return Err(format!(
+                "--row {row}: {} has {} rows",
+                input.display(),
+                rows.len()
+            ));
+        }
+    }
     match geometry {
-        None => run_on(Stewart::new(), &rows, json),
+        None => run_on(table_iii(&rows)?, &rows, json, png),
         Some(path) => {
             let (base, platform) = geometry::load_joints(path)?;
             // Coplanar platforms use Eq. 19's form; others the general, mirror-free form.
             if platform_is_coplanar(&platform) {
                 let sys = Stewart::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                run_on(sys, &rows, json)
+                run_on(solver(sys, &rows)?, &rows, json, png)
             } else {
                 let sys = StewartGeneral::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                run_on(sys, &rows, json)
+                run_on(solver(sys, &rows)?, &rows, json, png)
             }
         }
     }
 }
 
-/// The solver for `sys`, its start set moved near the mean of the valid rows (shorter paths).
+/// The solver for `sys`, its start set found by monodromy and moved near the mean of the
+/// valid rows (shorter paths).
 pub fn solver<S: SixSix>(
     sys: S,
     rows: &[legs_csv::Row],
 ) -> Result<Box<AllModes<S, 18, 6, CAPACITY>>, String> {
-    let mut modes = Box::new(
+    let modes = Box::new(
         AllModes::new(sys, &ModesOptions::default())
             .map_err(|e| format!("start solutions: {e}"))?,
     );
+    Ok(recentred(modes, rows))
+}
+
+/// The Table III platform's solver from its stored start set (no monodromy), moved near the
+/// mean of the valid rows.
+pub fn table_iii(
+    rows: &[legs_csv::Row],
+) -> Result<Box<AllModes<Stewart, 18, 6, CAPACITY>>, String> {
+    let modes = Box::new(
+        linkage_examples::start_sets::table_iii()
+            .map_err(|e| format!("stored start solutions: {e}"))?,
+    );
+    Ok(recentred(modes, rows))
+}
+
+fn recentred<S: SixSix>(
+    mut modes: Box<AllModes<S, 18, 6, CAPACITY>>,
+    rows: &[legs_csv::Row],
+) -> Box<AllModes<S, 18, 6, CAPACITY>> {
     let valid: Vec<&[f64; 6]> = rows.iter().filter_map(|r| r.as_ref().ok()).collect();
     if !valid.is_empty() {
         let mut centre = [0.0; 6];
@@ -52,11 +87,15 @@ pub fn solver<S: SixSix>(
         // A failure leaves the start set where it was: queries are then longer, not wrong.
         let _ = modes.recenter(&centre, 0.1, 1);
     }
-    Ok(modes)
+    modes
 }
 
-fn run_on<S: SixSix>(sys: S, rows: &[legs_csv::Row], json: bool) -> Result<(), String> {
-    let modes = solver(sys, rows)?;
+fn run_on<S: SixSix>(
+    modes: Box<AllModes<S, 18, 6, CAPACITY>>,
+    rows: &[legs_csv::Row],
+    json: bool,
+    png: Option<(&Path, usize)>,
+) -> Result<(), String> {
     let mut roots = Box::new(Roots::<18, CAPACITY>::new());
     for (i, row) in rows.iter().enumerate() {
         let n = i + 1;
@@ -67,6 +106,16 @@ fn run_on<S: SixSix>(sys: S, rows: &[legs_csv::Row], json: bool) -> Result<(), S
             }),
             Err(word) => Err(*word),
         };
+        if let Some((file, _)) = png.filter(|(_, r)| *r == n) {
+            let Ok(x) = row else {
+                return Err(format!("--row {n}: the row is not valid legs"));
+            };
+            if result.is_err() {
+                return Err(format!("--row {n}: the row could not be solved"));
+            }
+            crate::modes_png::draw(modes.mechanism(), x, roots.real(), n, file)?;
+            eprintln!("modes: wrote {}", file.display());
+        }
         match result {
             Err(word) => {
                 if json {

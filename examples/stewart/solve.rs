@@ -1,5 +1,6 @@
 //! `stewart solve`: forward kinematics for a CSV of leg lengths, streamed row by row.
 
+use crate::mode_check::ModeCheck;
 use crate::{Method, SolveArgs};
 use linkage::{CertifiedSteps, Mechanism, Options, Pose, Start, StepProof, Tracker};
 use linkage_examples::cli::geometry;
@@ -25,7 +26,16 @@ const UNPROVEN: &str = "unproven";
 
 pub fn run(args: &SolveArgs) -> Result<(), String> {
     match &args.geometry {
-        None => solve_stream(Stewart::new(), HOME_LEGS, None, args),
+        None => {
+            let check = match args.modes_within {
+                Some(within) => Some(ModeCheck::new(
+                    crate::modes::table_iii(&[Ok(HOME_LEGS)])?,
+                    within,
+                )),
+                None => None,
+            };
+            solve_stream(Stewart::new(), HOME_LEGS, None, check, args)
+        }
         Some(path) => {
             let g = geometry::load(path)?;
             let pose = g
@@ -35,14 +45,30 @@ pub fn run(args: &SolveArgs) -> Result<(), String> {
             if platform_is_coplanar(&g.platform) {
                 let sys = Stewart::with_joints(&g.base, &g.platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                solve_stream(sys, g.legs, pose, args)
+                let check = mode_check(&sys, g.legs, args)?;
+                solve_stream(sys, g.legs, pose, check, args)
             } else {
                 let sys = StewartGeneral::with_joints(&g.base, &g.platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                solve_stream(sys, g.legs, pose, args)
+                let check = mode_check(&sys, g.legs, args)?;
+                solve_stream(sys, g.legs, pose, check, args)
             }
         }
     }
+}
+
+/// `--modes-within` on a geometry from a file: its start set by monodromy, moved near the
+/// start's legs.
+fn mode_check<S: SixSix>(
+    sys: &S,
+    legs: [f64; 6],
+    args: &SolveArgs,
+) -> Result<Option<ModeCheck<S>>, String> {
+    let Some(within) = args.modes_within else {
+        return Ok(None);
+    };
+    let modes = crate::modes::solver(sys.clone(), &[Ok(legs)])?;
+    Ok(Some(ModeCheck::new(modes, within)))
 }
 
 /// Reads a row, solves it, writes its result, and only then reads the next: constant memory,
@@ -51,6 +77,7 @@ fn solve_stream<S: SixSix>(
     sys: S,
     legs: [f64; 6],
     pose: Option<Pose>,
+    mut check: Option<ModeCheck<S>>,
     args: &SolveArgs,
 ) -> Result<(), String> {
     let start = find_start(&sys, legs, pose).map_err(|e| format!("start configuration: {e}"))?;
@@ -60,11 +87,15 @@ fn solve_stream<S: SixSix>(
     let name = args.input.display();
     let mut rows = LegRows::new(input)
         .map_err(|e| sink.check().err().unwrap_or_else(|| format!("{name}: {e}")))?;
-    sink.write_line(&if args.certify {
+    let mut header = if args.certify {
         results_csv::header_certified()
     } else {
         results_csv::header()
-    })?;
+    };
+    if check.is_some() {
+        header.push_str(ModeCheck::<S>::header());
+    }
+    sink.write_line(&header)?;
     let mut line = String::new();
     let mut n = 0u64;
     loop {
@@ -80,6 +111,14 @@ fn solve_stream<S: SixSix>(
         record.write_to(&mut line);
         if args.certify {
             record.write_certificate(&mut line);
+        }
+        // Answers: `ok` from PH, `unverified` from NH and NR.
+        let answered = record.status == "ok" || record.status == "unverified";
+        if let (Some(check), Ok(x)) = (check.as_mut(), row) {
+            let v = record.solution.as_ref().map(|(_, v)| v);
+            line.push_str(&check.fields(&x, v.filter(|_| answered)));
+        } else if check.is_some() {
+            line.push_str(",,");
         }
         sink.write_line(&line)?;
     }

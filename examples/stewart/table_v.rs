@@ -105,6 +105,27 @@ fn table(r: &Report) -> String {
         d.reached, d.folds, d.at_truth, d.path_dependent, d.wrong_branch
     );
     line!("answered: the tolerance met, status ok (PH) or unverified (NH and NR, which cannot establish the branch)");
+    match &r.path_dependence {
+        Ok(p) => {
+            line!(
+                "every real mode of the {} near-singular targets ({} solved completely, true pose among the roots in {}; {:.1} real roots each):",
+                p.targets,
+                p.complete,
+                p.truth_found,
+                p.real_roots as f64 / p.complete.max(1) as f64
+            );
+            line!(
+                "  {} targets have another real root reached from home without a singularity ({} such roots by the straight pose path, {} by the joint-space segment only; {} other roots had the start's det B sign)",
+                p.path_dependent_targets,
+                p.by_pose_path,
+                p.by_segment_only,
+                p.same_sign_others
+            );
+        }
+        Err(e) => {
+            line!("every real mode of the near-singular targets: not examined ({e})");
+        }
+    }
     line!("(*) the straight joint-space segment reaches it with no sign change of det B (checked by fine continuation),");
     line!("    while the pose path reaches the true pose: two solutions on the start's branch (see README, Errata)");
     line!("paper (Table V): PH 100 % / 0.026 % / 3.203 s; NH 61 % / 0.024 % / 2.286 s; NR 10 % / 0.036 % / 0.208 s");

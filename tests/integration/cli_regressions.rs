@@ -873,3 +873,73 @@ fn solve_certify_adds_a_proof_to_every_answer() {
     );
     assert_refused(&out, "--certify is not available with --method all");
 }
+
+#[test]
+fn modes_within_reports_other_real_modes_near_an_answer() {
+    use linkage::Start;
+    use linkage_examples::stewart::Stewart;
+    use linkage_tests::Rng;
+    // Near home: the nearest other real mode is the mirror image, far away. Near a
+    // singularity (Table V's near-singular point 104, seed 2015): another mode within 1 mm.
+    let near = "251.9129137019984,244.7811105963881,244.3977694975812,161.4172551544966,250.4383298075714,243.5252246376511";
+    let input = csv(&[HEADER, NEAR_HOME, near, "170,170,170,170,170,nan"]);
+    let out = run(&["solve", "--input", "-", "--modes-within", "20"], &input);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let (header, body) = rows(&out);
+    assert_eq!(body.len(), 3);
+    let words: Vec<&str> = body.iter().map(|r| field(&header, r, "modes")).collect();
+    assert_eq!(words, ["none_within", "other_within", ""]);
+    let home_nearest: f64 = field(&header, &body[0], "nearest_other_mode")
+        .parse()
+        .unwrap();
+    assert!(home_nearest > 20.0, "{home_nearest}");
+    // Independently: Newton (`Start::new`, real arithmetic) from random points around the
+    // answer finds another root at the distance reported.
+    let d: f64 = field(&header, &body[1], "nearest_other_mode")
+        .parse()
+        .unwrap();
+    assert!(d < 1.0, "{d}");
+    let v: [f64; 18] = core::array::from_fn(|i| {
+        field(&header, &body[1], &format!("v{}", i + 1))
+            .parse()
+            .unwrap()
+    });
+    let x: [f64; 6] = core::array::from_fn(|i| near.split(',').nth(i).unwrap().parse().unwrap());
+    let sys = Stewart::new();
+    let mut rng = Rng::new(11);
+    let dist = |a: &[f64; 18]| {
+        a.iter()
+            .zip(&v)
+            .map(|(p, q)| (p - q) * (p - q))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let found = (0..2000).any(|_| {
+        let from = v.map(|c| c + 2.0 * d * rng.symmetric());
+        Start::new(&sys, from, x)
+            .map(|s| (dist(s.v()) - d).abs() <= 1e-6 * d.max(1.0))
+            .unwrap_or(false)
+    });
+    assert!(found, "no second root found at {d} mm from the answer");
+}
+
+#[test]
+fn modes_png_draws_every_real_mode_of_the_row_asked_for() {
+    let dir = scratch("modes-png");
+    let legs = dir.join("legs.csv");
+    std::fs::write(&legs, csv(&[HEADER, HOME, NEAR_HOME])).unwrap();
+    let png = dir.join("modes.png");
+    let (l, p) = (legs.to_str().unwrap(), png.to_str().unwrap());
+    let out = run(&["modes", "--input", l, "--png", p, "--row", "2"], b"");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    // Eight real modes near home: two rows of four 300-pixel panels under a 30-pixel title.
+    let (w, h) = (
+        u32::from_be_bytes(bytes[16..20].try_into().unwrap()),
+        u32::from_be_bytes(bytes[20..24].try_into().unwrap()),
+    );
+    assert_eq!((w, h), (1200, 630));
+    let out = run(&["modes", "--input", l, "--png", p, "--row", "3"], b"");
+    assert_refused(&out, "--row 3");
+}

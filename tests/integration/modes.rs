@@ -359,3 +359,157 @@ fn the_modes_command_needs_no_start_section() {
     let err = geometry::parse_joints(&joints.replace("[5,0,2]", "[5,0,nan]")).unwrap_err();
     assert!(err.contains("finite"), "{err}");
 }
+
+/// The committed start sets (`examples/src/start_sets/*_data.rs`) against a fresh run of their
+/// generator: the same base point and γ (they depend only on the seeds), and the same roots as
+/// sets (to 1e-8 of the scale: the digits may move if the tracker changes, the roots not).
+#[test]
+fn embedded_start_sets_are_the_generator_output() {
+    use linkage_examples::start_sets;
+    fn same<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize, const L: usize>(
+        stored: &AllModes<S, N, M, K>,
+        fresh: &AllModes<S, N, M, L>,
+        expected: usize,
+        label: &str,
+    ) {
+        assert_eq!(stored.base_point(), fresh.base_point(), "{label}");
+        assert_eq!(fresh.start_count(), expected, "{label}");
+        assert_eq!(stored.start_count(), expected, "{label}");
+        let near = |a: &[Complex; N], b: &[Complex; N]| {
+            (0..N).all(|k| (a[k] - b[k]).abs() <= 1e-8 * stored.scale().max(b[k].abs()))
+        };
+        for i in 0..expected {
+            let s = stored.start(i).unwrap();
+            let f = fresh.start(i).unwrap();
+            assert!(
+                (0..expected).any(|j| near(&s, &fresh.start(j).unwrap())),
+                "{label}: stored start {i} is not among the fresh ones: regenerate with `cargo run --release --example start_sets`"
+            );
+            assert!(
+                (0..expected).any(|j| near(&f, &stored.start(j).unwrap())),
+                "{label}: fresh start {i} is not stored: regenerate with `cargo run --release --example start_sets`"
+            );
+        }
+    }
+    let stored = start_sets::table_iii::<64>().unwrap();
+    let fresh =
+        start_sets::compute::<_, 18, 6, 64>(Stewart::new(), &start_sets::TABLE_III_CENTRE).unwrap();
+    same(&stored, &fresh, 28, "Table III");
+    let stored = start_sets::rps3::<32>().unwrap();
+    let fresh = start_sets::compute::<_, 9, 3, 32>(Rps3::new(), &start_sets::RPS3_CENTRE).unwrap();
+    same(&stored, &fresh, 16, "3-RPS");
+    // A tampered start is refused, not tracked.
+    let (p0, gamma) = stored.base_point();
+    let mut starts: Vec<[Complex; 9]> = (0..16).map(|i| stored.start(i).unwrap()).collect();
+    starts[5][4] += Complex::new(1e-3, 0.0);
+    let err = AllModes::<_, 9, 3, 32>::from_starts(
+        Rps3::new(),
+        *p0,
+        gamma,
+        &starts,
+        &ModesOptions::default(),
+    )
+    .err();
+    assert_eq!(err, Some(ModesError::BadStart { index: 5 }));
+}
+
+/// Every Table V test point (seed 2015), normal and near-singular, has its true pose — the
+/// pose its legs were computed from — among the real modes found from the stored start set.
+/// Near a fold the true root has a twin within micrometres; real Newton there stops at a
+/// rounding floor above 1e-14, which once hid the true root (point 13 of the near-singular
+/// ones).
+#[test]
+fn every_table_v_point_has_its_true_pose_among_the_real_modes() {
+    use linkage_examples::case_study::sampling::{Protocol, Sampler};
+    let sampler = Sampler::new(Protocol::default());
+    let (_, normal, near) = sampler.sample().unwrap();
+    let modes = linkage_examples::start_sets::table_iii::<64>().unwrap();
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    let mut missed = Vec::new();
+    for (k, p) in normal.iter().chain(&near).enumerate() {
+        modes.solve(&p.x, &mut roots).unwrap();
+        assert!(roots.is_complete(), "point {k}");
+        let size = p.v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let found = roots.real().iter().any(|r| {
+            let d =
+                r.v.iter()
+                    .zip(&p.v)
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum::<f64>();
+            d.sqrt() < 1e-6 * size
+        });
+        if !found {
+            missed.push(k);
+        }
+    }
+    assert!(
+        missed.is_empty(),
+        "true pose not among the real modes: {missed:?}"
+    );
+}
+
+/// `stewart table-v`'s path dependence, checked independently: for near-singular targets it
+/// names, the runtime's `Tracker` (real arithmetic, continuation) driven along the legs of the
+/// straight pose path from home to the other root ends at that root — not at the true pose,
+/// which the sampled pose path reaches — without a sign change of det B.
+#[test]
+fn path_dependent_table_v_targets_are_reached_by_the_tracker() {
+    use linkage::{Options, Tracker};
+    use linkage_examples::case_study::path_dependence::{examine, offset_to};
+    use linkage_examples::case_study::sampling::{Protocol, Sampler};
+    let sampler = Sampler::new(Protocol::default());
+    let (_, _, near) = sampler.sample().unwrap();
+    // No joint-space segments here (flips = 1: none counts): the pose paths alone.
+    let segments = vec![([0.0; 18], 1); near.len()];
+    let found = examine(&sampler, &near, &segments, 2000).unwrap();
+    println!("{found:?}");
+    assert_eq!(found.truth_found, near.len());
+    assert!(found.path_dependent_targets > 0);
+    let modes = linkage_examples::start_sets::table_iii::<64>().unwrap();
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    let rel = |a: &[f64; 18], b: &[f64; 18]| {
+        let d: f64 = a.iter().zip(b).map(|(p, q)| (p - q) * (p - q)).sum();
+        (d / b.iter().map(|q| q * q).sum::<f64>()).sqrt()
+    };
+    let sign = sampler.start.det();
+    let mut confirmed = 0;
+    for &i in found.which.iter().take(5) {
+        let p = &near[i - 1];
+        modes.solve(&p.x, &mut roots).unwrap();
+        for r in roots.real() {
+            if rel(&r.v, &p.v) < 1e-6 || r.det * sign <= 0.0 {
+                continue;
+            }
+            let Some(u) = r.pose.and_then(|pose| offset_to(&sampler, &pose)) else {
+                continue;
+            };
+            if !sampler.nonsingular(&u, 1.0) {
+                continue;
+            }
+            let mut tracker = Tracker::new(sampler.sys.clone(), sampler.start, Options::TIGHT);
+            let samples = 2000;
+            let mut last = None;
+            for k in 1..=samples {
+                let pose = sampler.pose(&u, k as f64 / samples as f64);
+                let (x, _) = legs_for_pose(&sampler.sys, &pose).unwrap();
+                let sample = tracker.update(&x).unwrap_or_else(|e| {
+                    panic!("target {i}: the tracker stopped at sample {k}: {e:?}")
+                });
+                assert!(sample.proximity > 0.0);
+                last = Some(sample.v);
+            }
+            let v = last.unwrap();
+            assert!(
+                rel(&v, &r.v) < 1e-6,
+                "target {i}: the tracker ended elsewhere"
+            );
+            assert!(
+                rel(&v, &p.v) > 1e-3,
+                "target {i}: the tracker ended at the true pose"
+            );
+            confirmed += 1;
+        }
+    }
+    assert!(confirmed > 0);
+    println!("{confirmed} second modes confirmed by the tracker");
+}

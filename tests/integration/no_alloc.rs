@@ -85,8 +85,7 @@ fn solves_and_tracking_do_not_allocate() {
 
 #[test]
 fn all_modes_queries_do_not_allocate() {
-    use linkage::modes::{AllModes, ModesOptions, Roots};
-    let modes = AllModes::<_, 18, 6, 64>::new(Stewart::new(), &ModesOptions::default()).unwrap();
+    use linkage::modes::Roots;
     // The result storage is the caller's: boxed here only to keep the test's stack small.
     let mut roots = Box::new(Roots::<18, 64>::new());
     let targets = [
@@ -96,6 +95,8 @@ fn all_modes_queries_do_not_allocate() {
         [-1.0, 170.0, 170.0, 170.0, 170.0, 170.0],
     ];
     let before = allocations();
+    // From the embedded start set (checked and refined here) to the answers: no heap at all.
+    let modes = linkage_examples::start_sets::table_iii::<64>().unwrap();
     let mut found = 0;
     for x in &targets {
         if modes.solve(x, &mut roots).is_ok() {

@@ -1,6 +1,7 @@
 //! Table V: every test point solved by PH, NH and NR from the initial configuration, at the
 //! paper's settings and at a tight tolerance, compared with the true pivots.
 
+use super::path_dependence::{self, PathDependence};
 use super::sampling::{Protocol, Sampler, SamplingError, TestPoint};
 use super::{straight_segment, straight_segment_from};
 use linkage::{Method, Options, Status};
@@ -158,7 +159,13 @@ pub struct Report {
     /// PH with detours (`arc_length_detour`, tight tolerance) on the points where the straight
     /// segment ends in a fold.
     pub detours: Detours,
+    /// Near-singular targets with a second mode reached from home without a singularity
+    /// (every real root examined; an error if the stored start set could not be used).
+    pub path_dependence: Result<PathDependence, String>,
 }
+
+/// Points checked along each candidate path of [`PathDependence`] (the README's 20 000).
+pub const PATH_CHECKS: usize = 20_000;
 
 /// What detours around folds achieved.
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -216,6 +223,9 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Result<Report,
     }
     progress("detours around folds");
     let detours = detour_all(&sampler, &points, &outcomes[0].2);
+    progress("every real mode of the near-singular targets");
+    let path_dependence =
+        path_dependence::examine(&sampler, &near, &segments[normal.len()..], PATH_CHECKS);
     Ok(Report {
         protocol,
         mean_det,
@@ -224,6 +234,7 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Result<Report,
         segment_leaves_vjs,
         outcomes,
         detours,
+        path_dependence,
     })
 }
 
@@ -290,6 +301,10 @@ pub fn to_json(r: &Report) -> serde_json::Value {
     serde_json::json!({
         "methods": methods,
         "ph_detours": r.detours,
+        "path_dependence": match &r.path_dependence {
+            Ok(d) => serde_json::to_value(d).expect("plain numbers"),
+            Err(e) => serde_json::json!({ "error": e }),
+        },
         "points": { "normal": n, "near_singular": r.near.len() },
         "near_singular_segment_leaves_vjs": r.segment_leaves_vjs,
         "protocol": {

@@ -65,6 +65,9 @@ use rng::Rng;
 use sparse_lu::Plan;
 use track::{Chart, Model, Settings, Workspace};
 
+/// The largest first Newton correction (weighted) a stored start may need.
+const STORED: f64 = 1e-8;
+
 /// A random γ = e^(iθ) with π/6 ≤ |θ| ≤ π/2: a real bend of the path, but far from −1, where
 /// the rational path (see `path.rs`) would pass near a pole and blow every solution up.
 fn gamma(rng: &mut Rng) -> Complex {
@@ -295,7 +298,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
                 *v = from;
                 model.track(&path, v, &mut ws, set).outcome == track::Outcome::Reached
-                    && monodromy::polish(&model, v, p1, &mut ws)
+                    && monodromy::polish(&model, v, p1, &mut ws, true)
                     && model.size(v) <= 1e8
             });
             if !reached {
@@ -311,7 +314,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     }
 
     /// Takes start solutions computed before (e.g. by [`AllModes::new`] and stored): each
-    /// is checked to be a nonsingular root at `p0` and refined.
+    /// is checked to be a nonsingular root at `p0` — Newton's first correction from it below
+    /// 1e-8 of the scale — and refined; no two may be the same root. Allocation-free.
     pub fn from_starts(
         sys: S,
         p0: [Complex; M],
@@ -332,7 +336,17 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         for (index, s) in starts.iter().enumerate() {
             let model = me.model();
             let mut z = model.enter(s);
-            if !monodromy::polish(&model, &mut z, &p0, &mut ws)
+            // A stored root is a root to its printed digits: Newton's first correction must be
+            // tiny (a point that merely lies in some root's basin is refused, not replaced by
+            // that root). The factorisation serves the refinement that follows.
+            let (values, lu) = ws.scratch();
+            if !s.iter().all(|c| c.is_finite())
+                || !model.factor(&z, &p0, values, lu)
+                || !(model.norm(&model.newton(lu, &z, &p0), &z) <= STORED)
+            {
+                return Err(ModesError::BadStart { index });
+            }
+            if !monodromy::polish(&model, &mut z, &p0, &mut ws, true)
                 || !(model.size(&z) <= 1e8)
                 || contains(&model, &me.starts[..me.count], &z, SAME)
             {

@@ -48,18 +48,23 @@ pub(crate) struct Found {
 /// there.
 /// At a singular root Newton converges only linearly (ratio ½ at a double root) from the path
 /// accuracy, and this is `false`.
+///
+/// `factored`: `ws` already holds a factorisation of the Jacobian near `v` at `p` (the
+/// tracker's last step leaves one at its predicted point), used until the corrections stop
+/// contracting fast.
 pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     model: &Model<'_, S, N>,
     v: &mut [Complex; N],
     p: &[Complex; M],
     ws: &mut Workspace<N>,
+    factored: bool,
 ) -> bool {
     let (values, lu) = ws.scratch();
     let mut previous = f64::INFINITY;
     let mut fast = false;
     // The factorisation is kept while the corrections contract fast (the chord method); from
     // the path accuracy one factorisation usually does.
-    let mut refactor = true;
+    let mut refactor = !factored;
     for it in 0..10 {
         if refactor && !model.factor(v, p, values, lu) {
             return false;
@@ -69,7 +74,10 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if !n.is_finite() {
             return false;
         }
-        if n <= 1e-13 {
+        // Converged as at a nonsingular root: below the rounding floor of most roots at once,
+        // or below POLISHED after a fast contraction (going on would end at the floor, true
+        // all the same, after more factorisations).
+        if n <= 1e-13 || ((fast || it == 0) && n <= POLISHED) {
             for i in 0..N {
                 v[i] += d[i];
             }
@@ -94,6 +102,11 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     fast && previous <= FLOOR
 }
 
+/// A correction this small after a fast contraction ends [`polish`]: the root to about 1e-11
+/// of the scale, far below what tells roots apart ([`SAME`]); real roots are refined again in
+/// real arithmetic.
+pub(crate) const POLISHED: f64 = 1e-11;
+
 /// The largest rounding floor [`polish`] accepts (weighted): roots 10⁶ times the mechanism's
 /// size away, which a general 6-6 platform can have, stall near 1e-7 in double precision.
 pub(crate) const FLOOR: f64 = 1e-6;
@@ -110,13 +123,11 @@ pub(crate) fn contains<S, const N: usize>(
     v: &[Complex; N],
     tol: f64,
 ) -> bool {
-    known.iter().any(|w| {
-        let mut d = *v;
-        for i in 0..N {
-            d[i] -= w[i];
-        }
-        model.norm(&d, w) <= tol
-    })
+    // The weighted norm of v − w, without divisions and stopping at the first coordinate
+    // that differs (most do).
+    known
+        .iter()
+        .any(|w| (0..N).all(|i| (v[i] - w[i]).abs_max() <= tol * model.scale.max(w[i].abs_max())))
 }
 
 /// Fills `out` with the solutions at `p0` in tracking coordinates, starting from `out[0]`
@@ -171,7 +182,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                         .outcome
                         == Outcome::Reached
                 });
-                if !ok || !polish(model, &mut v, p0, &mut ws) {
+                if !ok || !polish(model, &mut v, p0, &mut ws, true) {
                     found.failed_paths += 1;
                     continue;
                 }
@@ -193,7 +204,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                 .track(&path, &mut v, &mut ws, &Settings::DEFAULT)
                 .outcome
                 == Outcome::Reached;
-            if !reached || !polish(model, &mut v, p0, &mut ws) {
+            if !reached || !polish(model, &mut v, p0, &mut ws, true) {
                 found.failed_paths += 1;
                 continue;
             }

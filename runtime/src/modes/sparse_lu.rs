@@ -32,6 +32,14 @@ pub(crate) struct Plan<const N: usize> {
     rest_rows: [u8; N],
     rest_cols: [u8; N],
     rest: usize,
+    /// Per static pivot k, the static pivots k' > k whose column is among `cols[k]`: the part
+    /// of its back-substitution that must wait for them (the rest columns' part is a dense
+    /// product, see [`Lu::solve`]).
+    later: [[u8; N]; N],
+    n_later: [u8; N],
+    /// Number of pattern entries, and where each goes in the row-major N × N matrix.
+    nnz: usize,
+    flat: [[u16; N]; N],
 }
 
 /// Why no plan could be made.
@@ -80,7 +88,17 @@ impl<const N: usize> Plan<N> {
             rest_rows: [0; N],
             rest_cols: [0; N],
             rest: 0,
+            later: [[0; N]; N],
+            n_later: [0; N],
+            nnz: pattern.len(),
+            flat: [[0; N]; N],
         };
+        if pattern.len() > N * N {
+            return Err(PlanError::BadPattern);
+        }
+        for (k, &(r, c)) in pattern.iter().enumerate() {
+            plan.flat[k / N][k % N] = (r * N + c) as u16;
+        }
         let mut row_done = [false; N];
         let mut col_done = [false; N];
         loop {
@@ -140,6 +158,15 @@ impl<const N: usize> Plan<N> {
             }
         }
         plan.rest = nr;
+        for k in 0..plan.statics {
+            for k2 in k + 1..plan.statics {
+                let c2 = plan.pivot[k2].1;
+                if plan.cols[k][..plan.n_cols[k] as usize].contains(&c2) {
+                    plan.later[k][plan.n_later[k] as usize] = k2 as u8;
+                    plan.n_later[k] += 1;
+                }
+            }
+        }
         Ok(plan)
     }
 
@@ -159,16 +186,23 @@ pub(crate) struct Border<const N: usize> {
 
 /// A factorisation of B (or of B bordered by one row and column): the static phase in place in
 /// `a` (and in the border vectors); the dense remainder — the Schur complement on the other
-/// rows and columns, with the border as its last row and column — compacted, rows in pivot
-/// order, real and imaginary parts in separate arrays so that the row updates and substitutions
-/// run on plain vectors of f64 (no shuffles of interleaved complex numbers); reciprocal pivots
-/// for the substitutions.
+/// rows and columns, with the border as its last row and column — compacted, by columns, real
+/// and imaginary parts in separate arrays, so that the eliminations and substitutions are
+/// updates of plain f64 vectors (no dot products, which the compiler may not reorder into
+/// vector code, and no shuffles of interleaved complex numbers). The static pivots' rows,
+/// restricted to the remainder's columns, are kept the same way for the back-substitution.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lu<const N: usize> {
     a: [[Complex; N]; N],
     border: Option<Border<N>>,
-    re: [[f64; N]; N],
-    im: [[f64; N]; N],
+    /// The remainder's factors by columns: `tr[j][i]` is entry (i, j) (L below the diagonal,
+    /// U on and above it).
+    tr: [[f64; N]; N],
+    ti: [[f64; N]; N],
+    /// `wr[j][k]`: static pivot k's row in column j of the remainder (the border's column
+    /// last).
+    wr: [[f64; N]; N],
+    wi: [[f64; N]; N],
     /// Size of the compact remainder (the plan's plus one with a border).
     m: usize,
     /// Original row of each row of the remainder: an index into the plan's rest rows, or the
@@ -186,8 +220,10 @@ impl<const N: usize> Lu<N> {
         Lu {
             a: [[Complex::ZERO; N]; N],
             border: None,
-            re: [[0.0; N]; N],
-            im: [[0.0; N]; N],
+            tr: [[0.0; N]; N],
+            ti: [[0.0; N]; N],
+            wr: [[0.0; N]; N],
+            wi: [[0.0; N]; N],
             m: 0,
             perm: [0; N],
             inv_static: [Complex::ZERO; N],
@@ -206,32 +242,36 @@ impl<const N: usize> Lu<N> {
         }
     }
 
-    /// Factors the matrix whose nonzeros are `values` at `pattern` (the plan's pattern),
+    /// Factors the matrix whose nonzeros are `values` in the order of the plan's pattern,
     /// bordered by `border` if given. A border needs at least one static pivot (the compact
     /// remainder has room for N rows). `false` if a pivot is zero or not finite.
     pub(crate) fn factor(
         &mut self,
         plan: &Plan<N>,
-        pattern: &[(usize, usize)],
         values: &[Complex],
         border: Option<&Border<N>>,
     ) -> bool {
-        let n = plan.rest;
+        let n = plan.rest.min(N);
+        let statics = plan.statics.min(N);
         if border.is_some() && n >= N {
             return false;
         }
         self.border = border.copied();
         let a = &mut self.a;
         for i in 0..N {
-            for jj in 0..plan.n_fill[i] as usize {
-                a[i][plan.fill[i][jj] as usize] = Complex::ZERO;
+            for &j in &plan.fill[i][..plan.n_fill[i] as usize] {
+                a[i][j as usize] = Complex::ZERO;
             }
         }
-        for (&(r, c), &x) in pattern.iter().zip(values) {
-            a[r][c] = x;
+        {
+            let flat = a.as_flattened_mut();
+            let places = &plan.flat.as_flattened()[..plan.nnz.min(N * N)];
+            for (&at, &x) in places.iter().zip(values) {
+                flat[at as usize] = x;
+            }
         }
         let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-        for k in 0..plan.statics {
+        for k in 0..statics {
             let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
             let p = a[r][c];
             let m = p.abs_max();
@@ -242,12 +282,13 @@ impl<const N: usize> Lu<N> {
             hi = hi.max(m);
             let inv = p.recip();
             self.inv_static[k] = inv;
-            for ii in 0..plan.n_rows[k] as usize {
-                let i = plan.rows[k][ii] as usize;
+            let cols = &plan.cols[k][..plan.n_cols[k] as usize];
+            for &i in &plan.rows[k][..plan.n_rows[k] as usize] {
+                let i = i as usize;
                 let l = a[i][c] * inv;
                 a[i][c] = l;
-                for jj in 0..plan.n_cols[k] as usize {
-                    let j = plan.cols[k][jj] as usize;
+                for &j in cols {
+                    let j = j as usize;
                     let u = a[r][j];
                     a[i][j] -= l * u;
                 }
@@ -260,45 +301,61 @@ impl<const N: usize> Lu<N> {
                 // The border row has an entry in every column.
                 let l = b.row[c] * inv;
                 b.row[c] = l;
-                for jj in 0..plan.n_cols[k] as usize {
-                    let j = plan.cols[k][jj] as usize;
+                for &j in cols {
+                    let j = j as usize;
                     b.row[j] -= l * a[r][j];
                 }
                 let u = b.col[r];
                 b.corner -= l * u;
             }
         }
-        let m = n + self.border.is_some() as usize;
+        let m = (n + self.border.is_some() as usize).min(N);
         self.m = m;
-        let (re, im) = (&mut self.re, &mut self.im);
-        for i in 0..n {
-            let r = plan.rest_rows[i] as usize;
+        // The static rows in the remainder's columns.
+        for k in 0..statics {
+            let row = &a[plan.pivot[k].0 as usize];
             for j in 0..n {
-                let x = a[r][plan.rest_cols[j] as usize];
-                re[i][j] = x.re;
-                im[i][j] = x.im;
+                let x = row[plan.rest_cols[j] as usize];
+                self.wr[j][k] = x.re;
+                self.wi[j][k] = x.im;
             }
             if let Some(b) = &self.border {
-                re[i][n] = b.col[r].re;
-                im[i][n] = b.col[r].im;
+                let x = b.col[plan.pivot[k].0 as usize];
+                self.wr[n][k] = x.re;
+                self.wi[n][k] = x.im;
+            }
+        }
+        // The remainder, by columns.
+        let (tr, ti) = (&mut self.tr, &mut self.ti);
+        for i in 0..n {
+            let r = plan.rest_rows[i] as usize;
+            let row = &a[r];
+            for j in 0..n {
+                let x = row[plan.rest_cols[j] as usize];
+                tr[j][i] = x.re;
+                ti[j][i] = x.im;
+            }
+            if let Some(b) = &self.border {
+                tr[n][i] = b.col[r].re;
+                ti[n][i] = b.col[r].im;
             }
             self.perm[i] = i as u8;
         }
         if let Some(b) = &self.border {
             for j in 0..n {
                 let x = b.row[plan.rest_cols[j] as usize];
-                re[n][j] = x.re;
-                im[n][j] = x.im;
+                tr[j][n] = x.re;
+                ti[j][n] = x.im;
             }
-            re[n][n] = b.corner.re;
-            im[n][n] = b.corner.im;
+            tr[n][n] = b.corner.re;
+            ti[n][n] = b.corner.im;
             self.perm[n] = n as u8;
         }
         for k in 0..m {
             let mut best = k;
-            let mut bm = re[k][k].abs().max(im[k][k].abs());
-            for i in k + 1..m {
-                let v = re[i][k].abs().max(im[i][k].abs());
+            let mut bm = 0.0f64;
+            for i in k..m {
+                let v = tr[k][i].abs().max(ti[k][i].abs());
                 if v > bm {
                     bm = v;
                     best = i;
@@ -307,27 +364,30 @@ impl<const N: usize> Lu<N> {
             if !(bm > 0.0) || !bm.is_finite() {
                 return false;
             }
-            re.swap(k, best);
-            im.swap(k, best);
-            self.perm.swap(k, best);
+            if best != k {
+                for j in 0..m {
+                    tr[j].swap(k, best);
+                    ti[j].swap(k, best);
+                }
+                self.perm.swap(k, best);
+            }
             lo = lo.min(bm);
             hi = hi.max(bm);
-            let inv = Complex::new(re[k][k], im[k][k]).recip();
+            let inv = Complex::new(tr[k][k], ti[k][k]).recip();
             self.inv_dense[k] = inv;
-            let (rtop, rbottom) = re.split_at_mut(k + 1);
-            let (itop, ibottom) = im.split_at_mut(k + 1);
-            let (ur, ui) = (&rtop[k][k + 1..m], &itop[k][k + 1..m]);
-            for (xr, xi) in rbottom[..m - k - 1]
-                .iter_mut()
-                .zip(ibottom[..m - k - 1].iter_mut())
-            {
-                let l = Complex::new(xr[k], xi[k]) * inv;
-                xr[k] = l.re;
-                xi[k] = l.im;
-                let (xr, xi) = (&mut xr[k + 1..m], &mut xi[k + 1..m]);
-                for j in 0..ur.len().min(xr.len()).min(xi.len()).min(ui.len()) {
-                    xr[j] -= l.re * ur[j] - l.im * ui[j];
-                    xi[j] -= l.re * ui[j] + l.im * ur[j];
+            let (rleft, rright) = tr.split_at_mut(k + 1);
+            let (ileft, iright) = ti.split_at_mut(k + 1);
+            let (lr, li) = (&mut rleft[k], &mut ileft[k]);
+            for i in k + 1..m {
+                let l = Complex::new(lr[i], li[i]) * inv;
+                lr[i] = l.re;
+                li[i] = l.im;
+            }
+            for (cr, ci) in rright.iter_mut().zip(iright.iter_mut()).take(m - k - 1) {
+                let (ur, ui) = (cr[k], ci[k]);
+                for i in k + 1..m {
+                    cr[i] -= lr[i] * ur - li[i] * ui;
+                    ci[i] -= lr[i] * ui + li[i] * ur;
                 }
             }
         }
@@ -340,20 +400,22 @@ impl<const N: usize> Lu<N> {
     /// dropped); `b` is overwritten with `y`.
     pub(crate) fn solve(&self, plan: &Plan<N>, b: &mut [Complex; N]) {
         let a = &self.a;
+        let statics = plan.statics.min(N);
         let mut bb = Complex::ZERO;
-        for k in 0..plan.statics {
+        for k in 0..statics {
             let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
             let br = b[r];
-            for ii in 0..plan.n_rows[k] as usize {
-                let i = plan.rows[k][ii] as usize;
+            for &i in &plan.rows[k][..plan.n_rows[k] as usize] {
+                let i = i as usize;
                 b[i] -= a[i][c] * br;
             }
             if let Some(border) = &self.border {
                 bb -= border.row[c] * br;
             }
         }
-        let (n, m) = (plan.rest, self.m);
-        let (re, im) = (&self.re, &self.im);
+        let n = plan.rest.min(N);
+        let m = self.m.min(N);
+        let (tr, ti) = (&self.tr, &self.ti);
         let mut zr = [0.0; N];
         let mut zi = [0.0; N];
         for i in 0..m {
@@ -366,46 +428,52 @@ impl<const N: usize> Lu<N> {
             zr[i] = x.re;
             zi[i] = x.im;
         }
-        for i in 1..m {
-            let (lr, li) = (&re[i][..i], &im[i][..i]);
-            let (mut sr, mut si) = (0.0, 0.0);
-            for j in 0..i.min(lr.len()).min(li.len()) {
-                sr += lr[j] * zr[j] - li[j] * zi[j];
-                si += lr[j] * zi[j] + li[j] * zr[j];
+        // L (unit diagonal), column by column.
+        for k in 0..m {
+            let (xr, xi) = (zr[k], zi[k]);
+            let (lr, li) = (&tr[k], &ti[k]);
+            for i in k + 1..m {
+                zr[i] -= lr[i] * xr - li[i] * xi;
+                zi[i] -= lr[i] * xi + li[i] * xr;
             }
-            zr[i] -= sr;
-            zi[i] -= si;
         }
-        for i in (0..m).rev() {
-            let (ur, ui) = (&re[i][i + 1..m], &im[i][i + 1..m]);
-            let (yr, yi) = (&zr[i + 1..m], &zi[i + 1..m]);
-            let (mut sr, mut si) = (0.0, 0.0);
-            for j in 0..ur.len().min(ui.len()).min(yr.len()).min(yi.len()) {
-                sr += ur[j] * yr[j] - ui[j] * yi[j];
-                si += ur[j] * yi[j] + ui[j] * yr[j];
+        // U, column by column from the last.
+        for k in (0..m).rev() {
+            let x = Complex::new(zr[k], zi[k]) * self.inv_dense[k];
+            zr[k] = x.re;
+            zi[k] = x.im;
+            let (ur, ui) = (&tr[k], &ti[k]);
+            for i in 0..k {
+                zr[i] -= ur[i] * x.re - ui[i] * x.im;
+                zi[i] -= ur[i] * x.im + ui[i] * x.re;
             }
-            let z = Complex::new(zr[i] - sr, zi[i] - si) * self.inv_dense[i];
-            zr[i] = z.re;
-            zi[i] = z.im;
+        }
+        // The static pivots' right-hand sides less their rows' remainder part (σ included).
+        let mut sr = [0.0; N];
+        let mut si = [0.0; N];
+        for k in 0..statics {
+            let x = b[plan.pivot[k].0 as usize];
+            sr[k] = x.re;
+            si[k] = x.im;
+        }
+        for j in 0..m {
+            let (xr, xi) = (zr[j], zi[j]);
+            let (wr, wi) = (&self.wr[j], &self.wi[j]);
+            for k in 0..statics {
+                sr[k] -= wr[k] * xr - wi[k] * xi;
+                si[k] -= wr[k] * xi + wi[k] * xr;
+            }
         }
         let mut y = [Complex::ZERO; N];
         for j in 0..n {
             y[plan.rest_cols[j] as usize] = Complex::new(zr[j], zi[j]);
         }
-        let sigma = if m > n {
-            Complex::new(zr[n], zi[n])
-        } else {
-            Complex::ZERO
-        };
-        for k in (0..plan.statics).rev() {
+        for k in (0..statics).rev() {
             let (r, c) = (plan.pivot[k].0 as usize, plan.pivot[k].1 as usize);
-            let mut s = b[r];
-            for jj in 0..plan.n_cols[k] as usize {
-                let j = plan.cols[k][jj] as usize;
-                s -= a[r][j] * y[j];
-            }
-            if let Some(border) = &self.border {
-                s -= border.col[r] * sigma;
+            let mut s = Complex::new(sr[k], si[k]);
+            for &k2 in &plan.later[k][..plan.n_later[k] as usize] {
+                let c2 = plan.pivot[k2 as usize].1 as usize;
+                s -= a[r][c2] * y[c2];
             }
             y[c] = s * self.inv_static[k];
         }
@@ -447,7 +515,7 @@ mod tests {
             Complex::new(0.0, 1.0),
         ];
         let mut lu = Lu::<4>::new();
-        assert!(lu.factor(&plan, &pattern, &vals, None));
+        assert!(lu.factor(&plan, &vals, None));
         let x = [
             Complex::new(1.0, 1.0),
             Complex::new(-2.0, 0.5),
@@ -478,7 +546,7 @@ mod tests {
             ],
             corner: Complex::real(-1.0),
         };
-        assert!(lu.factor(&plan, &pattern, &vals, Some(&border)));
+        assert!(lu.factor(&plan, &vals, Some(&border)));
         let sigma = (0..4).fold(Complex::ZERO, |s, j| s + border.row[j] * x[j]);
         let mut rhs = [Complex::ZERO; 4];
         for (&(r, c), &v) in pattern.iter().zip(&vals) {

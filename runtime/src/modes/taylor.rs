@@ -46,6 +46,10 @@ impl<const K: usize> Series<K> {
     /// Every coefficient times `c`.
     #[inline(always)]
     pub fn times(self, c: Complex) -> Self {
+        // The generated code's constants are real: half the products.
+        if c.im == 0.0 {
+            return Series(self.0.map(|x| x.scale(c.re)));
+        }
         Series(self.0.map(|x| x * c))
     }
 }
@@ -115,7 +119,23 @@ impl<const K: usize> crate::Scalar for Series<K> {
 
     #[inline(always)]
     fn sq(self) -> Self {
-        self * self
+        if self.is_constant() {
+            return Self::constant(self.0[0].sq());
+        }
+        // Each cross product once, doubled.
+        let mut r = Self::ZERO;
+        for k in 0..K {
+            let mut s = Complex::ZERO;
+            for i in 0..k.div_ceil(2) {
+                s += self.0[i] * self.0[k - i];
+            }
+            s = s.scale(2.0);
+            if k % 2 == 0 {
+                s += self.0[k / 2].sq();
+            }
+            r.0[k] = s;
+        }
+        r
     }
 
     fn sin(self) -> Self {

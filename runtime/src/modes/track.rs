@@ -33,6 +33,10 @@ use crate::Mechanism;
 pub(crate) struct Settings {
     /// Newton's last correction must be below this for a step to count (weighted norm).
     pub(crate) tol: f64,
+    /// Before the last step: a step also counts when the corrections contract so fast that
+    /// the next one would be below this (the path is followed to this accuracy; the last step
+    /// and the polish that follows reach the root to full precision).
+    pub(crate) mid_tol: f64,
     /// A step whose corrections contracted fast to below this, and then stalled or ran out of
     /// iterations, also counts: the floor that rounding sets where B is ill-conditioned.
     pub(crate) limit: f64,
@@ -49,6 +53,7 @@ pub(crate) struct Settings {
 impl Settings {
     pub(crate) const DEFAULT: Settings = Settings {
         tol: 1e-8,
+        mid_tol: 1e-5,
         limit: 1e-6,
         tau: 3e-2,
         max_error: 1e-1,
@@ -59,6 +64,7 @@ impl Settings {
     /// Smaller predictions: for paths retracked after they ended on another path's root.
     pub(crate) const CAREFUL: Settings = Settings {
         tol: 1e-10,
+        mid_tol: 1e-10,
         limit: 1e-8,
         tau: 1e-6,
         max_error: 1e-4,
@@ -252,7 +258,7 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         let flat = values.as_flattened_mut();
         let Some(ch) = self.chart else {
             self.sys.jacobian_in(z, p, flat);
-            return lu.factor(self.plan, self.pattern, flat, None);
+            return lu.factor(self.plan, flat, None);
         };
         let w = self.w(z);
         let inv = w.recip();
@@ -280,7 +286,7 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
             row: ch.c,
             corner: Complex::real(-1.0),
         };
-        lu.factor(self.plan, self.pattern, flat, Some(&border))
+        lu.factor(self.plan, flat, Some(&border))
     }
 
     /// The Newton correction −J⁻¹ G(z, p) with a factorisation of J.
@@ -406,7 +412,7 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
                 w[i] += (coeffs[0][i] + (coeffs[1][i] + coeffs[2][i].scale(h)).scale(h)).scale(h);
             }
             let p1 = path.at(s1);
-            let correction = self.correct(&mut w, &p1, ws, set);
+            let correction = self.correct(&mut w, &p1, ws, set, last);
             let Some((first, second)) = correction else {
                 h *= 0.5;
                 if h < 1e-14 {
@@ -452,6 +458,7 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         p: &[Complex; M],
         ws: &mut Workspace<N>,
         set: &Settings,
+        last: bool,
     ) -> Option<(f64, f64)>
     where
         S: Mechanism<N, M>,
@@ -482,6 +489,10 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
                 w[i] += d[i];
             }
             if n <= set.tol {
+                return Some((first, second));
+            }
+            // Chord iterations contract linearly, at about the rate just seen.
+            if it > 0 && !last && n * (n / previous) <= set.mid_tol {
                 return Some((first, second));
             }
             previous = n;

@@ -75,3 +75,123 @@ fn planar_rpr_forward_kinematics_against_inverse() {
         );
     }
 }
+
+linkage::mechanism! {
+    /// A planar 3-RPR whose base and platform triangles are not similar (the generic case).
+    pub struct PlanarRprGeneric;
+    base {
+        A1 = [0.0, 0.0, 0.0], A1z = [0.0, 0.0, 1.0],
+        A2 = [250.0, 20.0, 0.0], A2z = [250.0, 20.0, 1.0],
+        A3 = [90.0, 210.0, 0.0], A3z = [90.0, 210.0, 1.0],
+    }
+    platform(home = [0.2, 0.0, 0.0, 100.0, 70.0, 0.0]) {
+        G1 = [-30.0, -20.0, 0.0], G1z = [-30.0, -20.0, 1.0],
+        G2 = [45.0, -10.0, 0.0], G2z = [45.0, -10.0, 1.0],
+        G3 = [5.0, 40.0, 0.0], G3z = [5.0, 40.0, 1.0],
+    }
+    chain leg1 = base - R(passive, axis = A1 -> A1z) - P(active L1) - R(passive, axis = G1 -> G1z) - platform;
+    chain leg2 = base - R(passive, axis = A2 -> A2z) - P(active L2) - R(passive, axis = G2 -> G2z) - platform;
+    chain leg3 = base - R(passive, axis = A3 -> A3z) - P(active L3) - R(passive, axis = G3 -> G3z) - platform;
+}
+
+const GENERIC_A: [[f64; 2]; 3] = [[0.0, 0.0], [250.0, 20.0], [90.0, 210.0]];
+const GENERIC_G: [[f64; 2]; 3] = [[-30.0, -20.0], [45.0, -10.0], [5.0, 40.0]];
+
+fn rotate(phi: f64, g: [f64; 2]) -> [f64; 2] {
+    let (s, c) = phi.sin_cos();
+    [c * g[0] - s * g[1], s * g[0] + c * g[1]]
+}
+
+/// Closed-form inverse kinematics of [`PlanarRprGeneric`] at the planar pose (φ, x, y).
+fn generic_legs(pose: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| {
+        let g = rotate(pose[0], GENERIC_G[i]);
+        (g[0] + pose[1] - GENERIC_A[i][0]).hypot(g[1] + pose[2] - GENERIC_A[i][1])
+    })
+}
+
+/// An independent count of the real assembly modes: for each orientation φ (a fine scan of
+/// the circle), legs 1 and 2 put the platform origin on two circles, met in up to two points;
+/// leg 3's length error changes sign at every real mode.
+fn scanned_real_modes(legs: [f64; 3]) -> usize {
+    let samples = 200_000;
+    let mut count = 0;
+    let mut previous: [Option<f64>; 2] = [None, None];
+    for k in 0..=samples {
+        let phi = -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / samples as f64;
+        // Origin t with |R g_i + t − a_i| = L_i: circles about c_i = a_i − R g_i.
+        let c: [[f64; 2]; 2] = std::array::from_fn(|i| {
+            let g = rotate(phi, GENERIC_G[i]);
+            [GENERIC_A[i][0] - g[0], GENERIC_A[i][1] - g[1]]
+        });
+        let (dx, dy) = (c[1][0] - c[0][0], c[1][1] - c[0][1]);
+        let d = dx.hypot(dy);
+        let a = (legs[0] * legs[0] - legs[1] * legs[1] + d * d) / (2.0 * d);
+        let h2 = legs[0] * legs[0] - a * a;
+        for (b, sign) in [1.0, -1.0].into_iter().enumerate() {
+            let f = (h2 >= 0.0).then(|| {
+                let h = sign * h2.sqrt();
+                let t = [
+                    c[0][0] + (a * dx - h * dy) / d,
+                    c[0][1] + (a * dy + h * dx) / d,
+                ];
+                let g = rotate(phi, GENERIC_G[2]);
+                (g[0] + t[0] - GENERIC_A[2][0]).hypot(g[1] + t[1] - GENERIC_A[2][1]) - legs[2]
+            });
+            if let (Some(p), Some(q)) = (previous[b], f) {
+                if p * q < 0.0 {
+                    count += 1;
+                }
+            }
+            previous[b] = f;
+        }
+    }
+    count
+}
+
+/// Every assembly mode (`linkage::modes`) of a generic planar 3-RPR: 6 complex roots (the
+/// closed form is a sextic); at legs from random poses the real ones are exactly those an
+/// independent scan finds, the pose the legs came from among them, and each one's legs those
+/// asked for (closed-form inverse kinematics). (The similar-triangle [`PlanarRpr`] above is not
+/// generic: monodromy finds 4 complex roots for it.)
+#[test]
+fn generic_planar_rpr_has_six_assembly_modes() {
+    use linkage::modes::{AllModes, ModesOptions, Roots};
+    let rpr = PlanarRprGeneric::new();
+    let modes = AllModes::<_, 27, 3, 16>::new(rpr.clone(), &ModesOptions::default()).unwrap();
+    assert_eq!(modes.start_count(), 6, "{:?}", modes.report());
+    let mut roots = Box::new(Roots::<27, 16>::new());
+    let mut rng = Rng::new(36);
+    let mut real_total = 0;
+    for _ in 0..20 {
+        let pose = [
+            0.2 + rng.uniform(-0.5, 0.5),
+            100.0 + rng.uniform(-30.0, 30.0),
+            70.0 + rng.uniform(-30.0, 30.0),
+        ];
+        let legs = generic_legs(pose);
+        modes.solve(&legs, &mut roots).unwrap();
+        assert!(roots.is_complete(), "{pose:?}");
+        let scanned = scanned_real_modes(legs);
+        assert_eq!(roots.real().len(), scanned, "{pose:?}");
+        real_total += scanned;
+        let mut truth = false;
+        for r in roots.real() {
+            let p = r.pose.unwrap();
+            let [yaw, pitch, roll] = p.euler();
+            assert!(pitch.abs() < 1e-8 && roll.abs() < 1e-8 && p.translation[2].abs() < 1e-8);
+            let back = generic_legs([yaw, p.translation[0], p.translation[1]]);
+            for i in 0..3 {
+                assert!((back[i] - legs[i]).abs() < 1e-8, "{pose:?}: {back:?}");
+            }
+            truth |= (yaw - pose[0]).abs() < 1e-8
+                && (p.translation[0] - pose[1]).abs() < 1e-7
+                && (p.translation[1] - pose[2]).abs() < 1e-7;
+        }
+        assert!(
+            truth,
+            "{pose:?}: the generating pose is not among the real modes"
+        );
+    }
+    println!("generic 3-RPR: 20 random poses, {real_total} real modes, as the scan found");
+}
