@@ -19,6 +19,7 @@ use super::sampling::{Sampler, TestPoint};
 use crate::stewart::legs_for_pose;
 use linkage::modes::Roots;
 use linkage::{det_b, Pose};
+use rayon::prelude::*;
 
 /// What the search found over the near-singular targets.
 #[derive(Clone, Debug, Default, serde::Serialize)]
@@ -108,45 +109,63 @@ pub fn examine(
 ) -> Result<PathDependence, String> {
     let modes =
         crate::start_sets::table_iii::<64>().map_err(|e| format!("stored start solutions: {e}"))?;
-    let mut roots = Box::new(Roots::<18, 64>::new());
+    let sign = sampler.start.det();
+    // One target per task, on every core; the tallies are summed in target order.
+    let per_target: Vec<PathDependence> = near
+        .par_iter()
+        .zip(segments)
+        .enumerate()
+        .map(|(i, (p, segment))| {
+            let mut out = PathDependence::default();
+            let mut roots = Box::new(Roots::<18, 64>::new());
+            if modes.solve(&p.x, &mut roots).is_err() || !roots.is_complete() {
+                return out;
+            }
+            out.complete += 1;
+            out.real_roots += roots.real().len();
+            if !roots.real().iter().any(|r| relative(&r.v, &p.v) < 1e-6) {
+                return out;
+            }
+            out.truth_found += 1;
+            let mut dependent = false;
+            for r in roots.real() {
+                if relative(&r.v, &p.v) < 1e-6 || r.det * sign <= 0.0 {
+                    continue;
+                }
+                out.same_sign_others += 1;
+                // A coarse check first (most paths meet a singularity early), then the fine one.
+                let by_pose = r.pose.is_some_and(|pose| {
+                    pose_path_nonsingular(sampler, &pose, checks / 10) == Some(true)
+                        && pose_path_nonsingular(sampler, &pose, checks) == Some(true)
+                });
+                let by_segment = segment.1 == 0 && relative(&segment.0, &r.v) < 1e-6;
+                if by_pose {
+                    out.by_pose_path += 1;
+                } else if by_segment {
+                    out.by_segment_only += 1;
+                }
+                dependent |= by_pose || by_segment;
+            }
+            if dependent {
+                out.path_dependent_targets += 1;
+                out.which.push(i + 1);
+            }
+            out
+        })
+        .collect();
     let mut out = PathDependence {
         targets: near.len(),
         ..PathDependence::default()
     };
-    let sign = sampler.start.det();
-    for (i, (p, segment)) in near.iter().zip(segments).enumerate() {
-        if modes.solve(&p.x, &mut roots).is_err() || !roots.is_complete() {
-            continue;
-        }
-        out.complete += 1;
-        out.real_roots += roots.real().len();
-        if !roots.real().iter().any(|r| relative(&r.v, &p.v) < 1e-6) {
-            continue;
-        }
-        out.truth_found += 1;
-        let mut dependent = false;
-        for r in roots.real() {
-            if relative(&r.v, &p.v) < 1e-6 || r.det * sign <= 0.0 {
-                continue;
-            }
-            out.same_sign_others += 1;
-            // A coarse check first (most paths meet a singularity early), then the fine one.
-            let by_pose = r.pose.is_some_and(|pose| {
-                pose_path_nonsingular(sampler, &pose, checks / 10) == Some(true)
-                    && pose_path_nonsingular(sampler, &pose, checks) == Some(true)
-            });
-            let by_segment = segment.1 == 0 && relative(&segment.0, &r.v) < 1e-6;
-            if by_pose {
-                out.by_pose_path += 1;
-            } else if by_segment {
-                out.by_segment_only += 1;
-            }
-            dependent |= by_pose || by_segment;
-        }
-        if dependent {
-            out.path_dependent_targets += 1;
-            out.which.push(i + 1);
-        }
+    for t in per_target {
+        out.complete += t.complete;
+        out.real_roots += t.real_roots;
+        out.truth_found += t.truth_found;
+        out.same_sign_others += t.same_sign_others;
+        out.path_dependent_targets += t.path_dependent_targets;
+        out.by_pose_path += t.by_pose_path;
+        out.by_segment_only += t.by_segment_only;
+        out.which.extend(t.which);
     }
     Ok(out)
 }

@@ -5,6 +5,7 @@ use super::path_dependence::{self, PathDependence};
 use super::sampling::{Protocol, Sampler, SamplingError, TestPoint};
 use super::{straight_segment, straight_segment_from};
 use linkage::{Method, Options, Status};
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// One solve of one point.
@@ -198,8 +199,10 @@ pub fn run(protocol: Protocol, mut progress: impl FnMut(&str)) -> Result<Report,
     let (mean_det, normal, near) = sampler.sample()?;
     progress("checking the straight joint-space segments");
     let points: Vec<&TestPoint> = normal.iter().chain(&near).collect();
+    // Untimed work runs on every core; the timed solves below run one at a time, so that no
+    // solve's time is shared with another thread's.
     let segments: Vec<([f64; 18], usize)> = points
-        .iter()
+        .par_iter()
         .map(|p| straight_segment(&sampler.sys, &sampler.start, &p.x, 4000))
         .collect();
     let segment_leaves_vjs = segments[normal.len()..].iter().filter(|s| s.1 > 0).count();
