@@ -538,6 +538,28 @@ fn auto_points(model: &Model) -> TokenStream {
                 let [b0, b1] = b.map(p);
                 quote!(::linkage::__private::normal_point(#o, [#a0, #a1], [#b0, #b1])?)
             }
+            Auto::Foot { a, b, point } => {
+                let (a, b, q) = (p(a), p(b), p(point));
+                quote!({
+                    let f = ::linkage::__private::axis_frame(#a, #b, #q)?;
+                    [f[3], f[4], f[5]]
+                })
+            }
+            Auto::Quarter { a, b, point } => {
+                let (a, b, q) = (p(a), p(b), p(point));
+                quote!({
+                    let f = ::linkage::__private::axis_frame(#a, #b, #q)?;
+                    [f[3] + f[9], f[4] + f[10], f[5] + f[11]]
+                })
+            }
+            Auto::Shift { origin, by } => {
+                let o = p(origin);
+                let [b0, b1, b2] = by.map(lit);
+                quote!({
+                    let o = #o;
+                    [o[0] + #b0, o[1] + #b1, o[2] + #b2]
+                })
+            }
         };
         quote!(auto[#i] = #value;)
     });

@@ -8,6 +8,7 @@ mod delta;
 mod five_bar;
 mod pcs;
 mod planar_rpr;
+mod planar_rrr;
 mod prs;
 mod rrs;
 mod spherical_wrist;

@@ -317,6 +317,8 @@ impl Mechanism {
             if accepts.axis == Need::No {
                 errors.push(a.span(), format!("pair `{letter}` takes no `axis`"));
             }
+        } else if p.kind == PairKind::U && p.active.is_some() {
+            errors.push(p.token.span(), format!("an active `U` in chain `{}` needs its first axis, `U(C, axis = P -> Q, active a b)`: its first input turns about P -> Q, its second about the axis perpendicular to it", chain.name));
         } else if accepts.axis == Need::Required {
             errors.push(p.token.span(), format!("pair `{letter}` in chain `{}` needs its axis: `axis = A -> B`, two pivots on the axis", chain.name));
         }
@@ -436,16 +438,18 @@ impl Accepts {
             passive: true,
         };
         match kind {
+            // Active: yaw, pitch and roll of the link after it relative to the link before.
             PairKind::S => Accepts {
                 centre: true,
                 axis: Need::No,
-                variables: None,
+                variables: Some(3),
                 ..base
             },
+            // Active: the turns about its first and its second axis.
             PairKind::U => Accepts {
                 centre: true,
                 axis: Need::Optional,
-                variables: None,
+                variables: Some(2),
                 ..base
             },
             PairKind::R => base,

@@ -1,3 +1,5 @@
+// An active R after a ball joint, on an unnamed link holding only its axis: the link may spin
+// about that axis, so the R's angle relative to it means nothing.
 linkage::mechanism! {
     pub struct Rps;
     base {

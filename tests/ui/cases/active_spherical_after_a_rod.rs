@@ -1,3 +1,5 @@
+// An active S after a leg whose points are on one line (the slider of the P carries only G1):
+// the leg's own turn about its line is not defined, so neither is the S's turn relative to it.
 linkage::mechanism! {
     pub struct Rps;
     base {
