@@ -5,6 +5,7 @@
 //! different declared homes of the same machine.
 
 mod delta;
+mod delta_tools;
 mod five_bar;
 mod pcs;
 mod planar_rpr;
