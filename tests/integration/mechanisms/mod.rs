@@ -7,6 +7,7 @@
 mod delta;
 mod delta_tools;
 mod five_bar;
+mod motors;
 mod pcs;
 mod planar_rpr;
 mod planar_rrr;
