@@ -56,7 +56,26 @@ fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
     let mech = parse(input)?;
     let model = model::build(&mech)?;
     let declared = mech.platform.as_ref().and_then(|p| p.home);
+    let by_inputs = mech.platform.as_ref().and_then(|p| p.home_inputs.as_ref());
     let home = match declared {
+        // The joint values: forward kinematics from the declared configuration.
+        None if by_inputs.is_some() => {
+            let (span, values) = by_inputs.expect("matched");
+            let target: Vec<f64> = model
+                .inputs
+                .iter()
+                .map(|name| {
+                    values
+                        .iter()
+                        .find(|(n, _)| n == name)
+                        .map_or(f64::NAN, |(_, v)| v.value)
+                })
+                .collect();
+            Some(
+                model::home_inputs::solve(&model, &target)
+                    .map_err(|msg| syn::Error::new(*span, msg))?,
+            )
+        }
         Some(home) => Some(model::reference::check(&model, home)?),
         // The general model is always checked at home (identity pose if none is declared).
         None if model.mobility.is_some() => Some(model::reference::check(

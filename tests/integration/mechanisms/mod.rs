@@ -7,6 +7,7 @@
 mod delta;
 mod delta_tools;
 mod five_bar;
+mod home_by_inputs;
 mod motors;
 mod pcs;
 mod planar_rpr;

@@ -132,6 +132,9 @@ impl Mechanism {
         unique(self.all_links().map(|l| &l.name), "link", errors);
         unique(self.chains.iter().map(|c| &c.name), "chain", errors);
         symbols.inputs = inputs(&self.chains, errors);
+        if let Some((span, values)) = self.platform.as_ref().and_then(|p| p.home_inputs.as_ref()) {
+            home_inputs(*span, values, &symbols.inputs, errors);
+        }
 
         for link in self.all_links() {
             unique(link.pivots.iter().map(|p| &p.name), "pivot", errors);
@@ -537,6 +540,43 @@ fn inputs(chains: &[ChainDecl], errors: &mut Errors) -> Vec<InputSymbol> {
         }
     }
     out
+}
+
+/// `home = inputs(...)` names every input once, and nothing else.
+fn home_inputs(
+    span: Span,
+    values: &[(Ident, crate::front::ast::Number)],
+    inputs: &[InputSymbol],
+    errors: &mut Errors,
+) {
+    for (k, (name, _)) in values.iter().enumerate() {
+        if values[..k].iter().any(|(n, _)| n == name) {
+            errors.push(name.span(), format!("input `{name}` is given twice in `home`"));
+        } else if !inputs.iter().any(|i| i.name == *name) {
+            let known: Vec<String> = inputs.iter().map(|i| format!("`{}`", i.name)).collect();
+            errors.push(
+                name.span(),
+                format!(
+                    "`home` gives a value to `{name}`, which is not an input; the inputs are {}",
+                    known.join(", ")
+                ),
+            );
+        }
+    }
+    let missing: Vec<String> = inputs
+        .iter()
+        .filter(|i| !values.iter().any(|(n, _)| *n == i.name))
+        .map(|i| format!("`{}`", i.name))
+        .collect();
+    if !missing.is_empty() {
+        errors.push(
+            span,
+            format!(
+                "`home = inputs(...)` gives every input its value; missing: {}",
+                missing.join(", ")
+            ),
+        );
+    }
 }
 
 fn unique<'a>(names: impl Iterator<Item = &'a Ident>, what: &str, errors: &mut Errors) {

@@ -6,6 +6,7 @@
 //! platform's pivots, coordinate-major as in Eq. 19: `[x_P1 … x_Pk, y_P1 … y_Pk, z_P1 … z_Pk]`.
 
 pub mod general;
+pub mod home_inputs;
 pub mod mobility;
 pub mod reference;
 pub mod rigid;
