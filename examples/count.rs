@@ -10,13 +10,14 @@
 //!
 //! `nr-normal` and `nr-all`: Newton–Raphson on the Stewart platform from home to every normal
 //! (every) row of a `stewart table-v --export` CSV, one pass; it prints the number of solves and
-//! Newton iterations to divide the count by. `nr-rps`, `nr-rss_hexapod`: the same from the
+//! Newton iterations to divide the count by. `nr-dense`: `nr-normal` with the dense-LU baseline
+//! (`Linear::Dense`). `nr-rps`, `nr-rss_hexapod`: the same from the
 //! home configurations of the other examples to 100 inputs around it. `ph-all`: pseudo-arc-length
 //! continuation from home to every row. `track TRAJECTORY.csv`:
 //! the `Tracker` over every sample of a `stewart trajectory` CSV. `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
-use linkage::{newton_raphson, Mechanism, Options, Start};
+use linkage::{newton_raphson, Linear, Mechanism, Options, Start};
 use linkage_examples::{rps, rss_hexapod, stewart};
 use std::hint::black_box;
 
@@ -32,10 +33,18 @@ fn main() -> Result<(), String> {
     let sys = stewart::Stewart::new();
     let start = stewart::home_start(&sys).map_err(|e| e.to_string())?;
     match what.as_str() {
-        "nr-normal" | "nr-all" => {
+        "nr-normal" | "nr-all" | "nr-dense" => {
             let (normal, all) = points(&path)?;
-            let rows = if what == "nr-normal" { normal } else { all };
-            let (ok, iterations) = measure_nr(&sys, &start, &rows);
+            let rows = if what == "nr-all" { all } else { normal };
+            let options = if what == "nr-dense" {
+                Options {
+                    linear: Linear::Dense,
+                    ..Options::TIGHT
+                }
+            } else {
+                Options::TIGHT
+            };
+            let (ok, iterations) = measure_nr(&sys, &start, &rows, &options);
             println!(
                 "stewart NR from home ({what}): {} solves, {ok} ok, {iterations} iterations",
                 rows.len()
@@ -45,7 +54,7 @@ fn main() -> Result<(), String> {
             let r = rps::Rps3::new();
             let start = rps::home_start(&r).map_err(|e| e.to_string())?;
             let rows = around(start.x(), 10.0);
-            let (ok, iterations) = measure_nr(&r, &start, &rows);
+            let (ok, iterations) = measure_nr(&r, &start, &rows, &Options::TIGHT);
             println!(
                 "rps NR from home, legs within 10 mm of home: {} solves, {ok} ok, {iterations} iterations",
                 rows.len()
@@ -55,7 +64,7 @@ fn main() -> Result<(), String> {
             let h = rss_hexapod::RssHexapod::new();
             let start = rss_hexapod::home_start(&h).map_err(|e| e.to_string())?;
             let rows = around(start.x(), 0.15);
-            let (ok, iterations) = measure_nr(&h, &start, &rows);
+            let (ok, iterations) = measure_nr(&h, &start, &rows, &Options::TIGHT);
             println!(
                 "rss_hexapod NR from home, cranks within 0.15 rad of home: {} solves, {ok} ok, {iterations} iterations",
                 rows.len()
@@ -86,7 +95,7 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|nr-rps|nr-rss_hexapod|ph-all|track|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
@@ -147,10 +156,11 @@ fn measure_nr<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     rows: &[[f64; M]],
+    options: &Options,
 ) -> (usize, u64) {
     let (mut ok, mut iterations) = (0, 0);
     for x in rows {
-        if let Ok(sol) = newton_raphson(sys, start, black_box(x), &Options::TIGHT) {
+        if let Ok(sol) = newton_raphson(sys, start, black_box(x), options) {
             ok += usize::from(sol.is_ok());
             iterations += u64::from(sol.newton_iterations);
         }

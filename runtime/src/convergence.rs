@@ -2,12 +2,12 @@
 //! ([`Convergence`]), and when a corrector may be trusted to have stayed on its branch
 //! ([`Contraction`]).
 
-use crate::math::norm;
+use crate::math::size;
 
 /// When Newton's method at fixed inputs stops.
 ///
 /// A solve's answer is *converged* only at a point where the Newton correction, measured with
-/// B factored at that very point, is at most the tolerance (see `correction::newton`): then the
+/// B factored at that very point, is at most the tolerance (see `newton::newton`): then the
 /// residual, the error estimate and det B all belong to the returned point.
 ///
 /// For intermediate points (a Newton-homotopy step), [`Self::reached`] also accepts a correction
@@ -26,10 +26,10 @@ pub(crate) struct Convergence {
 }
 
 impl Convergence {
-    pub(crate) fn new(tolerance: f64, v: &[f64]) -> Self {
+    pub(crate) fn new<const N: usize>(tolerance: f64, v: &[f64; N]) -> Self {
         Convergence {
             tolerance,
-            floor: 1e-6 * norm(v).max(1.0),
+            floor: 1e-6 * size(v).max(1.0),
             previous: f64::INFINITY,
             estimate: f64::INFINITY,
         }

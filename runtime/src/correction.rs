@@ -1,10 +1,8 @@
-//! One Newton correction `Δ = B⁻¹F`, and Newton's method at fixed inputs ending by the rule
-//! every solver shares.
+//! One Newton correction `Δ = B⁻¹F` at a point, and what factoring B there tells.
 
-use crate::convergence::Convergence;
 use crate::lu::Lu;
-use crate::math::norm;
-use crate::{Linear, Mechanism, Options};
+use crate::math::{norm, size};
+use crate::{Linear, Mechanism};
 
 /// A Newton correction at a point, with what factoring B there told.
 #[derive(Clone, Copy, Debug)]
@@ -26,6 +24,60 @@ pub(crate) enum Failure {
     NonFinite,
 }
 
+impl<const N: usize> Correction<N> {
+    /// Storage for [`Self::update`].
+    pub(crate) const fn new() -> Self {
+        Correction {
+            delta: [0.0; N],
+            det: 0.0,
+            size: f64::INFINITY,
+        }
+    }
+
+    /// The correction at `(v, x)`, computed in place with the chosen linear solver and the
+    /// factorisation storage of a loop. On failure the fields are unspecified.
+    #[inline(always)]
+    pub(crate) fn update<S: Mechanism<N, M>, const M: usize>(
+        &mut self,
+        sys: &S,
+        v: &[f64; N],
+        x: &[f64; M],
+        linear: Linear,
+        fac: &mut S::Factor,
+    ) -> Result<(), Failure> {
+        let det = match linear {
+            Linear::Generated => sys.newton_step(v, x, fac, &mut self.delta).map(|i| i.det),
+            Linear::Dense => dense_step(sys, v, x, &mut self.delta),
+        };
+        // One pass gives the size callers need and rejects NaN or infinite corrections.
+        self.size = size(&self.delta);
+        match det {
+            Some(det) if self.size.is_finite() => {
+                self.det = det;
+                Ok(())
+            }
+            // Only on failure: tell overflow from singularity.
+            _ => Err(failure(sys, v, x)),
+        }
+    }
+}
+
+/// [`Mechanism::newton_step`] with dense LU on the assembled B (the baseline).
+#[inline(never)]
+fn dense_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    delta: &mut [f64; N],
+) -> Option<f64> {
+    sys.residual(v, x, delta);
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    let lu = Lu::new(b)?;
+    lu.solve(delta);
+    Some(lu.det())
+}
+
 /// A Newton correction at `(v, x)` with the generated factorisation.
 pub(crate) fn correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
@@ -43,35 +95,12 @@ pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
     linear: Linear,
     fac: &mut S::Factor,
 ) -> Result<Correction<N>, Failure> {
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
-    let factored = match linear {
-        Linear::Generated => sys.factor(v, x, fac).map(|info| {
-            sys.solve(fac, &mut f);
-            info.det
-        }),
-        Linear::Dense => {
-            let mut b = [[0.0; N]; N];
-            sys.jacobian_dense(v, x, &mut b);
-            Lu::new(b).map(|lu| {
-                lu.solve(&mut f);
-                lu.det()
-            })
-        }
-    };
-    // One pass gives the size callers need and rejects NaN or infinite corrections.
-    let size = norm(&f);
-    match factored {
-        Some(det) if size.is_finite() => Ok(Correction {
-            delta: f,
-            det,
-            size,
-        }),
-        // Only on failure: tell overflow from singularity.
-        _ => Err(failure(sys, v, x)),
-    }
+    let mut c = Correction::new();
+    c.update(sys, v, x, linear, fac)?;
+    Ok(c)
 }
 
+#[cold]
 fn failure<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
@@ -84,133 +113,6 @@ fn failure<S: Mechanism<N, M>, const N: usize, const M: usize>(
     } else {
         Failure::NonFinite
     }
-}
-
-/// How a Newton run ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Ending {
-    /// Final rule: the correction measured at the returned point is within the tolerance.
-    /// Intermediate rule: the point is within it as far as the contraction predicts.
-    Converged,
-    /// The corrections stopped decreasing at the rounding floor, above the tolerance.
-    Stalled,
-    /// B was singular at an iterate.
-    Singular,
-    /// The iterates overflowed.
-    NonFinite,
-    /// The iteration limit came first.
-    Exhausted,
-}
-
-/// Which stopping rule a Newton run follows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Rule {
-    /// For an answer: stop at a point whose own correction is within the tolerance and return
-    /// that point, so that its error estimate and det B are measured there, not extrapolated.
-    Final,
-    /// For a point on the way (a homotopy step): the extrapolated estimate suffices, and a
-    /// stall at the rounding floor is good enough to go on from.
-    Intermediate,
-}
-
-/// Newton's method at fixed `x` from `v`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Newton<const N: usize> {
-    /// The point reached: with the final rule, the last point B was factored at (or the best
-    /// one, for a stall); never a non-finite point.
-    pub v: [f64; N],
-    pub ending: Ending,
-    pub iterations: u32,
-    /// ‖B⁻¹F‖ at `v` (final rule), or its extrapolation (intermediate rule).
-    pub estimate: f64,
-    /// det B at `v` (final rule), or at the iterate before the last correction (intermediate).
-    pub det: f64,
-}
-
-pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: [f64; N],
-    x: &[f64; M],
-    options: &Options,
-    rule: Rule,
-) -> Newton<N> {
-    let mut out = Newton {
-        v,
-        ending: Ending::Exhausted,
-        iterations: 0,
-        estimate: f64::INFINITY,
-        det: 0.0,
-    };
-    // The best point factored so far: what a stall or an exhausted final run returns.
-    let mut best: Option<([f64; N], f64, f64)> = None;
-    let mut current = v;
-    let mut previous = f64::INFINITY;
-    let mut convergence = Convergence::new(options.tolerance, &v);
-    let mut fac = sys.new_factor();
-    while out.iterations < options.max_iterations {
-        let c = match correction_in(sys, &current, x, options.linear, &mut fac) {
-            Ok(c) => c,
-            Err(Failure::Singular) => {
-                out.ending = Ending::Singular;
-                out.v = current;
-                return out;
-            }
-            Err(Failure::NonFinite) => {
-                out.ending = Ending::NonFinite;
-                break;
-            }
-        };
-        out.iterations += 1;
-        match rule {
-            Rule::Final => {
-                if c.size <= options.tolerance {
-                    out.v = current;
-                    out.ending = Ending::Converged;
-                    out.estimate = c.size;
-                    out.det = c.det;
-                    return out;
-                }
-                if !matches!(best, Some((_, size, _)) if size <= c.size) {
-                    best = Some((current, c.size, c.det));
-                }
-                if convergence.stalled(c.size, previous) {
-                    out.ending = Ending::Stalled;
-                    break;
-                }
-                for i in 0..N {
-                    current[i] -= c.delta[i];
-                }
-            }
-            Rule::Intermediate => {
-                for i in 0..N {
-                    current[i] -= c.delta[i];
-                }
-                let stalled = convergence.stalled(c.size, previous);
-                if convergence.reached(c.size) || stalled {
-                    out.v = current;
-                    out.det = c.det;
-                    out.estimate = convergence.estimate;
-                    out.ending = Ending::Converged;
-                    return out;
-                }
-            }
-        }
-        previous = c.size;
-    }
-    match (rule, best) {
-        (Rule::Final, Some((v, size, det))) => {
-            out.v = v;
-            out.estimate = size;
-            out.det = det;
-        }
-        // The last iterate if finite, else the start point.
-        _ => {
-            if norm(&current).is_finite() {
-                out.v = current;
-            }
-        }
-    }
-    out
 }
 
 /// `‖B⁻¹ F‖` at `(v, x)`: the size of the next Newton correction, a first-order estimate of the

@@ -1,11 +1,10 @@
 //! LU factorisation with partial pivoting, without heap: [`Lu`] for a dense n×n matrix, and
-//! the storage and record of the factorisation `mechanism!` generates for B's sparsity pattern
-//! ([`SparseFactor`], [`Pivots`], [`Factored`]).
+//! [`Factored`], what the factorisation `mechanism!` generates for B's sparsity pattern reports.
 //!
 //! Sizes are in the types: an [`Lu<N>`] owns its `N`×`N` factors and its `N` row swaps, so no
-//! call can pass a matrix larger than its record of swaps (the old `factor::<N, _>` trusted a
-//! debug assertion for that). The (n+1)×(n+1) bordered matrix of pseudo-arc-length continuation
-//! (Eq. 10) has its own type inside the crate, built on the same kernel.
+//! call can pass a matrix larger than its record of swaps. The (n+1)×(n+1) bordered matrix of
+//! pseudo-arc-length continuation (Eq. 10) has its own type inside the crate; both run the one
+//! elimination and substitution kernel below, over the [`Square`] storage each provides.
 //!
 //! ```
 //! use linkage::lu::Lu;
@@ -18,54 +17,13 @@
 //! assert!(Lu::new([[1.0, 1.0], [1.0, 1.0]]).is_none());
 //! ```
 //!
-//! A matrix larger than the factorisation's record is a type error, not a wrong answer:
+//! A right-hand side of another size than the factorisation is a type error, not a wrong
+//! answer:
 //!
 //! ```compile_fail
-//! let mut a = [[4.0, 1.0, 0.0], [1.0, 4.0, 1.0], [0.0, 1.0, 4.0]];
-//! let _ = linkage::lu::factor::<1, _>(&mut a);
+//! let lu = linkage::lu::Lu::new([[4.0, 1.0], [1.0, 4.0]]).unwrap();
+//! lu.solve(&mut [1.0, 2.0, 3.0]);
 //! ```
-
-/// The row swaps of a factorisation of a `K`×`K` block and what it tells about conditioning.
-/// The generated factorisation records its dense Schur complement with this.
-#[derive(Clone, Copy, Debug)]
-pub struct Pivots<const N: usize> {
-    swaps: [usize; N],
-    /// The determinant (sign and magnitude) of the factored matrix.
-    pub det: f64,
-    /// Smallest |pivot| / largest |pivot|: a cheap conditioning indicator.
-    pub pivot_ratio: f64,
-}
-
-impl<const N: usize> Pivots<N> {
-    /// The row swap made at each step of the factorisation.
-    pub fn swaps(&self) -> [usize; N] {
-        self.swaps
-    }
-
-    /// A factorisation's record, for generated elimination code.
-    pub const fn from_parts(swaps: [usize; N], det: f64, pivot_ratio: f64) -> Self {
-        Pivots {
-            swaps,
-            det,
-            pivot_ratio,
-        }
-    }
-
-    /// No swaps, determinant 1: the state before a factorisation.
-    pub const fn new() -> Self {
-        Pivots {
-            swaps: [0; N],
-            det: 1.0,
-            pivot_ratio: 1.0,
-        }
-    }
-}
-
-impl<const N: usize> Default for Pivots<N> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
 
 /// What a factorisation of B tells besides itself.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,34 +32,6 @@ pub struct Factored {
     pub det: f64,
     /// Smallest |pivot| / largest |pivot| of the dense part: a conditioning indicator.
     pub pivot_ratio: f64,
-}
-
-/// Storage of the factorisation that `mechanism!` generates for a sparsity pattern: the
-/// `K`×`K` dense Schur complement with its pivots, `L` multipliers and `U` entries of the
-/// statically eliminated rows.
-#[derive(Clone, Copy, Debug)]
-pub struct SparseFactor<const K: usize, const L: usize, const U: usize> {
-    pub z: [[f64; K]; K],
-    pub piv: Pivots<K>,
-    pub l: [f64; L],
-    pub u: [f64; U],
-}
-
-impl<const K: usize, const L: usize, const U: usize> SparseFactor<K, L, U> {
-    pub const fn new() -> Self {
-        SparseFactor {
-            z: [[0.0; K]; K],
-            piv: Pivots::new(),
-            l: [0.0; L],
-            u: [0.0; U],
-        }
-    }
-}
-
-impl<const K: usize, const L: usize, const U: usize> Default for SparseFactor<K, L, U> {
-    fn default() -> Self {
-        Self::new()
-    }
 }
 
 /// `P A = L U` of a dense `N`×`N` matrix with partial pivoting: the factors (`L` unit lower,
@@ -119,62 +49,32 @@ impl<const N: usize> Lu<N> {
         let norm1 = (0..N)
             .map(|j| a.iter().map(|row| row[j].abs()).sum::<f64>())
             .fold(0.0f64, |m, c| if c > m || c.is_nan() { c } else { m });
-        let piv = factor_rows(&mut a)?;
+        let piv = eliminate(&mut a)?;
+        if !piv.info.det.is_finite() {
+            return None;
+        }
         Some(Lu { lu: a, piv, norm1 })
     }
 
     /// The determinant of the factored matrix.
     pub fn det(&self) -> f64 {
-        self.piv.det
+        self.piv.info.det
     }
 
     /// Smallest |pivot| / largest |pivot|: cheap, but not scale-free (see
     /// [`Self::reciprocal_condition`]).
     pub fn pivot_ratio(&self) -> f64 {
-        self.piv.pivot_ratio
+        self.piv.info.pivot_ratio
     }
 
     /// Solves `A y = b` in place.
     pub fn solve(&self, b: &mut [f64; N]) {
-        let a = &self.lu;
-        for k in 0..N {
-            let p = self.piv.swaps[k];
-            if p != k {
-                b.swap(k, p);
-            }
-        }
-        for i in 0..N {
-            let s: f64 = a[i][..i].iter().zip(&b[..i]).map(|(l, y)| l * y).sum();
-            b[i] -= s;
-        }
-        for i in (0..N).rev() {
-            let s: f64 = a[i][i + 1..]
-                .iter()
-                .zip(&b[i + 1..])
-                .map(|(u, y)| u * y)
-                .sum();
-            b[i] = (b[i] - s) / a[i][i];
-        }
+        substitute(&self.lu, &self.piv.swaps, b);
     }
 
     /// Solves `Aᵀ y = b` in place.
     pub fn solve_transposed(&self, b: &mut [f64; N]) {
-        let a = &self.lu;
-        // Uᵀ z = b (forward), Lᵀ w = z (backward), then undo the row swaps in reverse.
-        for i in 0..N {
-            let s: f64 = (0..i).map(|j| a[j][i] * b[j]).sum();
-            b[i] = (b[i] - s) / a[i][i];
-        }
-        for i in (0..N).rev() {
-            let s: f64 = (i + 1..N).map(|j| a[j][i] * b[j]).sum();
-            b[i] -= s;
-        }
-        for k in (0..N).rev() {
-            let p = self.piv.swaps[k];
-            if p != k {
-                b.swap(k, p);
-            }
-        }
+        substitute_transposed(&self.lu, &self.piv.swaps, b);
     }
 
     /// An estimate of `1 / (‖A‖₁ ‖A⁻¹‖₁)`, from a few solves with the factors (Hager's method as
@@ -237,56 +137,6 @@ impl<const N: usize> Lu<N> {
     }
 }
 
-/// The kernel of [`Lu::new`], written over rows so that the compiler can drop bounds checks.
-fn factor_rows<const N: usize>(a: &mut [[f64; N]; N]) -> Option<Pivots<N>> {
-    let mut piv = Pivots {
-        swaps: [0; N],
-        det: 1.0,
-        pivot_ratio: 0.0,
-    };
-    let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
-    for k in 0..N {
-        let mut p = k;
-        let mut best = a[k][k].abs();
-        for (i, row) in a.iter().enumerate().skip(k + 1) {
-            let v = row[k].abs();
-            if v > best {
-                best = v;
-                p = i;
-            }
-        }
-        if !(best > 0.0) || !best.is_finite() {
-            return None;
-        }
-        piv.swaps[k] = p;
-        if p != k {
-            a.swap(k, p);
-            piv.det = -piv.det;
-        }
-        let (top, bottom) = a.split_at_mut(k + 1);
-        let pivot_row = &top[k];
-        let d = pivot_row[k];
-        piv.det *= d;
-        pmin = pmin.min(best);
-        pmax = pmax.max(best);
-        let inv = 1.0 / d;
-        for row in bottom.iter_mut() {
-            let l = row[k] * inv;
-            row[k] = l;
-            if l != 0.0 {
-                for (x, u) in row[k + 1..].iter_mut().zip(&pivot_row[k + 1..]) {
-                    *x -= l * u;
-                }
-            }
-        }
-    }
-    piv.pivot_ratio = if N == 0 { 1.0 } else { pmin / pmax };
-    if !piv.det.is_finite() {
-        return None;
-    }
-    Some(piv)
-}
-
 /// `[[B, c], [rᵀ, d]]`: an n×n block bordered by a column, a row and a corner.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Bordered<const N: usize> {
@@ -296,9 +146,94 @@ pub(crate) struct Bordered<const N: usize> {
     pub corner: f64,
 }
 
-impl<const N: usize> Bordered<N> {
+/// `[head; tail]`, the (n+1)-vector of a bordered system.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Extended<const N: usize> {
+    pub head: [f64; N],
+    pub tail: f64,
+}
+
+/// The LU factorisation of a bordered matrix (size N + 1; its last step has no row left to
+/// swap, so `N` swaps record it).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BorderedLu<const N: usize> {
+    m: Bordered<N>,
+    piv: Pivots<N>,
+}
+
+impl<const N: usize> BorderedLu<N> {
+    /// Factors `m`. `None` for an exactly singular or non-finite matrix.
+    pub fn new(mut m: Bordered<N>) -> Option<Self> {
+        let piv = eliminate(&mut m)?;
+        Some(BorderedLu { m, piv })
+    }
+
+    /// Solves the bordered system in place.
+    pub fn solve(&self, b: &mut Extended<N>) {
+        substitute(&self.m, &self.piv.swaps, b);
+    }
+}
+
+/// The row swaps of a factorisation (one per step but the last of an (N+1)×(N+1) matrix) and
+/// what it tells.
+#[derive(Clone, Copy, Debug)]
+struct Pivots<const N: usize> {
+    swaps: [usize; N],
+    info: Factored,
+}
+
+/// A square matrix the kernel factors in place: a dense array or a bordered block.
+trait Square {
+    /// Rows (and columns).
+    const SIZE: usize;
+    fn at(&self, i: usize, j: usize) -> f64;
+    fn set(&mut self, i: usize, j: usize, x: f64);
+    /// Swaps rows `a < b`.
+    fn swap_rows(&mut self, a: usize, b: usize);
+}
+
+/// A right-hand side of a [`Square`] system, solved in place.
+trait Column {
+    fn at(&self, i: usize) -> f64;
+    fn set(&mut self, i: usize, x: f64);
+    fn swap(&mut self, a: usize, b: usize);
+}
+
+impl<const N: usize> Square for [[f64; N]; N] {
+    const SIZE: usize = N;
     #[inline(always)]
-    fn get(&self, i: usize, j: usize) -> f64 {
+    fn at(&self, i: usize, j: usize) -> f64 {
+        self[i][j]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: usize, j: usize, x: f64) {
+        self[i][j] = x;
+    }
+    #[inline(always)]
+    fn swap_rows(&mut self, a: usize, b: usize) {
+        self.swap(a, b);
+    }
+}
+
+impl<const N: usize> Column for [f64; N] {
+    #[inline(always)]
+    fn at(&self, i: usize) -> f64 {
+        self[i]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: usize, x: f64) {
+        self[i] = x;
+    }
+    #[inline(always)]
+    fn swap(&mut self, a: usize, b: usize) {
+        <[f64]>::swap(self, a, b);
+    }
+}
+
+impl<const N: usize> Square for Bordered<N> {
+    const SIZE: usize = N + 1;
+    #[inline(always)]
+    fn at(&self, i: usize, j: usize) -> f64 {
         match (i < N, j < N) {
             (true, true) => self.block[i][j],
             (true, false) => self.column[i],
@@ -315,16 +250,18 @@ impl<const N: usize> Bordered<N> {
             (false, false) => self.corner = x,
         }
     }
+    fn swap_rows(&mut self, a: usize, b: usize) {
+        if b < N {
+            self.block.swap(a, b);
+            self.column.swap(a, b);
+        } else {
+            core::mem::swap(&mut self.block[a], &mut self.row);
+            core::mem::swap(&mut self.column[a], &mut self.corner);
+        }
+    }
 }
 
-/// `[head; tail]`, the (n+1)-vector of a bordered system.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Extended<const N: usize> {
-    pub head: [f64; N],
-    pub tail: f64,
-}
-
-impl<const N: usize> Extended<N> {
+impl<const N: usize> Column for Extended<N> {
     #[inline(always)]
     fn at(&self, i: usize) -> f64 {
         if i < N {
@@ -334,96 +271,119 @@ impl<const N: usize> Extended<N> {
         }
     }
     #[inline(always)]
-    fn put(&mut self, i: usize, x: f64) {
+    fn set(&mut self, i: usize, x: f64) {
         if i < N {
             self.head[i] = x;
         } else {
             self.tail = x;
         }
     }
-}
-
-/// The LU factorisation of a bordered matrix (size N + 1; its last step has no row left to
-/// swap, so `N` swaps record it).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BorderedLu<const N: usize> {
-    m: Bordered<N>,
-    piv: Pivots<N>,
-}
-
-impl<const N: usize> BorderedLu<N> {
-    /// Factors `m`. `None` for an exactly singular or non-finite matrix.
-    pub fn new(mut m: Bordered<N>) -> Option<Self> {
-        let n = N + 1;
-        let mut piv = Pivots {
-            swaps: [0; N],
-            det: 1.0,
-            pivot_ratio: 0.0,
-        };
-        for k in 0..n {
-            let mut p = k;
-            let mut best = m.get(k, k).abs();
-            for i in k + 1..n {
-                let v = m.get(i, k).abs();
-                if v > best {
-                    best = v;
-                    p = i;
-                }
-            }
-            if !(best > 0.0) || !best.is_finite() {
-                return None;
-            }
-            if k < N {
-                piv.swaps[k] = p;
-            }
-            if p != k {
-                for j in 0..n {
-                    let t = m.get(k, j);
-                    m.set(k, j, m.get(p, j));
-                    m.set(p, j, t);
-                }
-                piv.det = -piv.det;
-            }
-            let d = m.get(k, k);
-            piv.det *= d;
-            let inv = 1.0 / d;
-            for i in k + 1..n {
-                let l = m.get(i, k) * inv;
-                m.set(i, k, l);
-                if l != 0.0 {
-                    for j in k + 1..n {
-                        m.set(i, j, m.get(i, j) - l * m.get(k, j));
-                    }
-                }
-            }
-        }
-        Some(BorderedLu { m, piv })
+    fn swap(&mut self, a: usize, b: usize) {
+        let t = self.at(a);
+        self.set(a, self.at(b));
+        self.set(b, t);
     }
+}
 
-    /// Solves the bordered system in place.
-    pub fn solve(&self, b: &mut Extended<N>) {
-        let n = N + 1;
-        for k in 0..N {
-            let p = self.piv.swaps[k];
-            if p != k {
-                let t = b.at(k);
-                b.put(k, b.at(p));
-                b.put(p, t);
+/// `P A = L U` in place, with partial pivoting: the row swap of each step (the last step of
+/// an (S+1)×(S+1) matrix has none to record), det A and the pivot ratio. `None` when a pivot
+/// column is zero or not finite. det A itself may have over- or underflowed.
+fn eliminate<A: Square, const S: usize>(a: &mut A) -> Option<Pivots<S>> {
+    let n = A::SIZE;
+    let mut swaps = [0; S];
+    let mut det = 1.0;
+    let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
+    for k in 0..n {
+        let mut p = k;
+        let mut best = a.at(k, k).abs();
+        for i in k + 1..n {
+            let v = a.at(i, k).abs();
+            if v > best {
+                best = v;
+                p = i;
             }
         }
-        for i in 0..n {
-            let mut s = b.at(i);
-            for j in 0..i {
-                s -= self.m.get(i, j) * b.at(j);
-            }
-            b.put(i, s);
+        if !(best > 0.0) || !best.is_finite() {
+            return None;
         }
-        for i in (0..n).rev() {
-            let mut s = b.at(i);
-            for j in i + 1..n {
-                s -= self.m.get(i, j) * b.at(j);
+        if k < S {
+            swaps[k] = p;
+        }
+        if p != k {
+            a.swap_rows(k, p);
+            det = -det;
+        }
+        let d = a.at(k, k);
+        det *= d;
+        pmin = pmin.min(best);
+        pmax = pmax.max(best);
+        let inv = 1.0 / d;
+        for i in k + 1..n {
+            let l = a.at(i, k) * inv;
+            a.set(i, k, l);
+            if l != 0.0 {
+                for j in k + 1..n {
+                    a.set(i, j, a.at(i, j) - l * a.at(k, j));
+                }
             }
-            b.put(i, s / self.m.get(i, i));
+        }
+    }
+    let pivot_ratio = if n == 0 { 1.0 } else { pmin / pmax };
+    Some(Pivots {
+        swaps,
+        info: Factored { det, pivot_ratio },
+    })
+}
+
+/// Solves `A y = b` in place with the factors of [`eliminate`].
+fn substitute<A: Square, B: Column, const S: usize>(a: &A, swaps: &[usize; S], b: &mut B) {
+    let n = A::SIZE;
+    for (k, &p) in swaps.iter().enumerate() {
+        if p != k {
+            b.swap(k, p);
+        }
+    }
+    for i in 0..n {
+        let mut s = 0.0;
+        for j in 0..i {
+            s += a.at(i, j) * b.at(j);
+        }
+        b.set(i, b.at(i) - s);
+    }
+    for i in (0..n).rev() {
+        let mut s = 0.0;
+        for j in i + 1..n {
+            s += a.at(i, j) * b.at(j);
+        }
+        b.set(i, (b.at(i) - s) / a.at(i, i));
+    }
+}
+
+/// Solves `Aᵀ y = b` in place with the factors of [`eliminate`]: `Uᵀ z = b` forward, `Lᵀ w = z`
+/// backward, then the row swaps undone in reverse.
+fn substitute_transposed<A: Square, B: Column, const S: usize>(
+    a: &A,
+    swaps: &[usize; S],
+    b: &mut B,
+) {
+    let n = A::SIZE;
+    for i in 0..n {
+        let mut s = 0.0;
+        for j in 0..i {
+            s += a.at(j, i) * b.at(j);
+        }
+        b.set(i, (b.at(i) - s) / a.at(i, i));
+    }
+    for i in (0..n).rev() {
+        let mut s = 0.0;
+        for j in i + 1..n {
+            s += a.at(j, i) * b.at(j);
+        }
+        b.set(i, b.at(i) - s);
+    }
+    for (k, &p) in swaps.iter().enumerate().rev() {
+        if p != k {
+            b.swap(k, p);
         }
     }
 }
@@ -490,7 +450,7 @@ mod tests {
 
     #[test]
     fn bordered_matrix_is_solved_even_when_the_block_is_singular() {
-        // B singular (fold), bordered system regular.
+        // B singular (fold), bordered system regular; the border row must be swapped up.
         let m = Bordered {
             block: [[1.0, 1.0], [1.0, 1.0]],
             column: [1.0, 0.0],
@@ -504,9 +464,32 @@ mod tests {
         };
         lu.solve(&mut y);
         for i in 0..3 {
-            let r: f64 = (0..3).map(|j| m.get(i, j) * y.at(j)).sum();
+            let r: f64 = (0..3).map(|j| m.at(i, j) * y.at(j)).sum();
             assert!((r - [1.0, 2.0, 3.0][i]).abs() < 1e-12);
         }
         assert!(Lu::new([[1.0, 1.0], [1.0, 1.0]]).is_none());
+    }
+
+    #[test]
+    fn bordered_and_dense_factorisations_agree() {
+        // The same 3×3 matrix as a dense array and as a 2×2 block with its border.
+        let a = [[0.5, 2.0, -1.0], [3.0, 1.0, 4.0], [-2.0, 6.0, 0.25]];
+        let m = Bordered {
+            block: [[0.5, 2.0], [3.0, 1.0]],
+            column: [-1.0, 4.0],
+            row: [-2.0, 6.0],
+            corner: 0.25,
+        };
+        let dense = Lu::new(a).unwrap();
+        let bordered = BorderedLu::new(m).unwrap();
+        assert_eq!(dense.det(), bordered.piv.info.det);
+        let mut y = [1.0, -2.0, 0.5];
+        let mut z = Extended {
+            head: [1.0, -2.0],
+            tail: 0.5,
+        };
+        dense.solve(&mut y);
+        bordered.solve(&mut z);
+        assert_eq!(y, [z.head[0], z.head[1], z.tail]);
     }
 }

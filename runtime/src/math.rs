@@ -1,3 +1,49 @@
-//! Float maths through `libm` (shared with the generator).
+//! Float maths through `libm` (shared with the generator), and the norm of the solvers' hot
+//! loops.
 
 pub use linkage_geometry::math::*;
+
+/// The Euclidean norm of a fixed-size vector: one sum of squares and one square root, unrolled
+/// by the compiler for the mechanism's size. Where that sum is not a normal finite number —
+/// NaN, overflowed, or so small it may have underflowed — the rescaling [`norm`] decides, so
+/// the result is the same: NaN for any NaN entry, +∞ for an infinite one, never small for a
+/// bad vector.
+#[inline(always)]
+pub(crate) fn size<const N: usize>(v: &[f64; N]) -> f64 {
+    let mut s = 0.0;
+    for x in v {
+        s += x * x;
+    }
+    if s.is_finite() && s > 1e-280 {
+        sqrt(s)
+    } else {
+        norm(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{norm, size};
+
+    #[test]
+    fn size_is_the_norm_and_never_calls_a_bad_vector_small() {
+        for v in [
+            [3.0, 4.0, 0.0],
+            [3e200, 4e200, 0.0],
+            [3e-200, 4e-200, 0.0],
+            [0.0; 3],
+            [1e-150, 1.0, -2.0],
+        ] {
+            assert_eq!(size(&v), norm(&v), "{v:?}");
+        }
+        assert!(size(&[1.0, f64::NAN, 1e-300]).is_nan());
+        assert!(size(&[f64::NAN; 18]).is_nan());
+        assert_eq!(size(&[f64::INFINITY, 1.0]), f64::INFINITY);
+        assert_eq!(size(&[1e200, 1e200]), norm(&[1e200, 1e200]));
+        assert!(
+            size(&[1e200, 1e200]).is_finite(),
+            "overflow of the sum is rescaled"
+        );
+        assert!(!(size(&[f64::NAN; 18]) <= 1e-10));
+    }
+}

@@ -55,6 +55,49 @@ pub trait Mechanism<const N: usize, const M: usize> {
     ) -> Option<crate::lu::Factored>;
     /// Solves `B y = b` in place with a factorisation from [`Self::factor`].
     fn solve(&self, f: &Self::Factor, b: &mut [f64; N]);
+    /// One Newton step's work at (v, x): B factored into `f` and `delta = B⁻¹ F(v, x)`,
+    /// written in place. `None` if B is singular or not finite (`delta` is then unspecified).
+    /// The default calls [`Self::residual`], [`Self::factor`] and [`Self::solve`]; an
+    /// implementation may fuse them (F and B share subexpressions).
+    ///
+    /// ```
+    /// # linkage::mechanism! {
+    /// #     pub struct Rps;
+    /// #     base {
+    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+    /// #     }
+    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+    /// # }
+    /// use linkage::Mechanism;
+    /// let rps = Rps::new();
+    /// let v = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    /// let x = rps.inverse(&v, &[0.0; 3]).unwrap();
+    /// // Legs 1 mm longer: the Newton step from the old pose moves it up.
+    /// let mut f = rps.new_factor();
+    /// let mut delta = [0.0; 9];
+    /// let info = rps.newton_step(&v, &x.map(|l| l + 1.0), &mut f, &mut delta).unwrap();
+    /// assert!(info.det != 0.0);
+    /// let z: Vec<f64> = (6..9).map(|i| v[i] - delta[i]).collect();
+    /// assert!(z.iter().all(|&z| z > 150.0 && z < 152.0), "{z:?}");
+    /// ```
+    #[inline(always)]
+    fn newton_step(
+        &self,
+        v: &[f64; N],
+        x: &[f64; M],
+        f: &mut Self::Factor,
+        delta: &mut [f64; N],
+    ) -> Option<crate::lu::Factored> {
+        self.residual(v, x, delta);
+        let info = self.factor(v, x, f)?;
+        self.solve(f, delta);
+        Some(info)
+    }
     /// `∂F/∂x` (the matrix A of Eq. 5 is its negative).
     fn input_jacobian(&self, v: &[f64; N], x: &[f64; M], a: &mut [[f64; M]; N]);
     /// A platform pivot's coordinates in the platform frame; NaN for an index out of range.

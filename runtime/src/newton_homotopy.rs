@@ -3,7 +3,7 @@
 //! iteration fails is halved. It follows the start's branch while steps are small compared with
 //! the distance to a singularity, and it cannot pass a fold.
 
-use crate::correction::{newton, Ending, Rule};
+use crate::newton::{newton, Ending, Rule};
 use crate::outcome::{conclude, finish, not_converged, Account};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 

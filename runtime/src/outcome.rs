@@ -2,8 +2,9 @@
 //! [`Status::Converged`]: a final Newton run whose returned point is finite, whose own
 //! correction is within the tolerance, and where det B has the start's sign.
 
-use crate::correction::{correction, det_b, Ending, Newton};
-use crate::math::norm;
+use crate::correction::{correction, det_b};
+use crate::math::{norm, size};
+use crate::newton::{Ending, Newton};
 use crate::{Mechanism, Solution, Start, Status};
 
 /// What a solve met on its way, for its [`Solution`].
@@ -60,7 +61,7 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let status = match run.ending {
         Ending::Converged => {
             // `run.det` and `run.estimate` were measured at `run.v` itself.
-            let finite = norm(&run.v).is_finite() && run.estimate.is_finite();
+            let finite = size(&run.v).is_finite() && run.estimate.is_finite();
             if !finite {
                 not_converged(sys, &run.v, x)
             } else if run.det * start.det() > 0.0 {

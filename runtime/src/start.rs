@@ -2,7 +2,7 @@
 
 use crate::correction::{correction, Failure};
 use crate::lu::Lu;
-use crate::math::norm;
+use crate::math::{norm, size};
 use crate::{Mechanism, Options, SolveError};
 
 /// Below this reciprocal condition number of the equilibrated B a start is singular to
@@ -56,7 +56,7 @@ pub(crate) fn check_sample<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
 ) -> Result<(), SolveError> {
-    options.check(norm(&start.v))?;
+    options.check(size(&start.v))?;
     if !all_finite(x) {
         return Err(SolveError::NonFinite);
     }

@@ -50,6 +50,14 @@ impl core::fmt::Display for TrackError {
     }
 }
 
+/// What the fast path reached: `v`, with B factored there.
+struct Reached<F, const N: usize> {
+    v: [f64; N],
+    /// det B at `v`.
+    det: f64,
+    factor: F,
+}
+
 /// Follows one branch through a stream of joint vectors.
 ///
 /// Each update predicts with the linearisation `B Δv = −(∂F/∂x) Δx` (Eq. 5), reusing the
@@ -146,10 +154,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             .map_err(TrackError::Input)?;
         let mut iterations = 0;
         if !self.refused {
-            if let Some((v, det, factor)) = self.fast(x, &mut iterations) {
-                if det * self.start.det() > 0.0 {
-                    self.factor = Some(factor);
-                    return Ok(self.accept(v, x, det, iterations, false));
+            if let Some(r) = self.fast(x, &mut iterations) {
+                if r.det * self.start.det() > 0.0 {
+                    self.factor = Some(r.factor);
+                    return Ok(self.accept(r.v, x, r.det, iterations, false));
                 }
             }
         }
@@ -167,9 +175,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         Ok(self.accept(sol.v, x, det, iterations + sol.newton_iterations, true))
     }
 
-    /// Predictor, chord and Newton corrections; `(v, det B at v, B factored at v)`, with the
-    /// Newton correction at v within the tolerance.
-    fn fast(&mut self, x: &[f64; M], iterations: &mut u32) -> Option<([f64; N], f64, S::Factor)> {
+    /// Predictor, chord and Newton corrections: a point where the Newton correction is
+    /// within the tolerance.
+    fn fast(&mut self, x: &[f64; M], iterations: &mut u32) -> Option<Reached<S::Factor, N>> {
         let tol = self.options.tolerance;
         let mut fac = match self.factor {
             Some(f) => f,
@@ -225,7 +233,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             } else {
                 let c = correction_in(&self.sys, &v, x, self.options.linear, &mut fac).ok()?;
                 if c.size <= tol {
-                    return Some((v, c.det, fac));
+                    return Some(Reached {
+                        v,
+                        det: c.det,
+                        factor: fac,
+                    });
                 }
                 if !contraction.admits(c.size) {
                     return None;
