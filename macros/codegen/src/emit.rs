@@ -130,10 +130,12 @@ pub fn expand(
             quote!(::linkage::Start::new(self, Self::HOME_V, Self::HOME_INPUTS))
         };
         quote! {
-            /// The declared `home` pose `[yaw, pitch, roll, x, y, z]`, checked at compile time:
-            /// the mechanism assembles there and ∂F/∂v is regular.
+            /// The platform's pose `[yaw, pitch, roll, x, y, z]` at home (the declared `home`
+            /// pose, or where `home = inputs(...)` puts it), checked at compile time: the
+            /// mechanism assembles there and ∂F/∂v is regular.
             pub const HOME: [f64; 6] = [#(#pose),*];
-            /// The joint inputs at `HOME`, from inverse kinematics on the declared geometry.
+            /// The joint inputs at `HOME` on the declared geometry (from inverse kinematics, or
+            /// as `home = inputs(...)` gives them).
             pub const HOME_INPUTS: [f64; #m] = [#(#x0),*];
 
             /// Every unknown at [`Self::HOME`], on the declared geometry.

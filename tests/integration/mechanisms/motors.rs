@@ -49,7 +49,10 @@ fn spherical_motor_turns_by_yaw_pitch_roll() {
         // roll + π is the same turn).
         let near = x.map(|a| a + 0.05);
         let back = motor.inverse(&sol.v, &near).unwrap();
-        assert!(linkage_tests::max_diff(&back, &x) < 1e-9, "{back:?} vs {x:?}");
+        assert!(
+            linkage_tests::max_diff(&back, &x) < 1e-9,
+            "{back:?} vs {x:?}"
+        );
         let any = motor.inverse(&sol.v, &[0.0; 3]).unwrap();
         let same = Pose::from_euler(any[0], any[1], any[2], [0.0; 3]);
         for i in 0..3 {

@@ -551,7 +551,10 @@ fn home_inputs(
 ) {
     for (k, (name, _)) in values.iter().enumerate() {
         if values[..k].iter().any(|(n, _)| n == name) {
-            errors.push(name.span(), format!("input `{name}` is given twice in `home`"));
+            errors.push(
+                name.span(),
+                format!("input `{name}` is given twice in `home`"),
+            );
         } else if !inputs.iter().any(|i| i.name == *name) {
             let known: Vec<String> = inputs.iter().map(|i| format!("`{}`", i.name)).collect();
             errors.push(

@@ -16,6 +16,13 @@ use nalgebra::{DMatrix, DVector};
 /// Newton corrections are accepted below this fraction of the configuration's size.
 const TOLERANCE: f64 = 1e-12;
 
+/// A first correction larger than this fraction of the configuration's size is not followed:
+/// Newton's method would converge (if at all) far from where it started, possibly on another
+/// branch whose det ∂F/∂v has the same sign. The step along the inputs is shortened instead.
+/// With every later correction at most half the one before, the point found is within twice
+/// the first correction of the one the step started from.
+const FIRST_CORRECTION: f64 = 0.05;
+
 struct System<'a> {
     model: &'a Model,
     jacobian: Vec<(usize, usize, Expr)>,
@@ -40,16 +47,17 @@ impl System<'_> {
     }
 
     /// Newton from `v` at inputs `x`: the converged point and det B there, or `None` where it
-    /// does not contract.
+    /// does not contract (each correction at most half the one before, the first at most
+    /// `FIRST_CORRECTION` of the configuration's size).
     fn newton(&self, v: &[f64], x: &[f64]) -> Option<(Vec<f64>, f64)> {
         let scale = v.iter().fold(1.0f64, |m, a| m.max(a.abs()));
         let mut v = v.to_vec();
-        let mut last = f64::INFINITY;
+        let mut last = FIRST_CORRECTION * scale / 0.5;
         for _ in 0..12 {
             let lu = self.jacobian(&v, x).lu();
             let step = lu.solve(&(-self.residual(&v, x)))?;
             let size = step.amax();
-            if !size.is_finite() || size > 0.5 * last.max(1e-300) && last.is_finite() {
+            if !(size <= 0.5 * last) {
                 return None;
             }
             v.iter_mut().zip(step.iter()).for_each(|(a, d)| *a += d);
@@ -70,8 +78,7 @@ fn platform_pose(model: &Model, v: &[f64]) -> [f64; 6] {
     let k = model.points.len();
     let at = |p: usize| nalgebra::Vector3::new(v[p], v[k + p], v[2 * k + p]);
     let local = |p: usize| nalgebra::Vector3::from(model.points[p].local.map(|s| g[s]));
-    let located = model.links.first().is_some_and(|l| l.name == "platform");
-    let r = if located {
+    let r = if model.located {
         let [a, b, c] = model.frame;
         let frame = |p: [nalgebra::Vector3<f64>; 3]| {
             let e1 = (p[1] - p[0]).normalize();
@@ -80,7 +87,10 @@ fn platform_pose(model: &Model, v: &[f64]) -> [f64; 6] {
         };
         frame([at(a), at(b), at(c)]) * frame([local(a), local(b), local(c)]).transpose()
     } else if k == 2 {
-        let (d0, d1) = ((local(1) - local(0)).normalize(), (at(1) - at(0)).normalize());
+        let (d0, d1) = (
+            (local(1) - local(0)).normalize(),
+            (at(1) - at(0)).normalize(),
+        );
         nalgebra::Rotation3::rotation_between(&d0, &d1)
             .map_or_else(nalgebra::Matrix3::identity, |r| *r.matrix())
     } else {

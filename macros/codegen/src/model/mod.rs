@@ -170,6 +170,9 @@ pub struct Model {
     pub equations: Vec<Expr>,
     pub points: Vec<PlatformPoint>,
     pub frame: [usize; 3],
+    /// Whether `frame` locates the platform (three points off one line); a platform of one
+    /// point or two has no frame, only a position.
+    pub located: bool,
     pub coplanar: bool,
     pub inverses: Vec<Inverse>,
     /// The platform's declared home pose (identity if none): where the general model places the
@@ -473,6 +476,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         });
     }
     links.append(&mut added.links);
+    let located = frame.is_some();
     let frame = frame.unwrap_or([0, 0, 0]);
     let carried_by = carriers(&b, m, &added.points);
     let mut model = Model {
@@ -484,6 +488,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         equations: b.equations,
         points: b.points,
         frame,
+        located,
         coplanar,
         inverses: b.inverses,
         home_pose: b.home_pose,

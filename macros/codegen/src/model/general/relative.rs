@@ -44,6 +44,8 @@ pub fn applies(topo: &Topology, k: usize, explicit: bool) -> bool {
 }
 
 /// How the link before the pair carries a point of the link's home configuration.
+// One per active pair, at compile time, never in a collection: its size does not matter.
+#[allow(clippy::large_enum_variant)]
 enum Carrier {
     /// The base: the point stays where it is.
     Base,
