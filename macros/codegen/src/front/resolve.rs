@@ -231,12 +231,18 @@ impl Mechanism {
         if let (Some(ChainItem::Link(a)), Some(ChainItem::Link(b))) = (items.first(), items.last())
         {
             if a == "base" && b != "platform" && self.link(b).is_some() {
-                let reaches = self
-                    .chains
-                    .iter()
-                    .any(|c| matches!(c.items.first(), Some(ChainItem::Link(f)) if f == b));
+                // Another chain goes on from `b`: it begins there (a tool on a carriage) or
+                // passes through it (a four-bar's rocker closing on the coupler).
+                let reaches = self.chains.iter().any(|c| {
+                    let Some((_, before_end)) = c.items.split_last() else {
+                        return false;
+                    };
+                    before_end
+                        .iter()
+                        .any(|i| matches!(i, ChainItem::Link(f) if f == b))
+                });
                 if !reaches {
-                    errors.push(b.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, not `{b}`", chain.name));
+                    errors.push(b.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, or at a link another chain begins at or passes through, not `{b}`", chain.name));
                 }
             }
         }
