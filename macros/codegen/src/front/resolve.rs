@@ -205,6 +205,13 @@ impl Mechanism {
 
     fn check_chain(&self, chain: &crate::front::ast::ChainDecl, errors: &mut Errors) {
         let items = &chain.items;
+        if let [ChainItem::Link(_)] = items.as_slice() {
+            errors.push(
+                chain.name.span(),
+                format!("chain `{}` has no pair: a chain is links joined by pairs, `FIRST - PAIR(...) - ... - LAST`", chain.name),
+            );
+            return;
+        }
         // A chain begins at the base or at any declared link (e.g. the second rod of a
         // parallelogram on a crank) and ends at a link.
         match items.first() {
