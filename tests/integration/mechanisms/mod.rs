@@ -16,6 +16,7 @@ mod planar_rpr;
 mod planar_rrr;
 mod prs;
 mod rrs;
+mod scara;
 mod slider_crank;
 mod spherical_wrist;
 mod translational_upu;

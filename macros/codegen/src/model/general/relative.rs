@@ -213,6 +213,21 @@ pub fn equations(
     let motion = Motion::of(b, topo, p, &inputs)?;
     for q in &after.members {
         if before.members.contains(q) {
+            // A point both links hold needs no equation only where the pair's motion leaves
+            // it: on its axis, at its centre. Anywhere else one link would carry it and the
+            // other not, so the pair could not move at all.
+            if !stays(b, topo, p, &j.added, q) {
+                return Err(err(
+                    p.token.span(),
+                    format!(
+                        "pivot `{q}` is on both {} and {}, off the {} of the active `{}` between them: the pair's motion would move it with one link and not the other, so the pair could not turn; declare it on one of the two links only",
+                        named(&before.name),
+                        named(&after.name),
+                        if matches!(p.kind, PairKind::S | PairKind::U) { "centre" } else { "axis" },
+                        p.kind.letter()
+                    ),
+                ));
+            }
             continue;
         }
         let at = topo.home[q];
@@ -236,6 +251,39 @@ pub fn equations(
         }
     }
     Ok(j.after)
+}
+
+/// Whether the motion of pair `p` leaves point `q` where it is: its own pivots and the points
+/// the model adds for it, a point on its axis (R, C, H: the axis pivots slide with a C or H
+/// too, and are shared all the same), a point at its centre (S, U).
+fn stays(b: &Builder, topo: &Topology, p: &PairDecl, added: &[String], q: &str) -> bool {
+    let own = p.pivots.iter().any(|c| c == q)
+        || p.axis.as_ref().is_some_and(|(a, c)| a == q || c == q)
+        || added.iter().any(|a| a == q);
+    if own {
+        return true;
+    }
+    let Some(&at) = topo.home.get(q) else {
+        return false;
+    };
+    let here = nalgebra::Vector3::from(b.home(at));
+    let home = |name: &syn::Ident| {
+        topo.home
+            .get(&name.to_string())
+            .map(|&r| nalgebra::Vector3::from(b.home(r)))
+    };
+    let scale = 1.0 + here.amax();
+    match (&p.axis, p.pivots.first()) {
+        (Some((a, c)), _) => match (home(a), home(c)) {
+            (Some(a), Some(c)) => {
+                let e = c - a;
+                e.norm() > 0.0 && e.cross(&(here - a)).norm() / e.norm() <= 1e-9 * scale
+            }
+            _ => false,
+        },
+        (None, Some(centre)) => home(centre).is_some_and(|c| (here - c).norm() <= 1e-9 * scale),
+        (None, None) => false,
+    }
 }
 
 /// The relative motion of a pair, in the home configuration's coordinates.
