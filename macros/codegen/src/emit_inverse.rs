@@ -241,6 +241,13 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
     } else {
         (quote!(), quote!())
     };
+    // What the step moved: the inputs, then the unknowns after the platform's (no empty
+    // `vt[n..]` where there are none, which clippy refuses in the user's crate).
+    let stepped = if p < n {
+        quote!(xt.iter().chain(vt[#p..].iter()))
+    } else {
+        quote!(xt.iter())
+    };
     Some(quote! {
         /// Levenberg–Marquardt for [`linkage::Mechanism::inverse`]: the inputs and the
         /// unknowns after the platform's, the platform's held; returns the largest |F| left.
@@ -325,7 +332,7 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
                     let mut ft = [0.0f64; #n];
                     self.residual(&vt, &xt, &mut ft);
                     if weighted(&ft) < cost {
-                        let negligible = d.iter().zip(xt.iter().chain(vt[#p..].iter())).all(|(s, q)| s.abs() <= 1e-13 * (1.0 + q.abs()));
+                        let negligible = d.iter().zip(#stepped).all(|(s, q)| s.abs() <= 1e-13 * (1.0 + q.abs()));
                         *v = vt;
                         *x = xt;
                         f = ft;
