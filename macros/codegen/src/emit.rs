@@ -130,10 +130,12 @@ pub fn expand(
             quote!(::linkage::Start::new(self, Self::HOME_V, Self::HOME_INPUTS))
         };
         quote! {
-            /// The declared `home` pose `[yaw, pitch, roll, x, y, z]`, checked at compile time:
-            /// the mechanism assembles there and ∂F/∂v is regular.
+            /// The platform's pose `[yaw, pitch, roll, x, y, z]` at home (the declared `home`
+            /// pose, or where `home = inputs(...)` puts it), checked at compile time: the
+            /// mechanism assembles there and ∂F/∂v is regular.
             pub const HOME: [f64; 6] = [#(#pose),*];
-            /// The joint inputs at `HOME`, from inverse kinematics on the declared geometry.
+            /// The joint inputs at `HOME` on the declared geometry (from inverse kinematics, or
+            /// as `home = inputs(...)` gives them).
             pub const HOME_INPUTS: [f64; #m] = [#(#x0),*];
 
             /// Every unknown at [`Self::HOME`], on the declared geometry.
@@ -537,6 +539,28 @@ fn auto_points(model: &Model) -> TokenStream {
                 let [a0, a1] = a.map(p);
                 let [b0, b1] = b.map(p);
                 quote!(::linkage::__private::normal_point(#o, [#a0, #a1], [#b0, #b1])?)
+            }
+            Auto::Foot { a, b, point } => {
+                let (a, b, q) = (p(a), p(b), p(point));
+                quote!({
+                    let f = ::linkage::__private::axis_frame(#a, #b, #q)?;
+                    [f[3], f[4], f[5]]
+                })
+            }
+            Auto::Quarter { a, b, point } => {
+                let (a, b, q) = (p(a), p(b), p(point));
+                quote!({
+                    let f = ::linkage::__private::axis_frame(#a, #b, #q)?;
+                    [f[3] + f[9], f[4] + f[10], f[5] + f[11]]
+                })
+            }
+            Auto::Shift { origin, by } => {
+                let o = p(origin);
+                let [b0, b1, b2] = by.map(lit);
+                quote!({
+                    let o = #o;
+                    [o[0] + #b0, o[1] + #b1, o[2] + #b2]
+                })
             }
         };
         quote!(auto[#i] = #value;)

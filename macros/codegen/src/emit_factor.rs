@@ -473,7 +473,9 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
             /// The fallback: B again, its complement factored with partial pivoting.
             #[cold]
             #[inline(never)]
-            #[allow(unused_variables, unused_mut)]
+            // A system that every row's own unknown solves (a spherical motor) leaves no dense
+            // block: its loops run over 0..0.
+            #[allow(unused_variables, unused_mut, clippy::reversed_empty_ranges)]
             fn pivoted(c: &[f64; #nc], v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #size]) -> ::core::option::Option<::linkage::lu::Factored> {
                 #(#evals)*
                 #named_sink_check
@@ -505,6 +507,7 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         fn solve(&self, f: &Self::Factor, b: &mut [f64; #n]) {
             #[cold]
             #[inline(never)]
+            #[allow(clippy::reversed_empty_ranges)]
             fn pivoted(f: &[f64; #size], w: &mut [f64; #n]) {
                 #dense_solve
             }

@@ -12,7 +12,11 @@
 //! such as the two points a unit apart on a cylindrical pair's axis), it follows the platform
 //! from home in 16 steps, each solved from the last. A result is returned only where the
 //! residual vanishes, so any inputs returned do place the platform at v; a pose the mechanism
-//! cannot take (off its motion, out of reach) is `Unreachable`.
+//! cannot take (off its motion, out of reach) is `Unreachable`. An input the equations hold
+//! only through its sine and cosine (a revolute's angle) is returned within half a turn of the
+//! reference: the whole turns Levenberg–Marquardt may have wandered through change nothing.
+//! Where all that fails, those inputs are started a quarter, half and three quarters of a turn
+//! from the reference.
 
 use crate::model::{Inverse, Model};
 use proc_macro2::TokenStream;
@@ -126,7 +130,7 @@ fn numerical_body(
                 vv[..#p].copy_from_slice(&at[..#p]);
                 let left = self.__inverse_newton(&mut vv, &mut x);
                 if k == 16 && left <= tolerance {
-                    return Ok(x);
+                    return Ok(nearest(x));
                 }
                 k += 1;
             }
@@ -134,10 +138,53 @@ fn numerical_body(
     } else {
         quote!()
     };
+    // Inputs that turn: F holds them only through sin and cos.
+    let turning: Vec<usize> = (0..m)
+        .filter(|&i| model.equations.iter().all(|f| f.only_turns(i)))
+        .collect();
+    let nearest = if turning.is_empty() {
+        quote!(let nearest = |x: [f64; #m]| x;)
+    } else {
+        quote! {
+        let nearest = |mut x: [f64; #m]| -> [f64; #m] {
+            #({
+                let turn = 2.0 * ::core::f64::consts::PI;
+                let mut d = (x[#turning] - reference[#turning]) % turn;
+                if d > 0.5 * turn {
+                    d -= turn;
+                } else if d < -0.5 * turn {
+                    d += turn;
+                }
+                x[#turning] = reference[#turning] + d;
+            })*
+            x
+        };
+        }
+    };
+    // Last, the turning inputs started a quarter, a half and three quarters of a turn from the
+    // reference: a mechanism of few freedoms (a four-bar's coupler point) can be far along its
+    // motion from home where neither the reference nor a straight path of the platform leads.
+    let turned_starts = if turning.is_empty() {
+        quote!()
+    } else {
+        quote! {
+            for k in 1..4 {
+                let shift = k as f64 * 0.5 * ::core::f64::consts::PI;
+                for mut guess in guesses {
+                    let mut x = x0;
+                    #(x[#turning] += shift;)*
+                    if self.__inverse_newton(&mut guess, &mut x) <= tolerance {
+                        return Ok(nearest(x));
+                    }
+                }
+            }
+        }
+    };
     quote! {
         if !v.iter().chain(reference.iter()).all(|a| a.is_finite()) {
             return Err(::linkage::InverseError::NonFinite);
         }
+        #nearest
         let c = &self.constants;
         // The chains with a closed form give their inputs; the rest start at the reference.
         let mut out = *reference;
@@ -149,10 +196,11 @@ fn numerical_body(
         for mut guess in guesses {
             let mut x = x0;
             if self.__inverse_newton(&mut guess, &mut x) <= tolerance {
-                return Ok(x);
+                return Ok(nearest(x));
             }
         }
         #homotopy
+        #turned_starts
         Err(::linkage::InverseError::Unreachable { input: #first })
     }
 }
@@ -192,6 +240,13 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
         )
     } else {
         (quote!(), quote!())
+    };
+    // What the step moved: the inputs, then the unknowns after the platform's (no empty
+    // `vt[n..]` where there are none, which clippy refuses in the user's crate).
+    let stepped = if p < n {
+        quote!(xt.iter().chain(vt[#p..].iter()))
+    } else {
+        quote!(xt.iter())
     };
     Some(quote! {
         /// Levenberg–Marquardt for [`linkage::Mechanism::inverse`]: the inputs and the
@@ -277,7 +332,7 @@ pub fn newton_method(model: &Model) -> Option<TokenStream> {
                     let mut ft = [0.0f64; #n];
                     self.residual(&vt, &xt, &mut ft);
                     if weighted(&ft) < cost {
-                        let negligible = d.iter().zip(xt.iter().chain(vt[#p..].iter())).all(|(s, q)| s.abs() <= 1e-13 * (1.0 + q.abs()));
+                        let negligible = d.iter().zip(#stepped).all(|(s, q)| s.abs() <= 1e-13 * (1.0 + q.abs()));
                         *v = vt;
                         *x = xt;
                         f = ft;

@@ -94,6 +94,20 @@ impl Expr {
         }
     }
 
+    /// Whether `x[input]` enters only as the argument of a sine or cosine, so that the
+    /// expression does not change when the input turns by 2π.
+    pub fn only_turns(&self, input: usize) -> bool {
+        match self {
+            Expr::Input(i) => *i != input,
+            Expr::Sin(e) | Expr::Cos(e) => {
+                matches!(**e, Expr::Input(i) if i == input) || e.only_turns(input)
+            }
+            Expr::Num(_) | Expr::Unknown(_) | Expr::Constant(_) => true,
+            Expr::Sum(ts) | Expr::Product(ts) => ts.iter().all(|t| t.only_turns(input)),
+            Expr::Square(e) => e.only_turns(input),
+        }
+    }
+
     /// The exact partial derivative, simplified.
     pub fn derivative(&self, var: Var) -> Expr {
         if !self.depends_on(var) {

@@ -55,15 +55,36 @@ fn fallback_name(input: &TokenStream) -> Option<syn::Ident> {
 fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
     let mech = parse(input)?;
     let model = model::build(&mech)?;
-    let declared = mech.platform.as_ref().and_then(|p| p.home);
-    let home = match declared {
-        Some(home) => Some(model::reference::check(&model, home)?),
+    let platform = mech.platform.as_ref();
+    let home = match (
+        platform.and_then(|p| p.home),
+        platform.and_then(|p| p.home_inputs.as_ref()),
+    ) {
+        (Some(home), _) => Some(model::reference::check(&model, home)?),
+        // The joint values: forward kinematics from the declared configuration.
+        (None, Some((span, values))) => {
+            // Every input has its value (the resolver checked), in the model's order.
+            let target: Vec<f64> = model
+                .inputs
+                .iter()
+                .map(|name| {
+                    values
+                        .iter()
+                        .find(|(n, _)| n == name)
+                        .map_or(f64::NAN, |(_, v)| v.value)
+                })
+                .collect();
+            Some(
+                model::home_inputs::solve(&model, &target)
+                    .map_err(|msg| syn::Error::new(*span, msg))?,
+            )
+        }
         // The general model is always checked at home (identity pose if none is declared).
-        None if model.mobility.is_some() => Some(model::reference::check(
+        (None, None) if model.mobility.is_some() => Some(model::reference::check(
             &model,
             (mech.name.span(), model.home_pose),
         )?),
-        None => None,
+        (None, None) => None,
     };
     Ok(emit::expand(&mech, &model, home.as_ref()))
 }

@@ -5,11 +5,19 @@
 //! different declared homes of the same machine.
 
 mod delta;
+mod delta_tools;
 mod five_bar;
+mod four_bar;
+mod home_by_inputs;
+mod motors;
+mod pan_tilt;
 mod pcs;
 mod planar_rpr;
+mod planar_rrr;
 mod prs;
 mod rrs;
+mod scara;
+mod slider_crank;
 mod spherical_wrist;
 mod translational_upu;
 

@@ -6,7 +6,7 @@
 //!              | "base" "{" pivot* "}"
 //!              | "platform" ("(" option ("," option)* ")")? "{" pivot* "}"
 //! option      := "frame" "=" "[" IDENT "," IDENT "," IDENT "]" | "form" "=" ("coplanar" | "general")
-//!              | "home" "=" home                      (see `home.rs`)
+//!              | "home" "=" home                      (a pose or the joint values, see `home.rs`)
 //!              | "link" IDENT "{" (pivot | "length" "=" coord ","?)* "}"
 //!              | "chain" IDENT "=" item ("-" item)* ";"
 //! pivot       := IDENT "=" "[" coord "," coord "," coord "]" ","?
@@ -83,6 +83,8 @@ pub struct LinkDecl {
     /// `home = [yaw, pitch, roll, x, y, z]`: the platform's reference pose, checked at
     /// compile time and offered as `home_start()`.
     pub home: Option<(Span, [f64; 6])>,
+    /// `home = inputs(q1 = .., ...)`: the joint values of the reference configuration instead.
+    pub home_inputs: Option<(Span, Vec<(Ident, Number)>)>,
 }
 
 pub struct ChainDecl {
@@ -206,6 +208,7 @@ impl Parse for Mechanism {
                 let mut frame = None;
                 let mut form = None;
                 let mut home = None;
+                let mut home_inputs = None;
                 if input.peek(token::Paren) {
                     let args;
                     parenthesized!(args in input);
@@ -231,7 +234,15 @@ impl Parse for Mechanism {
                         } else if args.peek(kw::home) {
                             let kw: kw::home = args.parse()?;
                             args.parse::<Token![=]>()?;
-                            home = Some((kw.span, crate::front::home::parse(&args, &scope)?));
+                            if home.is_some() || home_inputs.is_some() {
+                                return Err(syn::Error::new(kw.span, "`home` is given twice"));
+                            }
+                            match crate::front::home::parse(&args, &scope)? {
+                                crate::front::home::Home::Pose(p) => home = Some((kw.span, p)),
+                                crate::front::home::Home::Inputs(v) => {
+                                    home_inputs = Some((kw.span, v))
+                                }
+                            }
                         } else {
                             return Err(args.error(
                                 "expected `frame = [A, B, C]`, `form = coplanar | general` or `home = [yaw, pitch, roll, x, y, z]`",
@@ -251,6 +262,7 @@ impl Parse for Mechanism {
                 )?;
                 link.form = form;
                 link.home = home;
+                link.home_inputs = home_inputs;
                 if m.platform.is_some() {
                     return Err(syn::Error::new(
                         kw.span,
@@ -304,6 +316,7 @@ fn parse_link_body(
         frame,
         form: None,
         home: None,
+        home_inputs: None,
     };
     while !body.is_empty() {
         if body.peek(kw::length) && body.peek2(Token![=]) {

@@ -5,7 +5,12 @@
 //! home = [yaw, pitch, roll, x, y, z]
 //! home = rotation([[r11, r12, r13], [r21, r22, r23], [r31, r32, r33]], [x, y, z])
 //! home = quaternion([w, x, y, z], [x, y, z])
+//! home = inputs(q1 = 0.2, q2 = -0.1, ...)
 //! ```
+//!
+//! The last gives the joint values instead: the home configuration is then where forward
+//! kinematics puts the mechanism for them, solved at compile time from the declared geometry's
+//! own configuration (see `model::home_inputs`).
 
 use crate::front::ast::Number;
 use crate::front::value::{value, Scope};
@@ -58,7 +63,37 @@ fn euler(r: [[f64; 3]; 3], span: Span) -> Result<[f64; 3]> {
     Ok([yaw, pitch, roll])
 }
 
-pub fn parse(input: ParseStream, scope: &Scope) -> Result<[f64; 6]> {
+/// A declared `home`: a pose, or the joint values.
+pub enum Home {
+    Pose([f64; 6]),
+    /// `inputs(name = value, ...)`, in the order written.
+    Inputs(Vec<(Ident, Number)>),
+}
+
+pub fn parse(input: ParseStream, scope: &Scope) -> Result<Home> {
+    if input.peek(Ident) && input.peek2(syn::token::Paren) {
+        let fork = input.fork();
+        let form: Ident = fork.parse()?;
+        if form == "inputs" {
+            input.parse::<Ident>()?;
+            let args;
+            parenthesized!(args in input);
+            let mut values = Vec::new();
+            while !args.is_empty() {
+                let name: Ident = args.parse()?;
+                args.parse::<Token![=]>()?;
+                values.push((name, value(&args, scope)?));
+                if !args.is_empty() {
+                    args.parse::<Token![,]>()?;
+                }
+            }
+            return Ok(Home::Inputs(values));
+        }
+    }
+    pose(input, scope).map(Home::Pose)
+}
+
+fn pose(input: ParseStream, scope: &Scope) -> Result<[f64; 6]> {
     if input.peek(syn::token::Bracket) {
         let (v, span) = list(input, scope)?;
         return v
@@ -69,7 +104,7 @@ pub fn parse(input: ParseStream, scope: &Scope) -> Result<[f64; 6]> {
             .map_err(|_| {
                 syn::Error::new(
                     span,
-                    "`home` is a pose `[yaw, pitch, roll, x, y, z]` (radians, base-frame units), `rotation([[..], [..], [..]], [x, y, z])` or `quaternion([w, x, y, z], [x, y, z])`",
+                    "`home` is a pose `[yaw, pitch, roll, x, y, z]` (radians, base-frame units), `rotation([[..], [..], [..]], [x, y, z])`, `quaternion([w, x, y, z], [x, y, z])` or the joint values `inputs(q1 = .., ...)`",
                 )
             });
     }
@@ -121,7 +156,7 @@ pub fn parse(input: ParseStream, scope: &Scope) -> Result<[f64; 6]> {
         other => {
             return Err(syn::Error::new(
                 form.span(),
-                format!("unknown form of `home`: `{other}`; expected `[yaw, pitch, roll, x, y, z]`, `rotation(...)` or `quaternion(...)`"),
+                format!("unknown form of `home`: `{other}`; expected `[yaw, pitch, roll, x, y, z]`, `rotation(...)`, `quaternion(...)` or `inputs(q1 = .., ...)`"),
             ))
         }
     };

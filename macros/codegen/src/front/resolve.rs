@@ -132,6 +132,9 @@ impl Mechanism {
         unique(self.all_links().map(|l| &l.name), "link", errors);
         unique(self.chains.iter().map(|c| &c.name), "chain", errors);
         symbols.inputs = inputs(&self.chains, errors);
+        if let Some((span, values)) = self.platform.as_ref().and_then(|p| p.home_inputs.as_ref()) {
+            home_inputs(*span, values, &symbols.inputs, errors);
+        }
 
         for link in self.all_links() {
             unique(link.pivots.iter().map(|p| &p.name), "pivot", errors);
@@ -202,6 +205,13 @@ impl Mechanism {
 
     fn check_chain(&self, chain: &crate::front::ast::ChainDecl, errors: &mut Errors) {
         let items = &chain.items;
+        if let [ChainItem::Link(_)] = items.as_slice() {
+            errors.push(
+                chain.name.span(),
+                format!("chain `{}` has no pair: a chain is links joined by pairs, `FIRST - PAIR(...) - ... - LAST`", chain.name),
+            );
+            return;
+        }
         // A chain begins at the base or at any declared link (e.g. the second rod of a
         // parallelogram on a crank) and ends at a link.
         match items.first() {
@@ -228,12 +238,18 @@ impl Mechanism {
         if let (Some(ChainItem::Link(a)), Some(ChainItem::Link(b))) = (items.first(), items.last())
         {
             if a == "base" && b != "platform" && self.link(b).is_some() {
-                let reaches = self
-                    .chains
-                    .iter()
-                    .any(|c| matches!(c.items.first(), Some(ChainItem::Link(f)) if f == b));
+                // Another chain goes on from `b`: it begins there (a tool on a carriage) or
+                // passes through it (a four-bar's rocker closing on the coupler).
+                let reaches = self.chains.iter().any(|c| {
+                    let Some((_, before_end)) = c.items.split_last() else {
+                        return false;
+                    };
+                    before_end
+                        .iter()
+                        .any(|i| matches!(i, ChainItem::Link(f) if f == b))
+                });
                 if !reaches {
-                    errors.push(b.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, not `{b}`", chain.name));
+                    errors.push(b.span(), format!("chain `{}` does not reach the moving platform: it must end at `platform`, or at a link another chain begins at or passes through, not `{b}`", chain.name));
                 }
             }
         }
@@ -317,6 +333,8 @@ impl Mechanism {
             if accepts.axis == Need::No {
                 errors.push(a.span(), format!("pair `{letter}` takes no `axis`"));
             }
+        } else if p.kind == PairKind::U && p.active.is_some() {
+            errors.push(p.token.span(), format!("an active `U` in chain `{}` needs its first axis, `U(C, axis = P -> Q, active a b)`: its first input turns about P -> Q, its second about the axis perpendicular to it", chain.name));
         } else if accepts.axis == Need::Required {
             errors.push(p.token.span(), format!("pair `{letter}` in chain `{}` needs its axis: `axis = A -> B`, two pivots on the axis", chain.name));
         }
@@ -436,16 +454,18 @@ impl Accepts {
             passive: true,
         };
         match kind {
+            // Active: yaw, pitch and roll of the link after it relative to the link before.
             PairKind::S => Accepts {
                 centre: true,
                 axis: Need::No,
-                variables: None,
+                variables: Some(3),
                 ..base
             },
+            // Active: the turns about its first and its second axis.
             PairKind::U => Accepts {
                 centre: true,
                 axis: Need::Optional,
-                variables: None,
+                variables: Some(2),
                 ..base
             },
             PairKind::R => base,
@@ -533,6 +553,46 @@ fn inputs(chains: &[ChainDecl], errors: &mut Errors) -> Vec<InputSymbol> {
         }
     }
     out
+}
+
+/// `home = inputs(...)` names every input once, and nothing else.
+fn home_inputs(
+    span: Span,
+    values: &[(Ident, crate::front::ast::Number)],
+    inputs: &[InputSymbol],
+    errors: &mut Errors,
+) {
+    for (k, (name, _)) in values.iter().enumerate() {
+        if values[..k].iter().any(|(n, _)| n == name) {
+            errors.push(
+                name.span(),
+                format!("input `{name}` is given twice in `home`"),
+            );
+        } else if !inputs.iter().any(|i| i.name == *name) {
+            let known: Vec<String> = inputs.iter().map(|i| format!("`{}`", i.name)).collect();
+            errors.push(
+                name.span(),
+                format!(
+                    "`home` gives a value to `{name}`, which is not an input; the inputs are {}",
+                    known.join(", ")
+                ),
+            );
+        }
+    }
+    let missing: Vec<String> = inputs
+        .iter()
+        .filter(|i| !values.iter().any(|(n, _)| *n == i.name))
+        .map(|i| format!("`{}`", i.name))
+        .collect();
+    if !missing.is_empty() {
+        errors.push(
+            span,
+            format!(
+                "`home = inputs(...)` gives every input its value; missing: {}",
+                missing.join(", ")
+            ),
+        );
+    }
 }
 
 fn unique<'a>(names: impl Iterator<Item = &'a Ident>, what: &str, errors: &mut Errors) {

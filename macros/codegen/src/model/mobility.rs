@@ -46,7 +46,7 @@ fn freedoms(kind: PairKind) -> usize {
 /// A chain's last two joints both spherical: the link between them can spin about the line
 /// through their centres without moving anything.
 fn idle_spin(n: &Normalized) -> usize {
-    let spherical = |p: &PairDecl| p.kind == PairKind::S;
+    let spherical = |p: &PairDecl| p.kind == PairKind::S && p.active.is_none();
     match n.pairs.as_slice() {
         [.., a, b] if spherical(a) && spherical(b) => 1,
         [a, slider, b] if spherical(a) && slider.kind == PairKind::P && spherical(b) => 1,

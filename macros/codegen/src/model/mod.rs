@@ -6,6 +6,7 @@
 //! platform's pivots, coordinate-major as in Eq. 19: `[x_P1 … x_Pk, y_P1 … y_Pk, z_P1 … z_Pk]`.
 
 pub mod general;
+pub mod home_inputs;
 pub mod mobility;
 pub mod reference;
 pub mod rigid;
@@ -65,6 +66,22 @@ pub enum Auto {
         a: [PointRef; 2],
         b: [PointRef; 2],
     },
+    /// The foot of `point` on the axis `a → b` (o of [`Recipe::Axis`]): where an active pair
+    /// turns `point` about.
+    Foot {
+        a: PointRef,
+        b: PointRef,
+        point: PointRef,
+    },
+    /// `point` turned a quarter turn about the axis `a → b` (o + w of [`Recipe::Axis`]).
+    Quarter {
+        a: PointRef,
+        b: PointRef,
+        point: PointRef,
+    },
+    /// `origin + by`: a point one unit along a base axis from `origin`, for the directions of
+    /// a link at home.
+    Shift { origin: PointRef, by: [f64; 3] },
 }
 
 /// How a constant is computed from the geometry slots (in the emitted `from_geometry`).
@@ -153,6 +170,9 @@ pub struct Model {
     pub equations: Vec<Expr>,
     pub points: Vec<PlatformPoint>,
     pub frame: [usize; 3],
+    /// Whether `frame` locates the platform (three points off one line); a platform of one
+    /// point or two has no frame, only a position.
+    pub located: bool,
     pub coplanar: bool,
     pub inverses: Vec<Inverse>,
     /// The platform's declared home pose (identity if none): where the general model places the
@@ -343,6 +363,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         home_inputs: Vec::new(),
         links: Vec::new(),
         link_equations: 0..0,
+        platform_placed: false,
     };
     let mut foreign = Vec::new();
     if !general.is_empty() {
@@ -383,14 +404,14 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
                 }
                 None => planar,
             };
-            if foreign.is_empty() {
+            if foreign.is_empty() && !added.platform_placed {
                 rigid::platform_equations(&mut b, frame, k, coplanar);
             }
             coplanar
         }
         None => false,
     };
-    if frame.is_none() || !foreign.is_empty() {
+    if (frame.is_none() || !foreign.is_empty()) && !added.platform_placed {
         // The platform with points of other links on it (an axis point, a shared centre), or a
         // platform of one or two points: Eq. 3 on all its members, in the base frame at home.
         let mut members: Vec<(String, crate::model::general::Repr, PointRef)> = b
@@ -455,6 +476,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         });
     }
     links.append(&mut added.links);
+    let located = frame.is_some();
     let frame = frame.unwrap_or([0, 0, 0]);
     let carried_by = carriers(&b, m, &added.points);
     let mut model = Model {
@@ -466,6 +488,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         equations: b.equations,
         points: b.points,
         frame,
+        located,
         coplanar,
         inverses: b.inverses,
         home_pose: b.home_pose,
@@ -530,6 +553,17 @@ pub fn auto_point(a: &Auto, home: &dyn Fn(PointRef) -> [f64; 3]) -> [f64; 3] {
         Auto::Along { origin, toward } => linkage_geometry::along(home(origin), home(toward)),
         Auto::Normal { origin, a, b } => {
             linkage_geometry::normal_point(home(origin), a.map(home), b.map(home))
+        }
+        Auto::Foot { a, b, point } => {
+            linkage_geometry::axis_frame(home(a), home(b), home(point)).map(|f| [f[3], f[4], f[5]])
+        }
+        Auto::Quarter { a, b, point } => {
+            linkage_geometry::axis_frame(home(a), home(b), home(point))
+                .map(|f| [f[3] + f[9], f[4] + f[10], f[5] + f[11]])
+        }
+        Auto::Shift { origin, by } => {
+            let o = home(origin);
+            Ok([o[0] + by[0], o[1] + by[1], o[2] + by[2]])
         }
     };
     r.unwrap_or([f64::NAN; 3])
@@ -907,8 +941,10 @@ pub fn normalize<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Normalized<'a> {
     Normalized { pairs, links }
 }
 
+/// A passive S or U: a point the two links share, which the closed-form shapes eliminate (an
+/// active one fixes the turn between its links and goes to the general model).
 pub fn is_point_joint(p: &PairDecl) -> bool {
-    matches!(p.kind, PairKind::S | PairKind::U)
+    matches!(p.kind, PairKind::S | PairKind::U) && p.active.is_none()
 }
 
 pub fn role(l: Option<&LinkDecl>) -> Option<LinkRole> {

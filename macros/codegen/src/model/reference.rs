@@ -178,7 +178,7 @@ pub fn configuration(model: &Model, pose: [f64; 6]) -> Result<Configuration, Str
 }
 
 /// The largest residual at a configuration, against the squared length scale of `v`.
-fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), String> {
+pub fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), String> {
     let scale = v.iter().chain(x).fold(1.0f64, |m, a| m.max(a.abs()));
     for (i, f) in model.equations.iter().enumerate() {
         let residual = f.eval(v, x, c);
@@ -205,12 +205,19 @@ pub fn rank_at_home(
     let span = m
         .platform
         .as_ref()
-        .and_then(|p| p.home.map(|(s, _)| s))
+        .and_then(|p| {
+            p.home
+                .map(|(s, _)| s)
+                .or_else(|| p.home_inputs.as_ref().map(|(s, _)| *s))
+        })
         .unwrap_or_else(|| m.name.span());
     let declared = m.platform.as_ref().is_some_and(|p| p.home.is_some());
+    let by_inputs = m.platform.as_ref().is_some_and(|p| p.home_inputs.is_some());
     let fail = |msg: String| {
         let hint = if declared {
             ""
+        } else if by_inputs {
+            " (with `home = inputs(...)` the declared geometry is still one configuration the mechanism assembles in, with the platform's frame at the base frame: declare the platform's pivots where they are there)"
         } else {
             " (no `home` is declared on the platform, so its pivots were taken at the identity pose: declare `platform(home = [yaw, pitch, roll, x, y, z])` where the mechanism assembles)"
         };

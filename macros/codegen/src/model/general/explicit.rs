@@ -58,18 +58,15 @@ pub fn placed(
                 b.constant(n2, Recipe::Slot(s2)),
             ]
         }
-        PointRef::Auto(_) => [0, 1, 2].map(|index| {
+        // A point the model adds, or a platform pivot the link also carries (an axis the
+        // platform shares with it: the model makes the two coincide): its home position in
+        // the base frame, derived from the geometry.
+        PointRef::Auto(_) | PointRef::PlatformHome(_) => [0, 1, 2].map(|index| {
             b.constant(
                 format!("{}_{q}", ["x", "y", "z"][index]),
                 Recipe::Coordinate { point: at, index },
             )
         }),
-        PointRef::PlatformHome(_) => {
-            return Err(err(
-                pair.token.span(),
-                format!("platform pivot `{q}` cannot belong to a link the inputs place"),
-            ))
-        }
     };
     Ok(match pair.kind {
         PairKind::P => {

@@ -20,6 +20,7 @@
 
 pub mod explicit;
 pub mod prismatic;
+pub mod relative;
 pub mod universal;
 
 use crate::expr::{Expr, Vec3};
@@ -201,10 +202,16 @@ pub fn topology<'a>(
     }
     // The points some pairs add: a U's second axis, a slide's axis.
     for k in 0..topo.joints.len() {
-        match topo.joints[k].pair.kind {
+        let p = topo.joints[k].pair;
+        match p.kind {
             PairKind::U => universal::add_points(b, &mut topo, k)?,
-            PairKind::P | PairKind::C | PairKind::H => prismatic::add_points(b, &mut topo, k)?,
-            PairKind::S | PairKind::R => {}
+            PairKind::P => prismatic::add_points(b, &mut topo, k)?,
+            PairKind::C | PairKind::H if p.active.is_none() => {
+                prismatic::add_points(b, &mut topo, k)?
+            }
+            // Active C and H: a link placed from the base (`explicit`) or by its motion
+            // relative to the link before (`relative`); neither adds points to the links.
+            PairKind::C | PairKind::H | PairKind::S | PairKind::R => {}
         }
     }
     Ok(topo)
@@ -222,6 +229,9 @@ pub struct Added {
     pub links: Vec<crate::model::LinkFrame>,
     /// Where the intermediate links' Eq. 3 are among the equations.
     pub link_equations: std::ops::Range<usize>,
+    /// Whether an active pair places the platform relative to another link (see [`relative`]):
+    /// its Eq. 3 is then implied.
+    pub platform_placed: bool,
 }
 
 /// Builds the equations of the general chains into `b`. `platform` gives the platform's points
@@ -313,11 +323,21 @@ pub fn model(
     for d in coincide {
         b.equations.extend(d.into_iter().filter(|e| e.degree() > 0));
     }
+    // The links an active pair places relative to the link before it: every point of theirs is
+    // placed, so their Eq. 3 is implied.
+    let is_explicit = |p: &PairDecl| explicit_pairs.iter().any(|(q, _)| std::ptr::eq(*q, p));
+    let placed: Vec<usize> = (0..topo.joints.len())
+        .filter(|&k| relative::applies(topo, k, is_explicit(topo.joints[k].pair)))
+        .map(|k| topo.joints[k].after)
+        .collect();
+    added.platform_placed = placed
+        .iter()
+        .any(|&l| topo.links[l].role == LinkRole::Platform);
     // Eq. 3 for every moving intermediate link that is not explicit.
     let links_from = b.equations.len();
-    for l in &topo.links {
+    for (li, l) in topo.links.iter().enumerate() {
         let explicit = explicit_pairs.iter().any(|(_, n)| *n == l.name);
-        if l.role != LinkRole::Intermediate || explicit {
+        if l.role != LinkRole::Intermediate || explicit || placed.contains(&li) {
             continue;
         }
         let members: Vec<(String, Repr, PointRef)> = l
@@ -365,24 +385,17 @@ pub fn model(
     // The pairs' own equations.
     for (k, joint) in topo.joints.iter().enumerate() {
         let p = joint.pair;
-        if explicit_pairs.iter().any(|(q, _)| std::ptr::eq(*q, p)) {
+        if is_explicit(p) {
+            continue;
+        }
+        if relative::applies(topo, k, false) {
+            relative::equations(b, topo, &repr, k, &mut added.home_inputs)?;
             continue;
         }
         match p.kind {
             PairKind::U => universal::equation(b, topo, &repr, k),
             PairKind::P | PairKind::C | PairKind::H => {
                 prismatic::equations(b, topo, &repr, k, added)?
-            }
-            PairKind::S | PairKind::R if p.active.is_some() => {
-                return Err(err(
-                    p.token.span(),
-                    format!(
-                        "an active `{}` pair is modelled where it joins the base to a declared link; here it joins {} to {}",
-                        p.kind.letter(),
-                        named(&topo.links[joint.before].name),
-                        named(&topo.links[joint.after].name)
-                    ),
-                ));
             }
             PairKind::S | PairKind::R => {}
         }

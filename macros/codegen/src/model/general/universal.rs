@@ -43,14 +43,26 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             ),
         ));
     };
+    let c = centre.to_string();
+    // At the end of a chain no joint follows: the other link's pivot farthest from the centre
+    // gives the direction instead.
+    let towards = towards.or_else(|| {
+        let h = b.home(topo.home[&c]);
+        topo.links[other]
+            .members
+            .iter()
+            .filter(|q| **q != c)
+            .map(|q| (q, linkage_geometry::distance(b.home(topo.home[q]), h)))
+            .max_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(q, _)| q.clone())
+    });
     let Some(towards) = towards else {
         return Err(err(
             p.token.span(),
-            "the second axis of this `U` is perpendicular to the leg, but no joint centre follows it through the other link",
+            "the second axis of this `U` is perpendicular to the first and to the line from its centre to the next joint's, but no joint follows it and the link after it has no other pivot",
         ));
     };
     let at = |q: &str| topo.home[q];
-    let c = centre.to_string();
     let auto = b.auto_point(Auto::Normal {
         origin: at(&c),
         a: [at(&pa.to_string()), at(&qa.to_string())],
@@ -65,7 +77,11 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
     let name = format!("{c}_u");
     let _ = holder;
     topo.home.insert(name.clone(), auto);
-    topo.add_member(other, &name);
+    // A passive U holds the second axis in the other link; an active one turns about it by its
+    // input (see `relative`), which needs only its direction at home.
+    if p.active.is_none() {
+        topo.add_member(other, &name);
+    }
     topo.joints[k].added.push(name);
     Ok(())
 }

@@ -1,3 +1,4 @@
+// `home = inputs(...)` gives one input two values.
 linkage::mechanism! {
     pub struct Rps;
     base {
@@ -5,8 +6,12 @@ linkage::mechanism! {
         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
     }
-    platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
-    chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(active r1 p1 y1, G1) - platform;
+    platform(home = inputs(L1 = 165.0, L2 = 150.0, L1 = 170.0, L3 = 160.0)) {
+        G1 = [0.0, 50.0, 150.0],
+        G2 = [-43.301, -25.0, 150.0],
+        G3 = [43.301, -25.0, 150.0],
+    }
+    chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
 }

@@ -1,5 +1,6 @@
-// A planar 3-RRR driven at its middle joints: an active R between two moving links is not
-// modelled (only from the base).
+// A planar 3-RRR driven at its middle joints, declared with every leg's line A–G through the
+// centre at home: with the middle joints held, each leg is a rigid body pinned at A, and the
+// platform can turn about the centre — a singularity, found at compile time.
 linkage::mechanism! {
     pub struct Planar;
     base { A1 = [200.0, 0.0, 0.0], A1z = [200.0, 0.0, 1.0], A2 = [-100.0, 173.2, 0.0], A2z = [-100.0, 173.2, 1.0], A3 = [-100.0, -173.2, 0.0], A3z = [-100.0, -173.2, 1.0] }
