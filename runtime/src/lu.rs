@@ -4,7 +4,7 @@
 //! Sizes are in the types: an [`Lu<N>`] owns its `N`×`N` factors and its `N` row swaps, so no
 //! call can pass a matrix larger than its record of swaps. The (n+1)×(n+1) bordered matrix of
 //! pseudo-arc-length continuation (Eq. 10) has its own type inside the crate; both run the one
-//! elimination and substitution kernel below, over the [`Square`] storage each provides.
+//! elimination and substitution kernel below, over the `Square` storage each provides.
 //!
 //! ```
 //! use linkage::lu::Lu;
