@@ -199,6 +199,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// Solves the next sample. On error the state is kept, and the next sample is reached
     /// from it by continuation only.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
+        if self.certified.is_none() {
+            let result = self.step(x);
+            self.refused = result.is_err();
+            return result;
+        }
         // The state to return to if the step is solved but not proven. The factorisation is
         // not kept: after a refusal the next sample is reached by continuation, which drops it.
         let before = (self.v, self.x, self.det);
