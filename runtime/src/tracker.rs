@@ -237,7 +237,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             .map_err(|input| TrackError::Input(SolveError::InvalidInput { input }))?;
         let mut iterations = 0;
         if !self.refused {
-            if let Some((v, det)) = self.fast(x, &mut iterations) {
+                let mut v = self.v;
+            if let Some(det) = self.fast(x, &mut v, &mut iterations) {
                 if det * self.start.det() > 0.0 {
                     return Ok(self.accept(v, x, det, iterations, false));
                 }
@@ -259,11 +260,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         Ok(self.accept(sol.v, x, det, iterations + sol.newton_iterations, true))
     }
 
-    /// Predictor, chord and Newton corrections: a point where the Newton correction is
-    /// within the tolerance.
+    /// Predictor, chord and Newton corrections from `v` (the last accepted point) to a point,
+    /// left in `v`, where the Newton correction is within the tolerance; returns det B there.
     /// B is factored at the returned point in `self.factor`, which is left unspecified when
     /// the fast path fails.
-    fn fast(&mut self, x: &[f64; M], iterations: &mut u32) -> Option<([f64; N], f64)> {
+    fn fast(&mut self, x: &[f64; M], v: &mut [f64; N], iterations: &mut u32) -> Option<f64> {
         let tol = self.options.tolerance;
         let fac = match &mut self.factor {
             Some(f) => f,
@@ -284,7 +285,6 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         if !step.is_finite() {
             return None;
         }
-        let mut v = self.v;
         for i in 0..N {
             v[i] += dv[i];
         }
@@ -298,7 +298,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             *iterations += 1;
             if chord {
                 let mut d = [0.0; N];
-                self.sys.residual(&v, x, &mut d);
+                self.sys.residual(v, x, &mut d);
                 self.sys.solve(fac, &mut d);
                 let size = size(&d);
                 let admitted = contraction.admits(size);
@@ -318,9 +318,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                 chord = rate <= CHORD_RATIO && rate * size > tol;
                 previous = size;
             } else {
-                c.update(&self.sys, &v, x, self.options.linear, fac).ok()?;
+                c.update(&self.sys, v, x, self.options.linear, fac).ok()?;
                 if c.size <= tol {
-                    return Some((v, c.det));
+                    return Some(c.det);
                 }
                 if !contraction.admits(c.size) {
                     return None;
