@@ -237,7 +237,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             .map_err(|input| TrackError::Input(SolveError::InvalidInput { input }))?;
         let mut iterations = 0;
         if !self.refused {
-                let mut v = self.v;
+            let mut v = self.v;
             if let Some(det) = self.fast(x, &mut v, &mut iterations) {
                 if det * self.start.det() > 0.0 {
                     return Ok(self.accept(v, x, det, iterations, false));
