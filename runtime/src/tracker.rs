@@ -3,8 +3,8 @@
 
 use crate::arc_length::arc_length;
 use crate::convergence::Contraction;
-use crate::correction::{correction_in, det_b};
-use crate::math::norm;
+use crate::correction::{det_b, Correction};
+use crate::math::size;
 use crate::{Mechanism, Options, SolveError, Start, Status, StepProof};
 
 /// Corrections the fast path may take before it gives the sample to continuation.
@@ -62,14 +62,6 @@ impl core::fmt::Display for TrackError {
             ),
         }
     }
-}
-
-/// What the fast path reached: `v`, with B factored there.
-struct Reached<F, const N: usize> {
-    v: [f64; N],
-    /// det B at `v`.
-    det: f64,
-    factor: F,
 }
 
 /// Follows one branch through a stream of joint vectors.
@@ -132,6 +124,8 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     refused: bool,
     /// With [`Tracker::certified`]: the chain of step certificates.
     certified: Option<crate::CertifiedSteps<N, M>>,
+    /// The options checked against the start once: neither changes while tracking.
+    options_checked: Result<(), SolveError>,
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
@@ -146,6 +140,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             factor: None,
             refused: false,
             certified: None,
+            options_checked: options.check(crate::math::size(start.v())),
         }
     }
 
@@ -204,8 +199,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// Solves the next sample. On error the state is kept, and the next sample is reached
     /// from it by continuation only.
     pub fn update(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
-        // The state to return to if the step is solved but not proven.
-        let before = (self.v, self.x, self.det, self.factor);
+        if self.certified.is_none() {
+            let result = self.step(x);
+            self.refused = result.is_err();
+            return result;
+        }
+        // The state to return to if the step is solved but not proven. The factorisation is
+        // not kept: after a refusal the next sample is reached by continuation, which drops it.
+        let before = (self.v, self.x, self.det);
         let result = self.step(x).and_then(|mut sample| {
             let Some(chain) = &mut self.certified else {
                 return Ok(sample);
@@ -216,7 +217,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                     Ok(sample)
                 }
                 StepProof::Unproven { pieces, reason } => {
-                    (self.v, self.x, self.det, self.factor) = before;
+                    (self.v, self.x, self.det) = before;
+                    self.factor = None;
                     Err(TrackError::Unproven { pieces, reason })
                 }
             }
@@ -226,16 +228,23 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     }
 
     fn step(&mut self, x: &[f64; M]) -> Result<Sample<N>, TrackError> {
-        crate::start::check_sample(&self.sys, &self.start, x, &self.options)
-            .map_err(TrackError::Input)?;
+        self.options_checked.map_err(TrackError::Input)?;
+        if !crate::start::all_finite(x) {
+            return Err(TrackError::Input(SolveError::NonFinite));
+        }
+        self.sys
+            .validate_inputs(x)
+            .map_err(|input| TrackError::Input(SolveError::InvalidInput { input }))?;
         let mut iterations = 0;
         if !self.refused {
-            if let Some(r) = self.fast(x, &mut iterations) {
-                if r.det * self.start.det() > 0.0 {
-                    self.factor = Some(r.factor);
-                    return Ok(self.accept(r.v, x, r.det, iterations, false));
+            let mut v = self.v;
+            if let Some(det) = self.fast(x, &mut v, &mut iterations) {
+                if det * self.start.det() > 0.0 {
+                    return Ok(self.accept(v, x, det, iterations, false));
                 }
             }
+            // The factorisation was overwritten on the way; continuation does not use it.
+            self.factor = None;
         }
         // Continuation from the last accepted sample, whose branch is the start's.
         let here = Start::accepted(self.v, self.x, self.det);
@@ -251,16 +260,18 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         Ok(self.accept(sol.v, x, det, iterations + sol.newton_iterations, true))
     }
 
-    /// Predictor, chord and Newton corrections: a point where the Newton correction is
-    /// within the tolerance.
-    fn fast(&mut self, x: &[f64; M], iterations: &mut u32) -> Option<Reached<S::Factor, N>> {
+    /// Predictor, chord and Newton corrections from `v` (the last accepted point) to a point,
+    /// left in `v`, where the Newton correction is within the tolerance; returns det B there.
+    /// B is factored at the returned point in `self.factor`, which is left unspecified when
+    /// the fast path fails.
+    fn fast(&mut self, x: &[f64; M], v: &mut [f64; N], iterations: &mut u32) -> Option<f64> {
         let tol = self.options.tolerance;
-        let mut fac = match self.factor {
+        let fac = match &mut self.factor {
             Some(f) => f,
-            None => {
+            none => {
                 let mut f = self.sys.new_factor();
                 self.sys.factor(&self.v, &self.x, &mut f)?;
-                f
+                none.insert(f)
             }
         };
         let mut a = [[0.0; M]; N];
@@ -269,12 +280,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         for i in 0..N {
             dv[i] = -(0..M).map(|j| a[i][j] * (x[j] - self.x[j])).sum::<f64>();
         }
-        self.sys.solve(&fac, &mut dv);
-        let step = norm(&dv);
+        self.sys.solve(fac, &mut dv);
+        let step = size(&dv);
         if !step.is_finite() {
             return None;
         }
-        let mut v = self.v;
         for i in 0..N {
             v[i] += dv[i];
         }
@@ -283,13 +293,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         // the chord's rate like ω h), then measured.
         let mut previous = f64::INFINITY;
         let mut chord = true;
+        let mut c = Correction::new();
         while *iterations < MAX_CORRECTIONS {
             *iterations += 1;
             if chord {
                 let mut d = [0.0; N];
-                self.sys.residual(&v, x, &mut d);
-                self.sys.solve(&fac, &mut d);
-                let size = norm(&d);
+                self.sys.residual(v, x, &mut d);
+                self.sys.solve(fac, &mut d);
+                let size = size(&d);
                 let admitted = contraction.admits(size);
                 if !size.is_finite() || !(admitted || size <= tol) {
                     return None;
@@ -307,13 +318,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                 chord = rate <= CHORD_RATIO && rate * size > tol;
                 previous = size;
             } else {
-                let c = correction_in(&self.sys, &v, x, self.options.linear, &mut fac).ok()?;
+                c.update(&self.sys, v, x, self.options.linear, fac).ok()?;
                 if c.size <= tol {
-                    return Some(Reached {
-                        v,
-                        det: c.det,
-                        factor: fac,
-                    });
+                    return Some(c.det);
                 }
                 if !contraction.admits(c.size) {
                     return None;
