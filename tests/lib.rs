@@ -326,3 +326,19 @@ where
     }
     (fixed, fallback)
 }
+
+/// A smooth 2 s manoeuvre of the Table III platform around home (heave, sway and a wobble),
+/// clear of singularities and periodic: sampled at 1 kHz it can be replayed in a loop.
+pub fn manoeuvre(t: f64) -> linkage::Pose {
+    let w = std::f64::consts::PI;
+    linkage::Pose::from_euler(
+        0.15 * (w * t).sin(),
+        0.1 * (2.0 * w * t).sin(),
+        -0.08 * (w * t).sin(),
+        [
+            58.971 + 15.0 * (w * t).sin(),
+            -11.739 + 10.0 * (1.0 - (w * t).cos()),
+            159.011 + 20.0 * (w * t).sin(),
+        ],
+    )
+}

@@ -3,23 +3,9 @@
 //! proof). `cargo bench -p linkage-tests --bench certify`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use linkage::{arc_length, certify, certify_step, Options, Pose, Start, Tracker};
+use linkage::{arc_length, certify, certify_step, Options, Start, Tracker};
 use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
-
-/// A 2 s manoeuvre around home, periodic: sampled at 1 kHz it can be replayed in a loop.
-fn manoeuvre(t: f64) -> Pose {
-    let w = std::f64::consts::PI;
-    Pose::from_euler(
-        0.15 * (w * t).sin(),
-        0.1 * (2.0 * w * t).sin(),
-        -0.08 * (w * t).sin(),
-        [
-            58.971 + 15.0 * (w * t).sin(),
-            -11.739 + 10.0 * (1.0 - (w * t).cos()),
-            159.011 + 20.0 * (w * t).sin(),
-        ],
-    )
-}
+use linkage_tests::manoeuvre;
 
 fn certificates(c: &mut Criterion) {
     let s = Stewart::new();

@@ -2,24 +2,9 @@
 //! that the step to it kept the branch, a step that cannot be proven is refused, and nothing
 //! accepted is ever off the branch — checked against fine continuation along the joint segment.
 
-use linkage::{Options, Pose, StepProof, TrackError, Tracker};
+use linkage::{Options, StepProof, TrackError, Tracker};
 use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
-use linkage_tests::{max_diff, stewart_pose_samples, straight_path_truth};
-
-/// A smooth 2 s manoeuvre around home, clear of singularities.
-fn manoeuvre(t: f64) -> Pose {
-    let w = 2.0 * std::f64::consts::PI * 0.5;
-    Pose::from_euler(
-        0.15 * (w * t).sin(),
-        0.1 * (2.0 * w * t).sin(),
-        -0.08 * (w * t).sin(),
-        [
-            58.971 + 15.0 * (w * t).sin(),
-            -11.739 + 10.0 * (1.0 - (w * t).cos()),
-            159.011 + 20.0 * (w * t).sin(),
-        ],
-    )
-}
+use linkage_tests::{manoeuvre, max_diff, stewart_pose_samples, straight_path_truth};
 
 #[test]
 fn every_sample_of_a_1khz_trajectory_is_proven_and_within_its_bound() {

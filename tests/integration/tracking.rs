@@ -1,23 +1,8 @@
 //! Trajectory mode: 1 kHz samples of smooth pose trajectories, tracked on the start's branch.
 
-use linkage::{Options, Pose, Status, TrackError, Tracker};
+use linkage::{Options, Status, TrackError, Tracker};
 use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
-use linkage_tests::max_diff;
-
-fn trajectory(t: f64) -> Pose {
-    // A 2 s manoeuvre: heave, sway and a wobble, all smooth and clear of singularities.
-    let w = 2.0 * std::f64::consts::PI * 0.5;
-    Pose::from_euler(
-        0.15 * (w * t).sin(),
-        0.1 * (2.0 * w * t).sin(),
-        -0.08 * (w * t).sin(),
-        [
-            58.971 + 15.0 * (w * t).sin(),
-            -11.739 + 10.0 * (1.0 - (w * t).cos()),
-            159.011 + 20.0 * (w * t).sin(),
-        ],
-    )
-}
+use linkage_tests::{manoeuvre, max_diff};
 
 #[test]
 fn tracker_follows_a_1khz_trajectory_on_the_branch() {
@@ -27,7 +12,7 @@ fn tracker_follows_a_1khz_trajectory_on_the_branch() {
     let mut worst = 0.0f64;
     let mut fallbacks = 0;
     for k in 1..=2000 {
-        let (x, truth) = legs_for_pose(&s, &trajectory(k as f64 * 1e-3)).unwrap();
+        let (x, truth) = legs_for_pose(&s, &manoeuvre(k as f64 * 1e-3)).unwrap();
         let sample = tracker.update(&x).unwrap();
         worst = worst.max(max_diff(&sample.v, &truth));
         assert!(sample.proximity > 0.0 && sample.proximity.is_finite());
@@ -47,7 +32,7 @@ fn tracker_refuses_bad_samples_and_stays_usable() {
     let s = Stewart::new();
     let st = home_start(&s).unwrap();
     let mut tracker = Tracker::new(s.clone(), st, Options::TIGHT);
-    let (x1, v1) = legs_for_pose(&s, &trajectory(0.01)).unwrap();
+    let (x1, v1) = legs_for_pose(&s, &manoeuvre(0.01)).unwrap();
     tracker.update(&x1).unwrap();
     let mut bad = x1;
     bad[0] = f64::NAN;
@@ -58,7 +43,7 @@ fn tracker_refuses_bad_samples_and_stays_usable() {
     let far = [170.0, 170.0, 170.0, 170.0, 170.0, 600.0];
     assert!(matches!(tracker.update(&far), Err(TrackError::Lost(_))));
     assert!(max_diff(tracker.state().0, &v1) < 1e-7);
-    let (x2, v2) = legs_for_pose(&s, &trajectory(0.011)).unwrap();
+    let (x2, v2) = legs_for_pose(&s, &manoeuvre(0.011)).unwrap();
     let sample = tracker.update(&x2).unwrap();
     assert!(max_diff(&sample.v, &v2) < 1e-7);
 }
@@ -70,7 +55,7 @@ fn tracker_takes_big_steps_by_continuation() {
     let st = home_start(&s).unwrap();
     let mut tracker = Tracker::new(s.clone(), st, Options::TIGHT);
     for k in 1..=40 {
-        let (x, truth) = legs_for_pose(&s, &trajectory(k as f64 * 0.05)).unwrap();
+        let (x, truth) = legs_for_pose(&s, &manoeuvre(k as f64 * 0.05)).unwrap();
         let sample = tracker.update(&x).unwrap();
         assert!(max_diff(&sample.v, &truth) < 1e-7);
     }
