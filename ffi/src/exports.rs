@@ -10,7 +10,8 @@
 use std::ffi::c_char;
 use std::mem::MaybeUninit;
 
-use crate::hexapod::{Hexapod, LinkageGeometry, LinkageReport};
+use crate::geometry::LinkageGeometry;
+use crate::hexapod::{Hexapod, LinkageReport};
 use crate::pose::LinkagePose;
 use crate::status;
 use crate::strut_correction::LinkageStrutCorrection;

@@ -6,18 +6,10 @@ use linkage_examples::stewart::{
     find_start, legs_for_pose, platform_is_coplanar, SixSix, StartError, Stewart, StewartGeneral,
 };
 
+use crate::geometry::LinkageGeometry;
 use crate::pose::LinkagePose;
 use crate::status;
 use crate::strut_correction::LinkageStrutCorrection;
-
-/// Joint centres: base ones in the base (world) frame, platform ones in the platform frame;
-/// leg `i` joins `base[i]` to `platform[i]`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LinkageGeometry {
-    pub base: [[f64; 3]; 6],
-    pub platform: [[f64; 3]; 6],
-}
 
 /// What one forward call did, besides its status.
 #[repr(C)]

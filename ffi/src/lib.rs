@@ -35,12 +35,14 @@
 //! ```
 
 mod exports;
+mod geometry;
 mod hexapod;
 mod pose;
 pub mod status;
 mod strut_correction;
 
 pub use exports::*;
-pub use hexapod::{Hexapod, LinkageGeometry, LinkageReport};
+pub use geometry::LinkageGeometry;
+pub use hexapod::{Hexapod, LinkageReport};
 pub use pose::LinkagePose;
 pub use strut_correction::LinkageStrutCorrection;

@@ -10,7 +10,7 @@
 
 use linkage::Pose;
 
-use crate::hexapod::LinkageGeometry;
+use crate::geometry::LinkageGeometry;
 use crate::status;
 
 /// The joints' axes (base ones in the base frame, platform ones in the platform frame) and
