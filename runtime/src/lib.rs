@@ -49,6 +49,7 @@ mod correction;
 mod detour;
 mod error;
 mod interval;
+mod inverse;
 pub mod lu;
 mod math;
 mod mechanism;

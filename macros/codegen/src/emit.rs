@@ -88,7 +88,6 @@ pub fn expand(
         _ => None,
     });
     let inverse_body = crate::emit_inverse::body(model, home.is_some());
-    let inverse_newton = crate::emit_inverse::newton_method(model);
     // A leg's length (input plus offset) must be positive.
     let ranges = model.inverses.iter().filter_map(|inv| match inv {
         Inverse::Distance { input, offset, .. } => {
@@ -242,8 +241,6 @@ pub fn expand(
             }
 
             #home_items
-
-            #inverse_newton
 
             /// The moving links [`Self::link_pose`] reports on: the platform, then the named
             /// links between it and the base.

@@ -152,6 +152,7 @@ fn scara_with_a_wrist_against_the_product_of_exponentials() {
     let mut rng = Rng::new(46);
     // Inverses not found, from the unknowns and from the platform alone.
     let mut unreached = [0, 0];
+    let mut worst = 0.0f64;
     for _ in 0..60 {
         let x = [
             rng.uniform(-3.0, 3.0),
@@ -184,11 +185,11 @@ fn scara_with_a_wrist_against_the_product_of_exponentials() {
             };
             for p in tool {
                 let (at, again) = (pose.apply(p), product_of_exponentials(&back, p));
-                // The numerical inverse accepts a largest |F| of 1e-8·scale² (about 1e-3 at a
-                // 350 mm scale), and the relative placements' equations are linear in the
-                // points: the tool may come back that far off.
+                // The numerical inverse leaves each equation within 1e-9 of the scale of
+                // holding (a few 1e-7 mm at 350 mm).
+                worst = worst.max(max_diff(&at, &again));
                 assert!(
-                    max_diff(&at, &again) < 2e-3,
+                    max_diff(&at, &again) < 2e-6,
                     "x = {x:?}: inverse from the {from} {back:?} puts {p:?} at {again:?}, not {at:?}"
                 );
             }
@@ -196,9 +197,9 @@ fn scara_with_a_wrist_against_the_product_of_exponentials() {
     }
     // The numerical inverse does not find every configuration far from home (five inputs,
     // Levenberg–Marquardt from the reference): counted, not hidden.
-    eprintln!("scara with a wrist: inverse unreached at {unreached:?} of 60 (from the unknowns, from the platform)");
+    eprintln!("scara with a wrist: inverse unreached at {unreached:?} of 60 (from the unknowns, from the platform); tool off by up to {worst:.1e} mm");
     assert!(
-        unreached[0] <= 12 && unreached[1] <= 12,
+        unreached[0] <= 2 && unreached[1] <= 3,
         "{unreached:?} of 60"
     );
 }

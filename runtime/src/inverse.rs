@@ -1,0 +1,414 @@
+//! The numerical inverse kinematics, for mechanisms where some chain has no closed form: the
+//! generated `Mechanism::inverse` fills in the closed-form chains' inputs and calls [`solve`]
+//! for the rest.
+//!
+//! With the platform's coordinates held at the given v, F(v, x) = 0 is N equations in
+//! Z = M + (N − held) unknowns — the inputs and the points of the links between (Z ≤ N, a
+//! consistent least-squares problem). Levenberg–Marquardt on the normal equations, with
+//! Marquardt's diagonal scaling (inputs in rad and in mm weigh alike) and each equation weighed
+//! by its row's largest entry (equations in mm and in mm², on points a unit apart and a hundred
+//! apart, count alike), run until its step is negligible, which takes it to Gauss–Newton and
+//! the rounding floor. A result is returned only where every equation is within [`ACCEPT`] of
+//! the scale of holding (its residual over its largest derivative), so any inputs returned do
+//! place the platform at v; a pose the mechanism cannot take is `Unreachable`.
+//!
+//! Where to start, in order: the reference inputs with whichever guess for the links between
+//! fits better (the given v's, or the declared home's with each point moved as far as the
+//! platform point that carries it), then the other; then the platform followed from home to v
+//! along a straight path of its pose, by steps that halve where one fails and grow where they
+//! pass (a straight path can cross an inverse singularity, where no step of a fixed size
+//! holds), or, for a platform that leaves its motion on a straight path, in 16 least-squares
+//! steps of which only the last must hold; last, the inputs that turn started a quarter, half and three quarters of a turn from
+//! the reference. An input the equations hold only through its sine and cosine is returned
+//! within half a turn of the reference.
+
+use crate::lu::Lu;
+use crate::pose::{pose_from_unknowns, unknowns_from_pose, Pose};
+use crate::{InverseError, Mechanism};
+
+/// How far, relative to the scale (1 + the largest platform coordinate), the given platform
+/// may be from the mechanism's motion and the answer's pivots from satisfying the equations.
+/// Levenberg–Marquardt takes its unknowns to where their steps become negligible (1e-13 of the
+/// coordinates): what is left then is how far the given v is off the motion — a forward solve to
+/// a tolerance of 1e-8 mm leaves ~1e-10 of a 100 mm scale — and is accepted up to this.
+pub const ACCEPT: f64 = 1e-9;
+
+/// Levenberg–Marquardt iterations per solve from a guess (far from home, with several inputs,
+/// a hundred can end short of the answer, at a residual that looks small only because the
+/// problem is ill-conditioned there) and per step along a path (each starts near its answer).
+const ITERATIONS: usize = 500;
+const PATH_ITERATIONS: usize = 100;
+
+/// Smallest step, as a fraction of the path from home, before following the platform gives up.
+const SMALLEST_STEP: f64 = 1.0 / 4096.0;
+
+/// Steps taken in all along the path from home.
+const PATH_STEPS: usize = 400;
+
+/// What the generated `inverse` tells [`solve`] besides the equations.
+#[derive(Clone, Copy, Debug)]
+pub struct Plan<'a, const N: usize, const M: usize> {
+    /// The platform's coordinates: the first `held` unknowns, held at the given v.
+    pub held: usize,
+    /// The declared home (unknowns, inputs), where one is declared.
+    pub home: Option<(&'a [f64; N], &'a [f64; M])>,
+    /// Points of the links between that move with a platform point: (their first coordinate —
+    /// the three are consecutive — and the platform point's index).
+    pub carried: &'a [(usize, usize)],
+    /// The inputs that F holds only through their sine and cosine.
+    pub turning: &'a [usize],
+    /// The first input without a closed form (named in `Unreachable`).
+    pub unsolved: usize,
+}
+
+/// Inputs `x` that place the platform at `v`, from `x0` (the reference with the closed-form
+/// inputs filled in). `Z` must be `M + N − plan.held`.
+pub fn solve<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
+    sys: &S,
+    v: &[f64; N],
+    reference: &[f64; M],
+    x0: &[f64; M],
+    plan: &Plan<'_, N, M>,
+) -> Result<[f64; M], InverseError> {
+    if !v.iter().chain(reference).chain(x0).all(|a| a.is_finite()) {
+        return Err(InverseError::NonFinite);
+    }
+    let unreachable = InverseError::Unreachable {
+        input: plan.unsolved,
+    };
+    if plan.held > N || Z + plan.held != M + N {
+        return Err(unreachable);
+    }
+    let nearest = |mut x: [f64; M]| {
+        for &i in plan.turning {
+            x[i] = reference[i] + half_turn(x[i] - reference[i]);
+        }
+        x
+    };
+    let solver = Solver::<S, N, M, Z> {
+        sys,
+        held: plan.held,
+    };
+    let scale = |v: &[f64; N]| 1.0 + v[..plan.held].iter().fold(0.0f64, |s, q| s.max(q.abs()));
+    let tolerance = scale(v);
+
+    let guesses = guesses(&solver, v, x0, plan);
+    for guess in guesses.iter().flatten() {
+        let (mut vv, mut x) = (*guess, *x0);
+        if solver
+            .levenberg_marquardt(&mut vv, &mut x, ITERATIONS)
+            .within(tolerance)
+        {
+            return Ok(nearest(x));
+        }
+    }
+    if let Some((home_v, home_x)) = plan.home {
+        if let Some(x) = follow(&solver, v, home_v, home_x, &scale) {
+            return Ok(nearest(x));
+        }
+    }
+    if !plan.turning.is_empty() {
+        for k in 1..4 {
+            let shift = k as f64 * 0.5 * core::f64::consts::PI;
+            for guess in guesses.iter().flatten() {
+                let (mut vv, mut x) = (*guess, *x0);
+                for &i in plan.turning {
+                    x[i] += shift;
+                }
+                if solver
+                    .levenberg_marquardt(&mut vv, &mut x, ITERATIONS)
+                    .within(tolerance)
+                {
+                    return Ok(nearest(x));
+                }
+            }
+        }
+    }
+    Err(unreachable)
+}
+
+/// `d` brought into (−π, π].
+fn half_turn(d: f64) -> f64 {
+    let turn = 2.0 * core::f64::consts::PI;
+    let mut d = d % turn;
+    if d > 0.5 * turn {
+        d -= turn;
+    } else if d <= -0.5 * turn {
+        d += turn;
+    }
+    d
+}
+
+/// The starting unknowns, the better-fitting first: the given v, and (with a declared home
+/// and links between) the home's links between carried along with the platform.
+fn guesses<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
+    solver: &Solver<'_, S, N, M, Z>,
+    v: &[f64; N],
+    x0: &[f64; M],
+    plan: &Plan<'_, N, M>,
+) -> [Option<[f64; N]>; 2] {
+    let Some((home_v, _)) = plan.home.filter(|_| plan.held < N) else {
+        return [Some(*v), None];
+    };
+    let k = S::POINTS.len();
+    let mut other = *v;
+    other[plan.held..].copy_from_slice(&home_v[plan.held..]);
+    for &(first, carrier) in plan.carried {
+        for a in 0..3 {
+            let c = a * k + carrier;
+            if first + a < N && c < plan.held {
+                other[first + a] += v[c] - home_v[c];
+            }
+        }
+    }
+    if solver.cost(v, x0) <= solver.cost(&other, x0) {
+        [Some(*v), Some(other)]
+    } else {
+        [Some(other), Some(*v)]
+    }
+}
+
+/// The platform from home to `v`, each step solved from the last: its pose's Euler angles and
+/// translation interpolated (its coordinates, for a platform of one or two points), the last
+/// step at `v` itself.
+fn follow<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
+    solver: &Solver<'_, S, N, M, Z>,
+    v: &[f64; N],
+    home_v: &[f64; N],
+    home_x: &[f64; M],
+    scale: &dyn Fn(&[f64; N]) -> f64,
+) -> Option<[f64; M]> {
+    let held = solver.held;
+    let poses = pose_from_unknowns(solver.sys, home_v).zip(pose_from_unknowns(solver.sys, v));
+    let at = |t: f64| -> [f64; N] {
+        if t >= 1.0 {
+            return *v;
+        }
+        match poses {
+            Some((a, b)) => {
+                let (ea, eb) = (a.euler(), b.euler());
+                let angle = |i: usize| ea[i] + t * half_turn(eb[i] - ea[i]);
+                let (ta, tb) = (a.translation, b.translation);
+                let pose = Pose::from_euler(
+                    angle(0),
+                    angle(1),
+                    angle(2),
+                    core::array::from_fn(|i| ta[i] + t * (tb[i] - ta[i])),
+                );
+                unknowns_from_pose(solver.sys, &pose)
+            }
+            None => core::array::from_fn(|i| home_v[i] + t * (v[i] - home_v[i])),
+        }
+    };
+    let (mut vv, mut x) = (*home_v, *home_x);
+    let (mut t, mut h) = (0.0f64, 1.0 / 16.0);
+    for _ in 0..PATH_STEPS {
+        let next = (t + h).min(1.0);
+        let target = at(next);
+        let (mut vt, mut xt) = (vv, x);
+        vt[..held].copy_from_slice(&target[..held]);
+        if solver
+            .levenberg_marquardt(&mut vt, &mut xt, PATH_ITERATIONS)
+            .within(scale(&vt))
+        {
+            (t, vv, x) = (next, vt, xt);
+            if t >= 1.0 {
+                return Some(x);
+            }
+            h = (2.0 * h).min(0.25);
+        } else {
+            h *= 0.5;
+            if h < SMALLEST_STEP {
+                break;
+            }
+        }
+    }
+    // A platform of fewer freedoms than its points have (a coupler point, which moves on a
+    // curve) leaves the motion on any straight path: then each step's least-squares answer is
+    // the next one's start, and only the last must be exact.
+    let (mut vv, mut x) = (*home_v, *home_x);
+    for k in 1..=16 {
+        vv[..held].copy_from_slice(&at(k as f64 / 16.0)[..held]);
+        let left = solver.levenberg_marquardt(&mut vv, &mut x, PATH_ITERATIONS);
+        if k == 16 && left.within(scale(&vv)) {
+            return Some(x);
+        }
+    }
+    None
+}
+
+/// Levenberg–Marquardt on the inputs and the unknowns after the platform's.
+struct Solver<'a, S, const N: usize, const M: usize, const Z: usize> {
+    sys: &'a S,
+    held: usize,
+}
+
+impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<'_, S, N, M, Z> {
+    /// Σ F², infinite where it is not finite.
+    fn cost(&self, v: &[f64; N], x: &[f64; M]) -> f64 {
+        let mut f = [0.0; N];
+        self.sys.residual(v, x, &mut f);
+        let s: f64 = f.iter().map(|r| r * r).sum();
+        if s.is_finite() {
+            s
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// J = [∂F/∂x | ∂F/∂v after the platform's].
+    fn jacobian(&self, v: &[f64; N], x: &[f64; M]) -> [[f64; Z]; N] {
+        let mut a = [[0.0; M]; N];
+        self.sys.input_jacobian(v, x, &mut a);
+        let mut b = [[0.0; N]; N];
+        if self.held < N {
+            self.sys.jacobian_dense(v, x, &mut b);
+        }
+        let mut j = [[0.0; Z]; N];
+        for r in 0..N {
+            j[r][..M].copy_from_slice(&a[r]);
+            j[r][M..].copy_from_slice(&b[r][self.held..]);
+        }
+        j
+    }
+
+    /// Iterates until the step is negligible or none lowers the cost (a residual test alone
+    /// would stop early on the equations of points a unit apart, an axis tip, whose residuals
+    /// are small beside the slides that move them); returns what is left of F.
+    fn levenberg_marquardt(&self, v: &mut [f64; N], x: &mut [f64; M], iterations: usize) -> Left {
+        let mut f = [0.0; N];
+        self.sys.residual(v, x, &mut f);
+        let mut mu = 1e-6f64;
+        let mut settled = false;
+        for _ in 0..iterations {
+            let j = self.jacobian(v, x);
+            let w = row_weights(&j);
+            let weighted = |f: &[f64; N]| -> f64 {
+                let c: f64 = (0..N).map(|r| (w[r] * f[r]) * (w[r] * f[r])).sum();
+                if c.is_finite() {
+                    c
+                } else {
+                    f64::INFINITY
+                }
+            };
+            let cost = weighted(&f);
+            if cost == 0.0 {
+                settled = true;
+                break;
+            }
+            if !(cost > 0.0) || cost == f64::INFINITY {
+                break;
+            }
+            // Weighted JᵀJ and −JᵀF.
+            let mut h = [[0.0; Z]; Z];
+            let mut g = [0.0; Z];
+            for r in 0..N {
+                let wr = w[r] * w[r];
+                for p in 0..Z {
+                    let jp = j[r][p];
+                    if jp != 0.0 {
+                        g[p] -= wr * jp * f[r];
+                        for q in 0..Z {
+                            h[p][q] += wr * jp * j[r][q];
+                        }
+                    }
+                }
+            }
+            // Damped steps until one lowers the cost.
+            let mut accepted = false;
+            while mu <= 1e12 {
+                let mut damped = h;
+                for p in 0..Z {
+                    damped[p][p] += mu * (h[p][p] + 1e-300);
+                }
+                let Some(lu) = Lu::<Z>::new(damped) else {
+                    mu *= 10.0;
+                    continue;
+                };
+                let mut d = g;
+                lu.solve(&mut d);
+                let (mut vt, mut xt) = (*v, *x);
+                for p in 0..M {
+                    xt[p] += d[p];
+                }
+                for p in M..Z {
+                    vt[self.held + p - M] += d[p];
+                }
+                let mut ft = [0.0; N];
+                self.sys.residual(&vt, &xt, &mut ft);
+                if weighted(&ft) < cost {
+                    let moved = xt.iter().chain(vt[self.held..].iter());
+                    let negligible = d
+                        .iter()
+                        .zip(moved)
+                        .all(|(s, q)| s.abs() <= 1e-13 * (1.0 + q.abs()));
+                    (*v, *x, f) = (vt, xt, ft);
+                    mu = (mu * 0.1).max(1e-15);
+                    accepted = !negligible;
+                    break;
+                }
+                mu *= 10.0;
+            }
+            if !accepted {
+                settled = true;
+                break;
+            }
+        }
+        let w = row_weights(&self.jacobian(v, x));
+        // A moved equation's residual over its largest derivative: how far (in the unknowns'
+        // units) its unknowns are from satisfying it.
+        let largest = |moved: bool| {
+            let m = (0..N)
+                .filter(|&r| (w[r] > 0.0) == moved)
+                .fold(0.0f64, |m, r| {
+                    m.max(if moved { w[r] } else { 1.0 } * f[r].abs())
+                });
+            if m.is_finite() {
+                m
+            } else {
+                f64::INFINITY
+            }
+        };
+        Left {
+            solved: largest(true),
+            given: largest(false),
+            settled,
+        }
+    }
+}
+
+/// What is left of F after a solve.
+#[derive(Clone, Copy, Debug)]
+struct Left {
+    /// In the equations the inverse's unknowns move: the largest |F_r| / max_j |∂F_r/∂z_j|,
+    /// a length.
+    solved: f64,
+    /// In the equations of the given platform coordinates alone: the largest |F_r| (of
+    /// degree 2 in coordinates of the scale, so compared with ACCEPT·scale²).
+    given: f64,
+    /// Whether the iteration ended where no step helps (negligible, or none lowers the cost)
+    /// rather than by running out of iterations.
+    settled: bool,
+}
+
+impl Left {
+    /// Whether the iteration settled with both within their tolerances at this scale.
+    fn within(self, scale: f64) -> bool {
+        self.settled && self.solved <= ACCEPT * scale && self.given <= ACCEPT * scale * scale
+    }
+}
+
+/// Each equation's weight: 1 / its row's largest entry, or 0 for one that these unknowns do not
+/// move (the platform's own, or one whose terms cancel down to rounding).
+fn row_weights<const N: usize, const Z: usize>(j: &[[f64; Z]; N]) -> [f64; N] {
+    let mut w = [0.0; N];
+    let mut all = 0.0f64;
+    for r in 0..N {
+        w[r] = j[r].iter().fold(0.0f64, |t, q| t.max(q.abs()));
+        all = all.max(w[r]);
+    }
+    for r in 0..N {
+        w[r] = if w[r] > 1e-9 * all { 1.0 / w[r] } else { 0.0 };
+    }
+    w
+}
