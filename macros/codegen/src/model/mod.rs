@@ -414,16 +414,14 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
     if (frame.is_none() || !foreign.is_empty()) && !added.platform_placed {
         // The platform with points of other links on it (an axis point, a shared centre), or a
         // platform of one or two points: Eq. 3 on all its members, in the base frame at home.
-        let mut members: Vec<(String, crate::model::general::Repr, PointRef)> = b
+        let mut members: Vec<(String, Vec3, PointRef)> = b
             .points
             .iter()
             .enumerate()
             .map(|(p, pt)| {
                 (
                     pt.name.clone(),
-                    crate::model::general::Repr::Unknown(
-                        [0, 1, 2].map(|a| Expr::Unknown(a * k + p)),
-                    ),
+                    [0, 1, 2].map(|a| Expr::Unknown(a * k + p)),
                     PointRef::PlatformHome(pt.local),
                 )
             })
@@ -436,7 +434,7 @@ pub fn build(m: &Mechanism) -> syn::Result<Model> {
         }
         for (name, repr) in foreign {
             let at = topo.home[&name];
-            members.push((name, repr, at));
+            members.push((name, repr.expr().clone(), at));
         }
         rigid::link_equations(&mut b, "platform", &members, None);
     }

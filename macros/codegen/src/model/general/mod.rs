@@ -340,10 +340,10 @@ pub fn model(
         if l.role != LinkRole::Intermediate || explicit || placed.contains(&li) {
             continue;
         }
-        let members: Vec<(String, Repr, PointRef)> = l
+        let members: Vec<(String, Vec3, PointRef)> = l
             .members
             .iter()
-            .map(|q| (q.clone(), repr[q].clone(), topo.home[q]))
+            .map(|q| (q.clone(), repr[q].expr().clone(), topo.home[q]))
             .collect();
         let length = l
             .length
