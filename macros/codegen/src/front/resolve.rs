@@ -2,8 +2,9 @@
 //! in one table ([`Symbols`]), parameters and every name a declaration uses are checked against
 //! it, and every pair's arguments against the one table of what each pair kind takes
 //! (`Accepts`). Never builds tokens; collects every mistake into the shared [`Errors`] so that
-//! the user sees them all in one build. (The model still looks pivots up by name; with names
-//! global, which this pass enforces, that is unambiguous.)
+//! the user sees them all in one build. Once they pass, the declaration is lowered to its
+//! resolved form ([`crate::front::resolved`]): names become typed ids, and no later phase looks
+//! anything up by name.
 //!
 //! Pivot names are global: an axis `A -> B` names its pivots without their links, so one name
 //! on two links is an error here rather than a silent choice later. A joint variable names one
@@ -12,6 +13,7 @@
 
 use crate::front::ast::{ChainDecl, ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
 pub use crate::front::errors::Errors;
+use crate::front::resolved::Decl;
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;
@@ -92,8 +94,19 @@ impl Mechanism {
         self.all_links().find(|l| l.name == *name)
     }
 
-    /// Resolves every name and checks every pair; the mistakes go to `errors`.
-    pub fn resolve(&self, errors: &mut Errors) -> Symbols {
+    /// Resolves every name and checks every pair; the mistakes go to `errors`. The resolved
+    /// declaration when there are none.
+    pub fn resolve(&self, errors: &mut Errors) -> Option<Decl> {
+        let symbols = self.symbols(errors);
+        if !errors.is_empty() {
+            return None;
+        }
+        let inputs: Vec<Ident> = symbols.inputs.iter().map(|i| i.name.clone()).collect();
+        crate::front::resolved::lower(self, &inputs, errors)
+    }
+
+    /// The name tables, every check run.
+    fn symbols(&self, errors: &mut Errors) -> Symbols {
         let mut symbols = Symbols::default();
         for link in self.all_links() {
             let id = symbols.links.len();
