@@ -65,7 +65,7 @@ pub fn of(d: &Decl) -> Mobility {
         mob.links += n.links.len().saturating_sub(2);
         mob.joints += n.pairs.len();
         mob.freedoms += n.pairs.iter().map(|p| freedoms(p.kind)).sum::<usize>();
-        mob.idle += idle_spin(&n);
+        mob.idle += idle_spin(n);
     }
     mob
 }
