@@ -2,8 +2,9 @@
 //! so that every phase is testable without rustc.
 //!
 //! Pipeline, one folder or file per phase, arrows one way:
-//! [`front`] (parse, check) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form
-//! shapes, the general model) → [`simplify`] (duplicates, rank at home) → [`expr`] (the symbolic
+//! [`front`] (parse; resolve: every check, then names to typed ids in one resolved
+//! declaration) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form shapes,
+//! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates, rank at home) → [`expr`] (the symbolic
 //! IR every phase shares) → [`factor`] (the elimination plan for ∂F/∂v, with the pivot order of
 //! [`pivot_order`]) → [`emit`], [`emit_factor`] and [`emit_lu`] (the Rust).
 

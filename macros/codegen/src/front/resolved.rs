@@ -75,10 +75,18 @@ pub struct Chain {
     pub pairs: Vec<Pair>,
 }
 
+/// The platform's declared rigid-body form (`form = coplanar | general`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Form {
+    Coplanar,
+    General,
+}
+
 /// The platform's options.
 pub struct Platform {
     pub frame: Option<[PivotRef; 3]>,
-    pub form: Option<Ident>,
+    /// The declared form, with the span of its keyword.
+    pub form: Option<(Form, Span)>,
     pub home: Option<(Span, [f64; 6])>,
     /// `home = inputs(...)`: every input's value, by [`InputId`].
     pub home_inputs: Option<(Span, Vec<f64>)>,
@@ -191,7 +199,15 @@ pub fn lower(m: &Mechanism, inputs: &[Ident], errors: &mut Errors) -> Option<Dec
         chains: Vec::new(),
         platform: Platform {
             frame: None,
-            form: platform.form.clone(),
+            // The parser admits `coplanar` and `general` only.
+            form: platform.form.as_ref().map(|f| {
+                let form = if f == "general" {
+                    Form::General
+                } else {
+                    Form::Coplanar
+                };
+                (form, f.span())
+            }),
             home: platform.home,
             home_inputs: None,
         },

@@ -6,7 +6,7 @@ use crate::expr::{Expr, Vec3};
 use crate::front::ast::{LinkRole, PairKind};
 use crate::front::errors::Errors;
 use crate::front::ids::{LinkId, PivotId};
-use crate::front::resolved::{Decl, Pair};
+use crate::front::resolved::{Decl, Form, Pair};
 use crate::model::general::{self, Added, Topology};
 use crate::model::shapes::{self, ChainModel};
 use crate::model::PointRef;
@@ -129,11 +129,11 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     let coplanar = match frame {
         Some(frame) => {
             let planar = rigid::is_coplanar(&b, frame, k);
-            let coplanar = match &d.platform.form {
-                Some(form) if form == "general" => false,
-                Some(form) => {
+            let coplanar = match d.platform.form {
+                Some((Form::General, _)) => false,
+                Some((Form::Coplanar, span)) => {
                     if !planar {
-                        errors.push(form.span(), "`form = coplanar` but the platform pivots are not coplanar at the declared geometry");
+                        errors.push(span, "`form = coplanar` but the platform pivots are not coplanar at the declared geometry");
                         return None;
                     }
                     true

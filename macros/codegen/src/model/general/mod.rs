@@ -41,6 +41,8 @@ pub struct Link {
     pub name: String,
     /// The declared link, if it is one.
     pub declared: Option<LinkId>,
+    /// Else its chain's name and its place there (k counted from the chain's first link).
+    pub unnamed: Option<(String, usize)>,
     pub role: LinkRole,
     pub length: Option<Value>,
     /// Its points, in order of first use.
@@ -143,12 +145,11 @@ pub fn err(span: Span, msg: impl std::fmt::Display) -> Error {
     Error::new(span, msg)
 }
 
-/// A link's name in messages: unnamed links between two pairs are `chain#k`, k counted from
-/// the chain's first link.
-pub fn named(link: &str) -> String {
-    match link.split_once('#') {
-        Some((chain, k)) => format!("link {k} of chain `{chain}` (unnamed)"),
-        None => format!("`{link}`"),
+/// A link's name in messages: an unnamed link between two pairs by its place in its chain.
+pub fn named(link: &Link) -> String {
+    match (link.declared, &link.unnamed) {
+        (None, Some((chain, k))) => format!("link {k} of chain `{chain}` (unnamed)"),
+        _ => format!("`{}`", link.name),
     }
 }
 
@@ -189,6 +190,7 @@ pub fn topology<'a>(
                             Link {
                                 name: decl.name.to_string(),
                                 declared: Some(l),
+                                unnamed: None,
                                 role: decl.role,
                                 length: decl.length,
                                 members: decl.pivots.iter().map(|&p| PointId::of(p)).collect(),
@@ -197,6 +199,7 @@ pub fn topology<'a>(
                         None => Link {
                             name: format!("{}#{k}", chain.name),
                             declared: None,
+                            unnamed: Some((chain.name.to_string(), k)),
                             role: LinkRole::Intermediate,
                             length: None,
                             members: Vec::new(),

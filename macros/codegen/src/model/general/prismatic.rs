@@ -57,8 +57,8 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             format!(
                 "a `{}` pair is modelled where it is active and joins the base to a declared link; here it joins {} to {}",
                 p.kind.letter(),
-                named(&topo.links[topo.joints[k].before].name),
-                named(&topo.links[topo.joints[k].after].name)
+                named(&topo.links[topo.joints[k].before]),
+                named(&topo.links[topo.joints[k].after])
             ),
         ));
     }
@@ -224,8 +224,8 @@ pub fn equations(
                     format!(
                         "`{}` on {} is off the slide's axis, but the rail {} has no point off the axis to carry it: declare one",
                         topo.name(q),
-                        named(&slider.name),
-                        named(&rail.name)
+                        named(slider),
+                        named(rail)
                     ),
                 ));
             };

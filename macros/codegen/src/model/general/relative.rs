@@ -77,7 +77,7 @@ impl Carrier {
                 format!(
                     "the active `{}` turns its link relative to {}, whose points are all on one line: that link's own turn about the line is not defined, and with it neither is the pair's; declare a pivot on it off the line",
                     pair.kind.letter(),
-                    named(&l.name)
+                    named(l)
                 ),
             ));
         };
@@ -223,8 +223,8 @@ pub fn equations(
                     format!(
                         "pivot `{}` is on both {} and {}, off the {} of the active `{}` between them: the pair's motion would move it with one link and not the other, so the pair could not turn; declare it on one of the two links only",
                         topo.name(q),
-                        named(&before.name),
-                        named(&after.name),
+                        named(before),
+                        named(after),
                         if matches!(p.kind, PairKind::S | PairKind::U) { "centre" } else { "axis" },
                         p.kind.letter()
                     ),
@@ -244,8 +244,8 @@ pub fn equations(
                     format!(
                         "the active `{}` joins {} to {}, which are both placed by inputs already: its input would be fixed by the others",
                         p.kind.letter(),
-                        named(&before.name),
-                        named(&after.name)
+                        named(before),
+                        named(after)
                     ),
                 ));
             }

@@ -42,8 +42,8 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
                 "the axis `{} -> {}` of this `U` is on neither of the links it joins ({} and {})",
                 topo.name(a),
                 topo.name(q),
-                named(&topo.links[j.before].name),
-                named(&topo.links[j.after].name)
+                named(&topo.links[j.before]),
+                named(&topo.links[j.after])
             ),
         ));
     };
