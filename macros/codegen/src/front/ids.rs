@@ -9,7 +9,7 @@ macro_rules! id {
 
         impl $name {
             /// Made by the resolver only, from a position it has just filled.
-            pub(crate) fn new(index: usize) -> Self {
+            pub(in crate::front) fn new(index: usize) -> Self {
                 $name(index as u32)
             }
 

@@ -86,8 +86,8 @@ impl Reprs {
         self.0[q.index()] = Some(r);
     }
 
-    /// The expression of a point the model has placed; zeros for one it has not (which no
-    /// equation reads: every link member is placed before the equations are built).
+    /// The expression of a point the model has placed; zeros for one it has not, which
+    /// [`model`] reports as an error before any equation is kept.
     pub fn expr(&self, q: PointId) -> Vec3 {
         match self.get(q) {
             Some(r) => r.expr().clone(),
@@ -361,6 +361,24 @@ pub fn model(
                     q,
                     Repr::Unknown([0, 1, 2].map(|k| Expr::Unknown(first + k))),
                 );
+            }
+        }
+    }
+    // Every point a link holds now has its place (base, platform, explicit or unknown): the
+    // equations below read them. Checked rather than assumed, so that a gap is an error and
+    // never a point at the origin.
+    for l in &topo.links {
+        for &q in &l.members {
+            if repr.get(q).is_none() {
+                errors.push(
+                    d.name.span(),
+                    format!(
+                        "point `{}` of {} is placed by nothing (a bug in the generator; please report it)",
+                        topo.name(q),
+                        named(l)
+                    ),
+                );
+                ok = false;
             }
         }
     }
