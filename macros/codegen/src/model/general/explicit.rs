@@ -76,7 +76,8 @@ pub fn placed(
             if let Some(o) = pair.offset {
                 let o = b.scalar_constant(
                     Scalar::Offset(pair.id),
-                    format!("{}.offset", pair.token),
+                    // One slot per pair, named for its chain (as the closed-form legs' are).
+                    format!("{}.offset", b.decl.chain(pair.id.chain).name),
                     o,
                     format!("offset_{q}"),
                 );
@@ -103,7 +104,7 @@ pub fn placed(
                     })?;
                     let lead = b.scalar_constant(
                         Scalar::Lead(pair.id),
-                        format!("{}.lead.{q}", pair.token),
+                        format!("{}.lead", b.decl.chain(pair.id.chain).name),
                         lead,
                         format!("lead_{q}"),
                     );

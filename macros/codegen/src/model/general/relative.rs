@@ -355,7 +355,7 @@ impl Motion {
                         })?;
                         let lead = b.scalar_constant(
                             Scalar::Lead(p.id),
-                            format!("{}.lead.{a}_{bb}", p.token),
+                            format!("{}.lead", b.decl.chain(p.id.chain).name),
                             lead,
                             format!("lead_{a}_{bb}"),
                         );
