@@ -4,9 +4,10 @@
 //! Pipeline, one folder or file per phase, arrows one way:
 //! [`front`] (parse; resolve: every check, then names to typed ids in one resolved
 //! declaration) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form shapes,
-//! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates, rank at home) → [`expr`] (the symbolic
-//! IR every phase shares) → [`factor`] (the elimination plan for ∂F/∂v, with the pivot order of
-//! [`pivot_order`]) → [`emit`], [`emit_factor`] and [`emit_lu`] (the Rust).
+//! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates,
+//! rank at home) → [`expr`] (the symbolic IR every phase shares) → [`factor`] (the elimination
+//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]) → [`emit`], [`emit_factor`] and
+//! [`emit_lu`] (the Rust).
 
 pub mod emit;
 pub mod emit_factor;

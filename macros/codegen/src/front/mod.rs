@@ -4,10 +4,12 @@
 //! accumulator ([`errors`]) that the later phases share, and the names turned into typed ids
 //! ([`ids`]) in the resolved declaration the model consumes ([`resolved`]).
 
+pub mod accepts;
 pub mod ast;
 pub mod errors;
 pub mod home;
 pub mod ids;
+pub mod inputs;
 pub mod resolve;
 pub mod resolved;
 pub mod value;
