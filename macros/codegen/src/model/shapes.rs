@@ -16,7 +16,7 @@
 
 use crate::expr::{self, Expr, Vec3};
 use crate::front::ast::{LinkRole, PairKind};
-use crate::front::ids::{ChainId, LinkId, PivotId};
+use crate::front::ids::{ChainId, InputId, LinkId, PivotId};
 use crate::front::resolved::{Decl, Pair, Value};
 use crate::model::builder::Scalar;
 use crate::model::{is_point_joint, Builder, Inverse, PointRef, Recipe};
@@ -33,6 +33,8 @@ pub enum Shape<'a> {
     Leg {
         anchor: PivotId,
         slider: &'a Pair,
+        /// The slider's one input.
+        input: InputId,
         platform: PlatformPivot,
     },
     Rod {
@@ -56,6 +58,8 @@ pub enum Shape<'a> {
         hinge: &'a Pair,
         axis: [PivotId; 2],
         slider: &'a Pair,
+        /// The slider's one input.
+        input: InputId,
         platform: PlatformPivot,
     },
 }
@@ -181,10 +185,11 @@ fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
             if !slider.active {
                 return Err(Some(Error::new(slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", chain.name))));
             }
-            single_variable(slider, &chain.name).map_err(Some)?;
+            let input = single_variable(slider, &chain.name).map_err(Some)?;
             Ok(Shape::Leg {
                 anchor: base_center(s1)?,
                 slider,
+                input,
                 platform: platform_center(s2)?,
             })
         }
@@ -285,11 +290,12 @@ fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
                     ),
                 )));
             };
-            single_variable(slider, &chain.name).map_err(Some)?;
+            let input = single_variable(slider, &chain.name).map_err(Some)?;
             Ok(Shape::Swing {
                 hinge,
                 axis: [ax_a.id, ax_b.id],
                 slider,
+                input,
                 platform: platform_center(s)?,
             })
         }
@@ -297,21 +303,25 @@ fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
     }
 }
 
-fn single_variable(p: &Pair, chain: &syn::Ident) -> Result<(), Error> {
-    if p.inputs.len() == 1 {
-        Ok(())
-    } else {
-        Err(Error::new(
+/// The one input of an active slider.
+fn single_variable(p: &Pair, chain: &syn::Ident) -> Result<InputId, Error> {
+    match p.inputs.as_slice() {
+        [input] => Ok(*input),
+        _ => Err(Error::new(
             p.token.span(),
             format!("an active `P` pair in chain `{chain}` has one joint variable"),
-        ))
+        )),
     }
 }
 
 /// An active slider's joint variable, its offset constant, and the leg length `x + offset`.
-fn leg_length(b: &mut Builder, slider: &Pair, chain: &str) -> (usize, Option<Expr>, Expr) {
-    // The shape has checked that the slider has its one input.
-    let input = slider.inputs.first().map_or(0, |i| i.index());
+fn leg_length(
+    b: &mut Builder,
+    slider: &Pair,
+    input: InputId,
+    chain: &str,
+) -> (usize, Option<Expr>, Expr) {
+    let input = input.index();
     let offset = slider.offset.map(|o| {
         b.scalar_constant(
             Scalar::Offset(slider.id),
@@ -332,9 +342,14 @@ pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> 
     let g: Vec3 = [0, 1, 2].map(|a| Expr::Unknown(a * k + p));
     let chain = b.decl.chain(c).name.to_string();
     match shape {
-        Shape::Leg { anchor, slider, .. } => {
+        Shape::Leg {
+            anchor,
+            slider,
+            input,
+            ..
+        } => {
             let a = b.pivot_constants(*anchor);
-            let (input, offset, length) = leg_length(b, slider, &chain);
+            let (input, offset, length) = leg_length(b, slider, *input, &chain);
             let eq = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
                 equations: vec![eq],
@@ -473,6 +488,7 @@ pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> 
         Shape::Swing {
             axis: [ax_a, ax_b],
             slider,
+            input,
             ..
         } => {
             let a_slots = PointRef::Slots(b.pivot_slots(*ax_a));
@@ -490,7 +506,7 @@ pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> 
                     },
                 )
             });
-            let (input, offset, length) = leg_length(b, slider, &chain);
+            let (input, offset, length) = leg_length(b, slider, *input, &chain);
             let plane = expr::dot(&e, &expr::vsub(&g, &a));
             let dist = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
