@@ -3,7 +3,9 @@
 //! for the later phases' messages. Built by [`lower`] once the resolver's checks pass, so that
 //! each id it holds names something that exists.
 
-use crate::front::ast::{ChainItem, LinkRole, Mechanism, PairDecl, PairKind};
+use crate::front::ast::{ChainItem, Mechanism, PairDecl};
+/// The kinds the resolved declaration shares with the syntax tree.
+pub use crate::front::ast::{LinkRole, PairKind};
 use crate::front::errors::Errors;
 use crate::front::ids::{ChainId, InputId, LinkId, PairId, ParamId, PivotId};
 use crate::front::value::Coord;

@@ -3,10 +3,9 @@
 //! mobility checked (by counting, or by rank at home).
 
 use crate::expr::{Expr, Vec3};
-use crate::front::ast::{LinkRole, PairKind};
 use crate::front::errors::Errors;
 use crate::front::ids::{LinkId, PivotId};
-use crate::front::resolved::{Decl, Form, Pair};
+use crate::front::resolved::{Decl, Form, LinkRole, Pair, PairKind};
 use crate::model::general::{self, Added, Topology};
 use crate::model::shapes::{self, ChainModel};
 use crate::model::PointRef;

@@ -2,8 +2,7 @@
 //! freedoms it counts but no input can drive: the spin of a leg or rod about the line through
 //! its two spherical joints.
 
-use crate::front::ast::PairKind;
-use crate::front::resolved::{Chain, Decl, Pair};
+use crate::front::resolved::{Chain, Decl, Pair, PairKind};
 
 pub struct Mobility {
     pub links: usize,

@@ -19,8 +19,7 @@ pub use build::build;
 pub use builder::Builder;
 
 use crate::expr::{Expr, Names, Vec3};
-use crate::front::ast::PairKind;
-use crate::front::resolved::Pair;
+use crate::front::resolved::{Pair, PairKind};
 use syn::Ident;
 
 pub struct Slot {

@@ -15,9 +15,8 @@
 //! Eq. 2, written `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry.
 
 use crate::expr::{self, Expr, Vec3};
-use crate::front::ast::{LinkRole, PairKind};
 use crate::front::ids::{ChainId, InputId, LinkId, PivotId};
-use crate::front::resolved::{Decl, Pair, Value};
+use crate::front::resolved::{Decl, LinkRole, Pair, PairKind, Value};
 use crate::model::builder::Scalar;
 use crate::model::{is_point_joint, Builder, Inverse, PointRef, Recipe};
 use syn::Error;

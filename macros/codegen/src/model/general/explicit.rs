@@ -5,8 +5,7 @@
 
 use super::{err, PointId, Topology};
 use crate::expr::{self, Expr, Vec3};
-use crate::front::ast::PairKind;
-use crate::front::resolved::Pair;
+use crate::front::resolved::{Pair, PairKind};
 use crate::model::builder::Scalar;
 use crate::model::{Builder, PointRef, Recipe};
 use syn::Error;

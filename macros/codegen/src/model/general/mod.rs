@@ -28,10 +28,9 @@ pub mod topology;
 pub mod universal;
 
 use crate::expr::{Expr, Vec3};
-use crate::front::ast::{LinkRole, PairKind};
 use crate::front::errors::Errors;
 use crate::front::ids::{LinkId, PairId, PivotId};
-use crate::front::resolved::Pair;
+use crate::front::resolved::{LinkRole, Pair, PairKind};
 use crate::model::builder::Scalar;
 use crate::model::{Builder, PointRef};
 pub use points::{PointId, Points};

@@ -2,9 +2,8 @@
 //! same order), then the points the pairs add (a slide's axis tip, a U's second axis, a
 //! cylinder's copies of its axis), each with its name in the listing and its home position.
 
-use crate::front::ast::LinkRole;
 use crate::front::ids::PivotId;
-use crate::front::resolved::Decl;
+use crate::front::resolved::{Decl, LinkRole};
 use crate::model::{Builder, PointRef};
 
 /// A point of the general model.

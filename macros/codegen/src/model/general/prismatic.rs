@@ -15,7 +15,7 @@
 use super::points::Addition;
 use super::{err, named, Added, PointId, Reprs, Topology};
 use crate::expr::{self, Expr};
-use crate::front::ast::{LinkRole, PairKind};
+use crate::front::resolved::{LinkRole, PairKind};
 use crate::model::builder::Scalar;
 use crate::model::{Auto, Builder, PointRef, Recipe};
 use nalgebra::Vector3;

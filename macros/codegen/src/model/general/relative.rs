@@ -29,8 +29,7 @@
 
 use super::{err, named, PointId, Reprs, Topology};
 use crate::expr::{self, Expr, Vec3};
-use crate::front::ast::{LinkRole, PairKind};
-use crate::front::resolved::{Pair, PivotRef};
+use crate::front::resolved::{LinkRole, Pair, PairKind, PivotRef};
 use crate::model::builder::Scalar;
 use crate::model::{Auto, Builder, PointRef, Recipe};
 use syn::Error;

@@ -4,10 +4,9 @@
 
 use super::points::Points;
 use super::{prismatic, universal, PointId};
-use crate::front::ast::{LinkRole, PairKind};
 use crate::front::errors::Errors;
 use crate::front::ids::{ChainId, LinkId, PivotId};
-use crate::front::resolved::{Decl, Pair, Value};
+use crate::front::resolved::{Decl, LinkRole, Pair, PairKind, Value};
 use crate::model::{Builder, PointRef};
 
 /// A link of the general model: a declared one, or an unnamed one between two pairs.
