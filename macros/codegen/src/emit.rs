@@ -33,7 +33,7 @@ pub fn expand(
     let mobility = model
         .mobility
         .clone()
-        .unwrap_or_else(|| crate::model::mobility::of(mech).describe());
+        .unwrap_or_else(|| model.counted.clone());
     let listing = listing(model, &equation_text, &jac, &jacobian_text).replacen(
         "\nunknowns:",
         &format!("\nmobility: {mobility}\nunknowns:"),

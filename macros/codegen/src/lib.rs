@@ -2,10 +2,12 @@
 //! so that every phase is testable without rustc.
 //!
 //! Pipeline, one folder or file per phase, arrows one way:
-//! [`front`] (parse, check) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form
-//! shapes, the general model) → [`simplify`] (duplicates, rank at home) → [`expr`] (the symbolic
-//! IR every phase shares) → [`factor`] (the elimination plan for ∂F/∂v, with the pivot order of
-//! [`pivot_order`]) → [`emit`], [`emit_factor`] and [`emit_lu`] (the Rust).
+//! [`front`] (parse; resolve: every check, then names to typed ids in one resolved
+//! declaration) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form shapes,
+//! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates,
+//! rank at home) → [`expr`] (the symbolic IR every phase shares) → [`factor`] (the elimination
+//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]) → [`emit`], [`emit_factor`] and
+//! [`emit_lu`] (the Rust).
 
 pub mod emit;
 pub mod emit_factor;
@@ -53,36 +55,25 @@ fn fallback_name(input: &TokenStream) -> Option<syn::Ident> {
 }
 
 fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
-    let mech = parse(input)?;
-    let model = model::build(&mech)?;
-    let platform = mech.platform.as_ref();
-    let home = match (
-        platform.and_then(|p| p.home),
-        platform.and_then(|p| p.home_inputs.as_ref()),
-    ) {
+    let mech: front::ast::Mechanism = syn::parse2(input)?;
+    let mut errors = front::errors::Errors::default();
+    let model = mech
+        .resolve(&mut errors)
+        .and_then(|decl| model::build(&decl, &mut errors).map(|m| (decl, m)));
+    let Some((decl, model)) = model else {
+        return Err(errors.into_error());
+    };
+    let home = match (decl.platform.home, &decl.platform.home_inputs) {
         (Some(home), _) => Some(model::reference::check(&model, home)?),
-        // The joint values: forward kinematics from the declared configuration.
-        (None, Some((span, values))) => {
-            // Every input has its value (the resolver checked), in the model's order.
-            let target: Vec<f64> = model
-                .inputs
-                .iter()
-                .map(|name| {
-                    values
-                        .iter()
-                        .find(|(n, _)| n == name)
-                        .map_or(f64::NAN, |(_, v)| v.value)
-                })
-                .collect();
-            Some(
-                model::home_inputs::solve(&model, &target)
-                    .map_err(|msg| syn::Error::new(*span, msg))?,
-            )
-        }
+        // The joint values (one per input, by the resolver): forward kinematics from the
+        // declared configuration.
+        (None, Some((span, target))) => Some(
+            model::home_inputs::solve(&model, target).map_err(|msg| syn::Error::new(*span, msg))?,
+        ),
         // The general model is always checked at home (identity pose if none is declared).
         (None, None) if model.mobility.is_some() => Some(model::reference::check(
             &model,
-            (mech.name.span(), model.home_pose),
+            (decl.name.span(), model.home_pose),
         )?),
         (None, None) => None,
     };
@@ -96,7 +87,12 @@ pub fn parse(input: TokenStream) -> syn::Result<front::ast::Mechanism> {
     Ok(mech)
 }
 
-/// Parses, validates and models a declaration: the generated system without emitting code.
+/// Parses, resolves and models a declaration: the generated system without emitting code.
 pub fn model(input: TokenStream) -> syn::Result<model::Model> {
-    model::build(&parse(input)?)
+    let mech: front::ast::Mechanism = syn::parse2(input)?;
+    let mut errors = front::errors::Errors::default();
+    let built = mech
+        .resolve(&mut errors)
+        .and_then(|decl| model::build(&decl, &mut errors));
+    built.ok_or_else(|| errors.into_error())
 }

@@ -233,3 +233,52 @@ fn a_passive_slide_on_a_base_rail_is_modelled_not_a_panic() {
     };
     assert!(e.contains("2 active joint variables but mobility 5"), "{e}");
 }
+
+/// Sliders placed from the base with literal offsets, one different value each: every pair
+/// keeps its own (one slot per pair, named for its chain), and the declared configuration
+/// assembles with each input at its own offset. Before, all such pairs shared the first
+/// pair's slot, `P.offset`, and the others read a wrong offset.
+#[test]
+fn literal_offsets_of_sliders_from_the_base_are_per_pair() {
+    let m = build(quote! {
+        pub struct Prs;
+        params {
+            rb = 100.0, rp = 50.0, l = 150.0, h = 250.0,
+            hc = h - sqrt(l * l - (rb - rp) * (rb - rp)),
+            c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0),
+        }
+        base {
+            A1 = [rb, 0.0, 0.0], B1 = [rb, 0.0, 1.0],
+            A2 = [rb * c2, rb * s2, 0.0], B2 = [rb * c2, rb * s2, 1.0],
+            A3 = [rb * c2, -rb * s2, 0.0], B3 = [rb * c2, -rb * s2, 1.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 250.0]) {
+            G1 = [rp, 0.0, 0.0], G2 = [rp * c2, rp * s2, 0.0], G3 = [rp * c2, -rp * s2, 0.0],
+        }
+        link slider1 { C1 = [rb, 0.0, hc], D1 = [rb, 1.0, hc] }
+        link slider2 { C2 = [rb * c2, rb * s2, hc], D2 = [rb * c2 - s2, rb * s2 + c2, hc] }
+        link slider3 { C3 = [rb * c2, -rb * s2, hc], D3 = [rb * c2 + s2, -rb * s2 + c2, hc] }
+        link leg1 { } link leg2 { } link leg3 { }
+        chain c1 = base - P(active s1, axis = A1 -> B1, offset = 100.0) - slider1 - R(passive, axis = C1 -> D1) - leg1 - S(G1) - platform;
+        chain c2 = base - P(active s2, axis = A2 -> B2, offset = 101.0) - slider2 - R(passive, axis = C2 -> D2) - leg2 - S(G2) - platform;
+        chain c3 = base - P(active s3, axis = A3 -> B3, offset = 102.0) - slider3 - R(passive, axis = C3 -> D3) - leg3 - S(G3) - platform;
+    });
+    let offsets: Vec<(&str, f64)> = m
+        .slots
+        .iter()
+        .filter(|s| s.name.ends_with(".offset"))
+        .map(|s| (s.name.as_str(), s.default))
+        .collect();
+    assert_eq!(
+        offsets,
+        [
+            ("c1.offset", 100.0),
+            ("c2.offset", 101.0),
+            ("c3.offset", 102.0)
+        ]
+    );
+    let mut home = m.general_home_inputs.clone();
+    home.sort_by_key(|h| h.0);
+    home.dedup();
+    assert_eq!(home, [(0, 100.0), (1, 101.0), (2, 102.0)]);
+}

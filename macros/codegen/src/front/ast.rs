@@ -18,6 +18,7 @@
 //!              | "axis" "=" IDENT "->" IDENT | "offset" "=" coord | "lead" "=" coord
 //! ```
 
+pub use crate::front::value::{Coord, Number};
 use proc_macro2::Span;
 use syn::parse::{Parse, ParseStream};
 use syn::{bracketed, parenthesized, token, Attribute, Ident, Result, Token, Visibility};
@@ -36,27 +37,6 @@ pub struct Mechanism {
 pub struct Param {
     pub name: Ident,
     pub default: Number,
-}
-
-#[derive(Clone)]
-pub struct Number {
-    pub value: f64,
-    pub span: Span,
-}
-
-#[derive(Clone)]
-pub enum Coord {
-    Literal(Number),
-    Param(Ident),
-}
-
-impl Coord {
-    pub fn span(&self) -> Span {
-        match self {
-            Coord::Literal(n) => n.span,
-            Coord::Param(i) => i.span(),
-        }
-    }
 }
 
 pub struct Pivot {

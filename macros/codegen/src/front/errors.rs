@@ -23,6 +23,17 @@ impl Errors {
         self.0.is_none()
     }
 
+    /// Every mistake reported, as one error (a phase that gave up without a reason is a bug
+    /// in the generator, and says so rather than let the build pass).
+    pub fn into_error(self) -> syn::Error {
+        self.0.unwrap_or_else(|| {
+            syn::Error::new(
+                proc_macro2::Span::call_site(),
+                "linkage: the generator stopped without a reason (a bug; please report it)",
+            )
+        })
+    }
+
     pub fn finish(self) -> syn::Result<()> {
         match self.0 {
             Some(e) => Err(e),

@@ -12,8 +12,7 @@
 //! kinematics puts the mechanism for them, solved at compile time from the declared geometry's
 //! own configuration (see `model::home_inputs`).
 
-use crate::front::ast::Number;
-use crate::front::value::{value, Scope};
+use crate::front::value::{value, Number, Scope};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
 use syn::{bracketed, parenthesized, Ident, Result, Token};

@@ -1,59 +1,28 @@
 //! Name resolution, the one pass after parsing: links, pivots and joint variables are entered
 //! in one table ([`Symbols`]), parameters and every name a declaration uses are checked against
 //! it, and every pair's arguments against the one table of what each pair kind takes
-//! (`Accepts`). Never builds tokens; collects every mistake into the shared [`Errors`] so that
-//! the user sees them all in one build. (The model still looks pivots up by name; with names
-//! global, which this pass enforces, that is unambiguous.)
+//! ([`crate::front::accepts`]); the inputs in [`crate::front::inputs`]. Never builds tokens; collects every mistake into the shared [`Errors`] so that
+//! the user sees them all in one build. Once they pass, the declaration is lowered to its
+//! resolved form ([`crate::front::resolved`]): names become typed ids, and no later phase looks
+//! anything up by name.
 //!
 //! Pivot names are global: an axis `A -> B` names its pivots without their links, so one name
 //! on two links is an error here rather than a silent choice later. A joint variable names one
 //! input; several pairs may share it only where each declares it `active shared NAME`, and
 //! only if it means the same quantity (an angle, or a length) in each.
 
-use crate::front::ast::{ChainDecl, ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
+use crate::front::accepts::{Accepts, Need};
+use crate::front::ast::{ChainItem, Coord, LinkDecl, Mechanism, PairDecl, PairKind};
 pub use crate::front::errors::Errors;
-use proc_macro2::Span;
+use crate::front::inputs::{home_inputs, inputs, InputSymbol};
+use crate::front::resolved::Decl;
 use std::collections::HashMap;
 use syn::Ident;
-
-/// What a joint variable measures.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum Quantity {
-    /// A rotation (R, H, a C's first variable), radians.
-    Angle,
-    /// A slide (P, a C's second variable), the base frame's length unit.
-    Length,
-}
-
-impl Quantity {
-    fn describe(self) -> &'static str {
-        match self {
-            Quantity::Angle => "an angle",
-            Quantity::Length => "a length",
-        }
-    }
-
-    /// What the `k`-th joint variable of an active pair of this kind measures.
-    fn of(kind: PairKind, k: usize) -> Quantity {
-        match (kind, k) {
-            (PairKind::P, _) | (PairKind::C, 1) => Quantity::Length,
-            _ => Quantity::Angle,
-        }
-    }
-}
 
 /// A pivot: its name and the link (index into [`Symbols::links`]) that declares it.
 pub struct PivotSymbol {
     pub name: Ident,
     pub link: usize,
-}
-
-/// A joint input: the pairs it drives (chain name and the variable's token).
-pub struct InputSymbol {
-    pub name: Ident,
-    pub quantity: Quantity,
-    pub shared: bool,
-    pub uses: Vec<(String, Span)>,
 }
 
 /// The resolved names of a declaration: links (base, platform, then the others, in declaration
@@ -92,8 +61,19 @@ impl Mechanism {
         self.all_links().find(|l| l.name == *name)
     }
 
-    /// Resolves every name and checks every pair; the mistakes go to `errors`.
-    pub fn resolve(&self, errors: &mut Errors) -> Symbols {
+    /// Resolves every name and checks every pair; the mistakes go to `errors`. The resolved
+    /// declaration when there are none.
+    pub fn resolve(&self, errors: &mut Errors) -> Option<Decl> {
+        let symbols = self.symbols(errors);
+        if !errors.is_empty() {
+            return None;
+        }
+        let inputs: Vec<Ident> = symbols.inputs.iter().map(|i| i.name.clone()).collect();
+        crate::front::resolved::lower(self, &inputs, errors)
+    }
+
+    /// The name tables, every check run.
+    fn symbols(&self, errors: &mut Errors) -> Symbols {
         let mut symbols = Symbols::default();
         for link in self.all_links() {
             let id = symbols.links.len();
@@ -423,70 +403,6 @@ impl Mechanism {
     }
 }
 
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Need {
-    No,
-    Optional,
-    Required,
-}
-
-/// What each pair kind takes: the one table every argument is checked against.
-struct Accepts {
-    /// Names its centre pivot (`S(C)`, `U(C, ...)`).
-    centre: bool,
-    axis: Need,
-    offset: bool,
-    lead: Need,
-    /// Joint variables when active; `None`: no active form is modelled.
-    variables: Option<usize>,
-    /// Whether a passive form is modelled (degree ≤ 2).
-    passive: bool,
-}
-
-impl Accepts {
-    fn of(kind: PairKind) -> Accepts {
-        let base = Accepts {
-            centre: false,
-            axis: Need::Required,
-            offset: false,
-            lead: Need::No,
-            variables: Some(1),
-            passive: true,
-        };
-        match kind {
-            // Active: yaw, pitch and roll of the link after it relative to the link before.
-            PairKind::S => Accepts {
-                centre: true,
-                axis: Need::No,
-                variables: Some(3),
-                ..base
-            },
-            // Active: the turns about its first and its second axis.
-            PairKind::U => Accepts {
-                centre: true,
-                axis: Need::Optional,
-                variables: Some(2),
-                ..base
-            },
-            PairKind::R => base,
-            PairKind::P => Accepts {
-                axis: Need::Optional,
-                offset: true,
-                ..base
-            },
-            PairKind::C => Accepts {
-                variables: Some(2),
-                ..base
-            },
-            PairKind::H => Accepts {
-                lead: Need::Required,
-                passive: false,
-                ..base
-            },
-        }
-    }
-}
-
 fn neighbour(items: &[ChainItem], k: usize, forward: bool) -> Option<&Ident> {
     let idx = if forward {
         k.checked_add(1)?
@@ -496,102 +412,6 @@ fn neighbour(items: &[ChainItem], k: usize, forward: bool) -> Option<&Ident> {
     match items.get(idx)? {
         ChainItem::Link(l) => Some(l),
         ChainItem::Pair(_) => None,
-    }
-}
-
-/// The inputs in chain order, each with the pairs it drives; a name used by several pairs must
-/// be `shared` at each, and mean the same quantity.
-fn inputs(chains: &[ChainDecl], errors: &mut Errors) -> Vec<InputSymbol> {
-    let mut out: Vec<InputSymbol> = Vec::new();
-    let mut shared_at: Vec<Vec<bool>> = Vec::new();
-    for c in chains {
-        for item in &c.items {
-            let ChainItem::Pair(p) = item else { continue };
-            if p.active.is_none() {
-                continue;
-            }
-            for (k, v) in p.variables.iter().enumerate() {
-                let quantity = Quantity::of(p.kind, k);
-                let shared = p.shared;
-                match out.iter().position(|i| i.name == *v) {
-                    None => {
-                        out.push(InputSymbol {
-                            name: v.clone(),
-                            quantity,
-                            shared,
-                            uses: vec![(c.name.to_string(), v.span())],
-                        });
-                        shared_at.push(vec![shared]);
-                    }
-                    Some(i) => {
-                        let first = &out[i];
-                        let letter = p.kind.letter();
-                        if !(shared && first.shared) {
-                            errors.push(v.span(), format!(
-                                "duplicate joint variable `{v}`: it drives a pair in chain `{}` already; an input that drives several pairs is declared `shared` at each, e.g. `{letter}(active shared {v}, ...)`",
-                                first.uses[0].0
-                            ));
-                        } else if quantity != first.quantity {
-                            errors.push(v.span(), format!(
-                                "shared input `{v}` is {} in chain `{}` but {} here: an input shared by several pairs measures the same quantity in each",
-                                first.quantity.describe(), first.uses[0].0, quantity.describe()
-                            ));
-                        }
-                        out[i].uses.push((c.name.to_string(), v.span()));
-                        shared_at[i].push(shared);
-                    }
-                }
-            }
-        }
-    }
-    for i in &out {
-        if i.shared && i.uses.len() == 1 {
-            errors.push(i.uses[0].1, format!(
-                "input `{}` is declared `shared` but drives one pair only: `shared` is for an input that several pairs share (declare it at each of them)",
-                i.name
-            ));
-        }
-    }
-    out
-}
-
-/// `home = inputs(...)` names every input once, and nothing else.
-fn home_inputs(
-    span: Span,
-    values: &[(Ident, crate::front::ast::Number)],
-    inputs: &[InputSymbol],
-    errors: &mut Errors,
-) {
-    for (k, (name, _)) in values.iter().enumerate() {
-        if values[..k].iter().any(|(n, _)| n == name) {
-            errors.push(
-                name.span(),
-                format!("input `{name}` is given twice in `home`"),
-            );
-        } else if !inputs.iter().any(|i| i.name == *name) {
-            let known: Vec<String> = inputs.iter().map(|i| format!("`{}`", i.name)).collect();
-            errors.push(
-                name.span(),
-                format!(
-                    "`home` gives a value to `{name}`, which is not an input; the inputs are {}",
-                    known.join(", ")
-                ),
-            );
-        }
-    }
-    let missing: Vec<String> = inputs
-        .iter()
-        .filter(|i| !values.iter().any(|(n, _)| *n == i.name))
-        .map(|i| format!("`{}`", i.name))
-        .collect();
-    if !missing.is_empty() {
-        errors.push(
-            span,
-            format!(
-                "`home = inputs(...)` gives every input its value; missing: {}",
-                missing.join(", ")
-            ),
-        );
     }
 }
 

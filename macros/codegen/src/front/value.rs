@@ -11,9 +11,32 @@
 //! moves the coordinate); any other expression is evaluated where it is declared, with the
 //! parameters' declared values.
 
-use crate::front::ast::{Coord, Number};
+use proc_macro2::Span;
 use syn::parse::ParseStream;
 use syn::{parenthesized, token, Ident, LitFloat, LitInt, Result, Token};
+
+/// A number as written, evaluated, with its span.
+#[derive(Clone)]
+pub struct Number {
+    pub value: f64,
+    pub span: Span,
+}
+
+/// A coordinate: a bare parameter (linked to it at run time) or a value.
+#[derive(Clone)]
+pub enum Coord {
+    Literal(Number),
+    Param(Ident),
+}
+
+impl Coord {
+    pub fn span(&self) -> Span {
+        match self {
+            Coord::Literal(n) => n.span,
+            Coord::Param(i) => i.span(),
+        }
+    }
+}
 
 /// The parameters declared so far, with their values.
 pub type Scope = [(String, f64)];

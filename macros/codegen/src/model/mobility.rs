@@ -2,8 +2,7 @@
 //! freedoms it counts but no input can drive: the spin of a leg or rod about the line through
 //! its two spherical joints.
 
-use crate::front::ast::{Mechanism, PairDecl, PairKind};
-use crate::model::{normalize, Normalized};
+use crate::front::resolved::{Chain, Decl, Pair, PairKind};
 
 pub struct Mobility {
     pub links: usize,
@@ -45,8 +44,8 @@ fn freedoms(kind: PairKind) -> usize {
 
 /// A chain's last two joints both spherical: the link between them can spin about the line
 /// through their centres without moving anything.
-fn idle_spin(n: &Normalized) -> usize {
-    let spherical = |p: &PairDecl| p.kind == PairKind::S && p.active.is_none();
+fn idle_spin(n: &Chain) -> usize {
+    let spherical = |p: &Pair| p.kind == PairKind::S && !p.active;
     match n.pairs.as_slice() {
         [.., a, b] if spherical(a) && spherical(b) => 1,
         [a, slider, b] if spherical(a) && slider.kind == PairKind::P && spherical(b) => 1,
@@ -54,19 +53,18 @@ fn idle_spin(n: &Normalized) -> usize {
     }
 }
 
-pub fn of(m: &Mechanism) -> Mobility {
+pub fn of(d: &Decl) -> Mobility {
     let mut mob = Mobility {
         links: 2,
         joints: 0,
         freedoms: 0,
         idle: 0,
     };
-    for c in &m.chains {
-        let n = normalize(m, c);
+    for n in &d.chains {
         mob.links += n.links.len().saturating_sub(2);
         mob.joints += n.pairs.len();
         mob.freedoms += n.pairs.iter().map(|p| freedoms(p.kind)).sum::<usize>();
-        mob.idle += idle_spin(&n);
+        mob.idle += idle_spin(n);
     }
     mob
 }

@@ -199,20 +199,17 @@ pub fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), S
 /// that depend on each other, the later in that order is left out.
 pub fn rank_at_home(
     model: &mut Model,
-    m: &crate::front::ast::Mechanism,
+    d: &crate::front::resolved::Decl,
     priority: &[u8],
 ) -> syn::Result<()> {
-    let span = m
-        .platform
-        .as_ref()
-        .and_then(|p| {
-            p.home
-                .map(|(s, _)| s)
-                .or_else(|| p.home_inputs.as_ref().map(|(s, _)| *s))
-        })
-        .unwrap_or_else(|| m.name.span());
-    let declared = m.platform.as_ref().is_some_and(|p| p.home.is_some());
-    let by_inputs = m.platform.as_ref().is_some_and(|p| p.home_inputs.is_some());
+    let p = &d.platform;
+    let span = p
+        .home
+        .map(|(s, _)| s)
+        .or_else(|| p.home_inputs.as_ref().map(|(s, _)| *s))
+        .unwrap_or_else(|| d.name.span());
+    let declared = p.home.is_some();
+    let by_inputs = p.home_inputs.is_some();
     let fail = |msg: String| {
         let hint = if declared {
             ""
@@ -229,7 +226,7 @@ pub fn rank_at_home(
     let mut order: Vec<usize> = (0..model.equations.len()).collect();
     order.sort_by_key(|&i| (priority.get(i).copied().unwrap_or(u8::MAX), i));
     let ranked = crate::simplify::rank::at_home(&model.equations, &order, n, inputs, &v, &x, &c);
-    let gk = crate::model::mobility::of(m);
+    let gk = crate::model::mobility::of(d);
     let rule = format!(
         "rank of ∂F/∂(v, x) at home: M = {n} + {inputs} − {} = {} (Grübler–Kutzbach says {})",
         n as i64 + inputs as i64 - ranked.mobility,
@@ -238,7 +235,7 @@ pub fn rank_at_home(
     );
     if ranked.mobility != inputs as i64 {
         return Err(syn::Error::new(
-            m.name.span(),
+            d.name.span(),
             format!(
                 "the mechanism has {inputs} active joint variable{} but mobility {} ({rule}); declare one active pair per degree of freedom",
                 if inputs == 1 { "" } else { "s" },
@@ -248,7 +245,7 @@ pub fn rank_at_home(
     }
     if ranked.rank_v < n {
         return Err(syn::Error::new(
-            m.name.span(),
+            d.name.span(),
             format!(
                 "∂F/∂v has rank {} for {n} unknown coordinates at home: the home configuration is singular, or the inputs leave a link free to spin or a point that nothing holds",
                 ranked.rank_v

@@ -81,15 +81,15 @@ pub fn platform_equations(b: &mut Builder, frame: [usize; 3], k: usize, coplanar
     }
 }
 
-/// Eq. 3 for a moving link of the general model, on its points (`name`, how it enters the
-/// equations, where it is at home). A link with two points keeps their distance (its declared
+/// Eq. 3 for a moving link of the general model, on its points (`name`, its expression in the
+/// unknowns, where it is at home). A link with two points keeps their distance (its declared
 /// `length`, if any); with more, three frame points keep their distances and every other point
 /// is a combination of them: on the line (collinear form), in their plane (coplanar form), or
 /// off it (with the cross product, mirror-free). Equations in no unknown are left out.
 pub fn link_equations(
     b: &mut Builder,
     link: &str,
-    members: &[(String, crate::model::general::Repr, PointRef)],
+    members: &[(String, Vec3, PointRef)],
     length: Option<Expr>,
 ) {
     let n = members.len();
@@ -100,7 +100,7 @@ pub fn link_equations(
         .iter()
         .map(|(_, _, at)| Vector3::from(b.home(*at)))
         .collect();
-    let e = |k: usize| members[k].1.expr().clone();
+    let e = |k: usize| members[k].1.clone();
     let push = |b: &mut Builder, eq: Expr| {
         if eq.degree() > 0 {
             b.equations.push(eq);

@@ -15,57 +15,69 @@
 //! Eq. 2, written `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry.
 
 use crate::expr::{self, Expr, Vec3};
-use crate::front::ast::{ChainDecl, ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
-use crate::model::{is_point_joint, normalize, role, Builder, Inverse, PointRef, Recipe};
-use proc_macro2::Span;
-use syn::Ident;
+use crate::front::ids::{ChainId, InputId, LinkId, PivotId};
+use crate::front::resolved::{Decl, LinkRole, Pair, PairKind, Value};
+use crate::model::builder::Scalar;
+use crate::model::{is_point_joint, Builder, Inverse, PointRef, Recipe};
+use syn::Error;
+
+/// A platform pivot a chain ends on: its id and its place among the platform's pivots.
+#[derive(Clone, Copy)]
+pub struct PlatformPivot {
+    pub id: PivotId,
+    pub index: usize,
+}
 
 pub enum Shape<'a> {
     Leg {
-        anchor: &'a Ident,
-        slider: &'a PairDecl,
-        platform: &'a Ident,
+        anchor: PivotId,
+        slider: &'a Pair,
+        /// The slider's one input.
+        input: InputId,
+        platform: PlatformPivot,
     },
     Rod {
-        anchor: &'a Ident,
-        rod: &'a Ident,
-        length: &'a Coord,
-        platform: &'a Ident,
+        anchor: PivotId,
+        rod: LinkId,
+        length: Value,
+        platform: PlatformPivot,
     },
     Driven {
-        driver: &'a PairDecl,
-        axis: (&'a Ident, &'a Ident),
+        driver: &'a Pair,
+        axis: [PivotId; 2],
         /// The lead of a helical driver.
-        lead: Option<&'a Coord>,
-        link: &'a Ident,
-        tip: &'a Ident,
-        rod: &'a Ident,
-        length: &'a Coord,
-        platform: &'a Ident,
+        lead: Option<Value>,
+        link: LinkId,
+        tip: PivotId,
+        rod: LinkId,
+        length: Value,
+        platform: PlatformPivot,
     },
     Swing {
-        hinge: &'a PairDecl,
-        axis: (&'a Ident, &'a Ident),
-        slider: &'a PairDecl,
-        platform: &'a Ident,
+        hinge: &'a Pair,
+        axis: [PivotId; 2],
+        slider: &'a Pair,
+        /// The slider's one input.
+        input: InputId,
+        platform: PlatformPivot,
     },
 }
 
 impl Shape<'_> {
     /// Whether the links the shape eliminates belong to its chain alone.
-    pub fn links_private(&self, private: &dyn Fn(&Ident) -> bool) -> bool {
+    pub fn links_private(&self, private: &dyn Fn(LinkId) -> bool) -> bool {
         match self {
-            Shape::Rod { rod, .. } | Shape::Driven { rod, .. } => private(rod),
+            Shape::Rod { rod, .. } | Shape::Driven { rod, .. } => private(*rod),
             Shape::Leg { .. } | Shape::Swing { .. } => true,
         }
     }
 
-    pub fn platform_pivot(&self) -> &Ident {
+    pub fn platform_pivot(&self) -> PlatformPivot {
         match self {
             Shape::Leg { platform, .. }
             | Shape::Rod { platform, .. }
             | Shape::Driven { platform, .. }
-            | Shape::Swing { platform, .. } => platform,
+            | Shape::Swing { platform, .. } => *platform,
         }
     }
 }
@@ -75,59 +87,37 @@ pub struct ChainModel {
     pub inverse: Inverse,
 }
 
-fn center<'a>(p: &'a PairDecl, chain: &ChainDecl) -> Result<&'a Ident, (Span, String)> {
-    match p.pivots.as_slice() {
-        [c] => Ok(c),
-        _ => Err((
+fn center(d: &Decl, p: &Pair, chain: ChainId) -> Result<PivotId, Error> {
+    match p.centre {
+        Some(c) => Ok(c.id),
+        None => Err(Error::new(
             p.token.span(),
             format!(
                 "pair `{}` in chain `{}` names its centre: one pivot, e.g. `{}(G1)`",
                 p.kind.letter(),
-                chain.name,
+                d.chain(chain).name,
                 p.kind.letter()
             ),
         )),
     }
 }
 
-fn on_link(m: &Mechanism, link: &str, pivot: &Ident) -> bool {
-    m.all_links()
-        .any(|l| l.name == link && l.pivots.iter().any(|p| p.name == *pivot))
-}
-
 /// The axis `A -> B` of a pair must not be given by points that coincide at the declared geometry.
-fn check_axis(m: &Mechanism, p: &PairDecl) -> Result<(), (Span, String)> {
-    let Some((a, b)) = &p.axis else { return Ok(()) };
-    let Some(base) = m.base.as_ref() else {
-        return Ok(());
-    };
-    let point = |n: &Ident| {
-        base.pivots
-            .iter()
-            .find(|q| q.name == *n)
-            .map(|q| q.coords.clone())
-    };
-    let value = |c: &Coord| match c {
-        Coord::Literal(n) => Some(n.value),
-        Coord::Param(name) => m
-            .params
-            .iter()
-            .find(|q| q.name == *name)
-            .map(|q| q.default.value),
-    };
-    if let (Some(pa), Some(pb)) = (point(a), point(b)) {
-        let d: Option<Vec<f64>> = (0..3)
-            .map(|k| Some(value(&pa[k])? - value(&pb[k])?))
-            .collect();
-        let scale = (0..3)
-            .filter_map(|k| value(&pa[k]))
-            .fold(1.0f64, |s, x| s.max(x.abs()));
-        if d.is_some_and(|d| d.iter().map(|x| x * x).sum::<f64>().sqrt() <= 1e-9 * scale) {
-            return Err((
-                b.span(),
+fn check_axis(d: &Decl, p: &Pair) -> Result<(), Error> {
+    let Some([a, b]) = p.axis else { return Ok(()) };
+    let on_base = |q: PivotId| d.pivot(q).link == LinkId::BASE;
+    if on_base(a.id) && on_base(b.id) {
+        let (pa, pb) = (d.point(a.id), d.point(b.id));
+        let dist = (0..3).map(|k| (pa[k] - pb[k]).powi(2)).sum::<f64>().sqrt();
+        let scale = pa.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+        if dist <= 1e-9 * scale {
+            return Err(Error::new(
+                b.span,
                 format!(
-                    "the axis of pair `{}` is given by coincident points `{a}` and `{b}`",
-                    p.kind.letter()
+                    "the axis of pair `{}` is given by coincident points `{}` and `{}`",
+                    p.kind.letter(),
+                    d.pivot(a.id).name,
+                    d.pivot(b.id).name
                 ),
             ));
         }
@@ -137,56 +127,53 @@ fn check_axis(m: &Mechanism, p: &PairDecl) -> Result<(), (Span, String)> {
 
 /// Why a chain is not reduced in closed form: it is not one of the shapes (`None`: the general
 /// model takes it), or it is one with a mistake (`Some`: a spanned error).
-type Fail = Option<(Span, String)>;
+type Fail = Option<Error>;
 
 /// The closed-form shape of a chain from the base to the platform, if it has one.
-pub fn classify<'a>(
-    m: &'a Mechanism,
-    c: &'a ChainDecl,
-) -> Result<Option<Shape<'a>>, (Span, String)> {
-    let ends = (c.items.first(), c.items.last());
-    if !matches!(ends, (Some(ChainItem::Link(a)), Some(ChainItem::Link(b))) if a == "base" && b == "platform")
-    {
+pub fn classify(d: &Decl, c: ChainId) -> Result<Option<Shape<'_>>, Error> {
+    let links = &d.chain(c).links;
+    if links.first() != Some(&Some(LinkId::BASE)) || links.last() != Some(&Some(LinkId::PLATFORM)) {
         return Ok(None);
     }
-    match shape(m, c) {
+    match shape(d, c) {
         Ok(s) => Ok(Some(s)),
         Err(None) => Ok(None),
         Err(Some(e)) => Err(e),
     }
 }
 
-fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
-    let n0 = normalize(m, c);
-    for p in &n0.pairs {
-        check_axis(m, p).map_err(Some)?;
+fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
+    let chain = d.chain(c);
+    for p in &chain.pairs {
+        check_axis(d, p).map_err(Some)?;
     }
-    let n = normalize(m, c);
     let unsupported = || None;
     // A U at both ends of a leg constrains the leg's spin, and with it the platform: only a leg
     // with at least one S reduces to a distance.
-    let ends_ok = |a: &PairDecl, b: &PairDecl| !(a.kind == PairKind::U && b.kind == PairKind::U);
-    let base_axis = |p: &PairDecl| {
+    let ends_ok = |a: &Pair, b: &Pair| !(a.kind == PairKind::U && b.kind == PairKind::U);
+    let on = |link: LinkId, q: PivotId| d.pivot(q).link == link;
+    let base_axis = |p: &Pair| {
         p.axis
-            .as_ref()
-            .is_none_or(|(a, b)| on_link(m, "base", a) && on_link(m, "base", b))
+            .is_none_or(|[a, b]| on(LinkId::BASE, a.id) && on(LinkId::BASE, b.id))
     };
-    let platform_center = |p: &'a PairDecl| -> Result<&'a Ident, Fail> {
-        let g = center(p, c).map_err(Some)?;
-        if !on_link(m, "platform", g) {
-            return Err(None);
+    let platform_center = |p: &Pair| -> Result<PlatformPivot, Fail> {
+        let g = center(d, p, c).map_err(Some)?;
+        match d.platform_pivots().iter().position(|&q| q == g) {
+            Some(index) => Ok(PlatformPivot { id: g, index }),
+            None => Err(None),
         }
-        Ok(g)
     };
-    let base_center = |p: &'a PairDecl| -> Result<&'a Ident, Fail> {
-        let a = center(p, c).map_err(Some)?;
-        if !on_link(m, "base", a) {
+    let base_center = |p: &Pair| -> Result<PivotId, Fail> {
+        let a = center(d, p, c).map_err(Some)?;
+        if !on(LinkId::BASE, a) {
             return Err(None);
         }
         Ok(a)
     };
-    let pairs = &n.pairs;
-    match pairs.as_slice() {
+    let intermediate =
+        |k: usize| chain.links[k].filter(|&l| d.link(l).role == LinkRole::Intermediate);
+    let with_length = |l: Option<LinkId>| l.and_then(|l| d.link(l).length.map(|len| (l, len)));
+    match chain.pairs.as_slice() {
         [s1, slider, s2]
             if is_point_joint(s1)
                 && slider.kind == PairKind::P
@@ -194,22 +181,22 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
                 && ends_ok(s1, s2)
                 && slider.axis.is_none() =>
         {
-            if slider.active.is_none() {
-                return Err(Some((slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", c.name))));
+            if !slider.active {
+                return Err(Some(Error::new(slider.token.span(), format!("the `P` pair of leg `{}` is passive: the leg would not constrain the platform; make it `P(active L)`", chain.name))));
             }
-            single_variable(slider, c).map_err(Some)?;
+            let input = single_variable(slider, &chain.name).map_err(Some)?;
             Ok(Shape::Leg {
                 anchor: base_center(s1)?,
                 slider,
+                input,
                 platform: platform_center(s2)?,
             })
         }
         [s1, s2] if is_point_joint(s1) && is_point_joint(s2) && ends_ok(s1, s2) => {
-            let rod = n.links[1].filter(|l| l.role == LinkRole::Intermediate);
-            match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
+            match with_length(intermediate(1)) {
                 Some((rod, length)) => Ok(Shape::Rod {
                     anchor: base_center(s1)?,
-                    rod: &rod.name,
+                    rod,
                     length,
                     platform: platform_center(s2)?,
                 }),
@@ -225,56 +212,58 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
                 && ends_ok(s1, s2)
                 && base_axis(driver) =>
         {
-            if driver.active.is_none() {
+            if !driver.active {
                 return Err(unsupported());
             }
             let expected = if driver.kind == PairKind::C { 2 } else { 1 };
-            if driver.variables.len() != expected {
-                return Err(Some((
+            if driver.inputs.len() != expected {
+                return Err(Some(Error::new(
                     driver.token.span(),
                     format!(
                         "an active `{}` pair has {expected} joint variable(s), found {}",
                         driver.kind.letter(),
-                        driver.variables.len()
+                        driver.inputs.len()
                     ),
                 )));
             }
-            let Some((ax_a, ax_b)) = &driver.axis else {
-                return Err(Some((
+            let Some([ax_a, ax_b]) = driver.axis else {
+                return Err(Some(Error::new(
                     driver.token.span(),
                     format!(
                         "the `{}` pair of chain `{}` needs its axis: `axis = A -> B` on `base`",
                         driver.kind.letter(),
-                        c.name
+                        chain.name
                     ),
                 )));
             };
             if driver.kind == PairKind::H && driver.lead.is_none() {
-                return Err(Some((
+                return Err(Some(Error::new(
                     driver.token.span(),
-                    "a helical pair needs its `lead = ...`".to_string(),
+                    "a helical pair needs its `lead = ...`",
                 )));
             }
-            let link = match n.links[1] {
-                Some(l) if l.role == LinkRole::Intermediate => l,
-                _ => return Err(Some((driver.token.span(), format!("chain `{}` needs a declared link after its driving pair, holding the centre of the next joint", c.name)))),
+            let Some(link) = intermediate(1) else {
+                return Err(Some(Error::new(driver.token.span(), format!("chain `{}` needs a declared link after its driving pair, holding the centre of the next joint", chain.name))));
             };
-            let tip = center(s1, c).map_err(Some)?;
-            if !link.pivots.iter().any(|p| p.name == *tip) {
-                return Err(Some((
-                    tip.span(),
-                    format!("`{tip}` is not a pivot of link `{}`", link.name),
+            let tip = center(d, s1, c).map_err(Some)?;
+            if !on(link, tip) {
+                return Err(Some(Error::new(
+                    s1.centre.map_or(s1.token.span(), |t| t.span),
+                    format!(
+                        "`{}` is not a pivot of link `{}`",
+                        d.pivot(tip).name,
+                        d.link(link).name
+                    ),
                 )));
             }
-            let rod = n.links[2].filter(|l| l.role == LinkRole::Intermediate);
-            match rod.and_then(|l| l.length.as_ref().map(|len| (l, len))) {
+            match with_length(intermediate(2)) {
                 Some((rod, length)) => Ok(Shape::Driven {
                     driver,
-                    axis: (ax_a, ax_b),
-                    lead: driver.lead.as_ref(),
-                    link: &link.name,
+                    axis: [ax_a.id, ax_b.id],
+                    lead: driver.lead,
+                    link,
                     tip,
-                    rod: &rod.name,
+                    rod,
                     length,
                     platform: platform_center(s2)?,
                 }),
@@ -288,26 +277,24 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
                 && base_axis(hinge)
                 && slider.axis.is_none() =>
         {
-            if hinge.active.is_some() || slider.active.is_none() {
+            if hinge.active || !slider.active {
                 return Err(unsupported());
             }
-            let Some((ax_a, ax_b)) = &hinge.axis else {
-                return Err(Some((
+            let Some([ax_a, ax_b]) = hinge.axis else {
+                return Err(Some(Error::new(
                     hinge.token.span(),
                     format!(
                         "the `R` pair of chain `{}` needs its axis: `axis = A -> B` on `base`",
-                        c.name
+                        chain.name
                     ),
                 )));
             };
-            if role(n.links[0]) != Some(LinkRole::Base) {
-                return Err(unsupported());
-            }
-            single_variable(slider, c).map_err(Some)?;
+            let input = single_variable(slider, &chain.name).map_err(Some)?;
             Ok(Shape::Swing {
                 hinge,
-                axis: (ax_a, ax_b),
+                axis: [ax_a.id, ax_b.id],
                 slider,
+                input,
                 platform: platform_center(s)?,
             })
         }
@@ -315,27 +302,33 @@ fn shape<'a>(m: &'a Mechanism, c: &'a ChainDecl) -> Result<Shape<'a>, Fail> {
     }
 }
 
-fn single_variable(p: &PairDecl, c: &ChainDecl) -> Result<(), (Span, String)> {
-    if p.variables.len() == 1 {
-        Ok(())
-    } else {
-        Err((
+/// The one input of an active slider.
+fn single_variable(p: &Pair, chain: &syn::Ident) -> Result<InputId, Error> {
+    match p.inputs.as_slice() {
+        [input] => Ok(*input),
+        _ => Err(Error::new(
             p.token.span(),
-            format!(
-                "an active `P` pair in chain `{}` has one joint variable",
-                c.name
-            ),
-        ))
+            format!("an active `P` pair in chain `{chain}` has one joint variable"),
+        )),
     }
 }
 
 /// An active slider's joint variable, its offset constant, and the leg length `x + offset`.
-fn leg_length(b: &mut Builder, slider: &PairDecl, chain: &str) -> (usize, Option<Expr>, Expr) {
-    let input = b.input(&slider.variables[0]);
-    let offset = slider
-        .offset
-        .as_ref()
-        .map(|o| b.scalar_constant(&format!("{chain}.offset"), o, format!("offset_{chain}")));
+fn leg_length(
+    b: &mut Builder,
+    slider: &Pair,
+    input: InputId,
+    chain: &str,
+) -> (usize, Option<Expr>, Expr) {
+    let input = input.index();
+    let offset = slider.offset.map(|o| {
+        b.scalar_constant(
+            Scalar::Offset(slider.id),
+            format!("{chain}.offset"),
+            o,
+            format!("offset_{chain}"),
+        )
+    });
     let length = match &offset {
         Some(o) => Expr::plus(Expr::Input(input), o.clone()),
         None => Expr::Input(input),
@@ -344,13 +337,18 @@ fn leg_length(b: &mut Builder, slider: &PairDecl, chain: &str) -> (usize, Option
 }
 
 /// Emits the chain's equations on platform point `p` (of `k` points).
-pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) -> ChainModel {
+pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> ChainModel {
     let g: Vec3 = [0, 1, 2].map(|a| Expr::Unknown(a * k + p));
-    let chain = c.name.to_string();
+    let chain = b.decl.chain(c).name.to_string();
     match shape {
-        Shape::Leg { anchor, slider, .. } => {
-            let a = b.pivot_constants("base", &anchor.to_string());
-            let (input, offset, length) = leg_length(b, slider, &chain);
+        Shape::Leg {
+            anchor,
+            slider,
+            input,
+            ..
+        } => {
+            let a = b.pivot_constants(*anchor);
+            let (input, offset, length) = leg_length(b, slider, *input, &chain);
             let eq = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {
                 equations: vec![eq],
@@ -364,12 +362,18 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
         }
         Shape::Rod {
             anchor,
-            rod,
+            rod: rod_id,
             length,
             ..
         } => {
-            let a = b.pivot_constants("base", &anchor.to_string());
-            let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
+            let a = b.pivot_constants(*anchor);
+            let rod = b.decl.link(*rod_id).name.to_string();
+            let l = b.scalar_constant(
+                Scalar::Length(*rod_id),
+                format!("{rod}.length"),
+                *length,
+                format!("l_{rod}"),
+            );
             let eq = Expr::minus(expr::squared_distance(&g, &a), l.square());
             ChainModel {
                 equations: vec![eq],
@@ -378,17 +382,16 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
         }
         Shape::Driven {
             driver,
-            axis: (ax_a, ax_b),
+            axis: [ax_a, ax_b],
             lead,
-            link,
             tip,
-            rod,
+            rod: rod_id,
             length,
             ..
         } => {
-            let a = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
-            let bb = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
-            let c0 = PointRef::Slots(b.pivot_slots(&link.to_string(), &tip.to_string()));
+            let a = PointRef::Slots(b.pivot_slots(*ax_a));
+            let bb = PointRef::Slots(b.pivot_slots(*ax_b));
+            let c0 = PointRef::Slots(b.pivot_slots(*tip));
             let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
                 [0, 1, 2].map(|k3| {
                     let name = format!("{prefix}{}_{chain}", ["x", "y", "z"][k3]);
@@ -403,12 +406,18 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     )
                 })
             };
-            let l = b.scalar_constant(&format!("{rod}.length"), length, format!("l_{rod}"));
-            let inputs: Vec<usize> = driver.variables.iter().map(|v| b.input(v)).collect();
+            let rod = b.decl.link(*rod_id).name.to_string();
+            let l = b.scalar_constant(
+                Scalar::Length(*rod_id),
+                format!("{rod}.length"),
+                *length,
+                format!("l_{rod}"),
+            );
+            let inputs: Vec<usize> = driver.inputs.iter().map(|i| i.index()).collect();
             let (tip_expr, inverse) = match driver.kind {
                 PairKind::P => {
                     let e = part(b, 0, "e");
-                    let c0e = b.pivot_constants(&link.to_string(), &tip.to_string());
+                    let c0e = b.pivot_constants(*tip);
                     let t = expr::vadd(&c0e, &expr::vscale(&Expr::Input(inputs[0]), &e));
                     let inv = Inverse::PrismaticRod {
                         input: inputs[0],
@@ -450,8 +459,9 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     };
                     if let (PairKind::H, Some(lead)) = (kind, lead) {
                         let lead = b.scalar_constant(
-                            &format!("{chain}.lead"),
-                            lead,
+                            Scalar::Lead(driver.id),
+                            format!("{chain}.lead"),
+                            *lead,
                             format!("lead_{chain}"),
                         );
                         let rise = Expr::Product(vec![
@@ -475,13 +485,14 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
             }
         }
         Shape::Swing {
-            axis: (ax_a, ax_b),
+            axis: [ax_a, ax_b],
             slider,
+            input,
             ..
         } => {
-            let a_slots = PointRef::Slots(b.pivot_slots("base", &ax_a.to_string()));
-            let b_slots = PointRef::Slots(b.pivot_slots("base", &ax_b.to_string()));
-            let a = b.pivot_constants("base", &ax_a.to_string());
+            let a_slots = PointRef::Slots(b.pivot_slots(*ax_a));
+            let b_slots = PointRef::Slots(b.pivot_slots(*ax_b));
+            let a = b.pivot_constants(*ax_a);
             let e: Vec3 = [0, 1, 2].map(|k3| {
                 let name = format!("e{}_{chain}", ["x", "y", "z"][k3]);
                 b.constant(
@@ -494,7 +505,7 @@ pub fn model(b: &mut Builder, c: &ChainDecl, shape: &Shape, p: usize, k: usize) 
                     },
                 )
             });
-            let (input, offset, length) = leg_length(b, slider, &chain);
+            let (input, offset, length) = leg_length(b, slider, *input, &chain);
             let plane = expr::dot(&e, &expr::vsub(&g, &a));
             let dist = Expr::minus(expr::squared_distance(&g, &a), length.square());
             ChainModel {

@@ -3,36 +3,36 @@
 //! `o + u cos θ + w sin θ (+ x e)` with o, u, w derived from the geometry — so it is not solved
 //! for.
 
-use super::err;
+use super::{err, PointId, Topology};
 use crate::expr::{self, Expr, Vec3};
-use crate::front::ast::{PairDecl, PairKind};
+use crate::front::resolved::{Pair, PairKind};
+use crate::model::builder::Scalar;
 use crate::model::{Builder, PointRef, Recipe};
-use proc_macro2::Span;
+use syn::Error;
 
-/// Point `q` (home position `at`) of a link placed by `pair` from the base, in closed form.
+/// Point `q` of a link placed by `pair` from the base, in closed form.
 pub fn placed(
     b: &mut Builder,
-    pair: &PairDecl,
+    topo: &Topology,
+    pair: &Pair,
     inputs: &[usize],
-    q: &str,
-    at: PointRef,
-    homes: &std::collections::HashMap<String, PointRef>,
-) -> Result<Vec3, (Span, String)> {
-    let (ax_a, ax_b) = pair.axis.as_ref().ok_or_else(|| {
-        err(
+    q: PointId,
+) -> Result<Vec3, Error> {
+    let Some([ax_a, ax_b]) = pair.axis else {
+        return Err(err(
             pair.token.span(),
             format!(
                 "the `{}` pair needs its axis: `axis = A -> B`",
                 pair.kind.letter()
             ),
-        )
-    })?;
-    let (Some(&a), Some(&bb)) = (homes.get(&ax_a.to_string()), homes.get(&ax_b.to_string())) else {
-        return Err(err(
-            ax_a.span(),
-            "the axis of this pair names an undeclared pivot",
         ));
     };
+    let (a, bb) = (
+        topo.home(PointId::of(ax_a.id)),
+        topo.home(PointId::of(ax_b.id)),
+    );
+    let at = topo.home(q);
+    let q = topo.name(q);
     let part = |b: &mut Builder, index: usize, prefix: &str| -> Vec3 {
         [0, 1, 2].map(|k3| {
             let name = format!("{prefix}{}_{q}", ["x", "y", "z"][k3]);
@@ -72,9 +72,14 @@ pub fn placed(
         PairKind::P => {
             let e = part(b, 0, "e");
             let mut slide = Expr::Input(inputs[0]);
-            if let Some(o) = &pair.offset {
-                let o =
-                    b.scalar_constant(&format!("{}.offset", pair.token), o, format!("offset_{q}"));
+            if let Some(o) = pair.offset {
+                let o = b.scalar_constant(
+                    Scalar::Offset(pair.id),
+                    // One slot per pair, named for its chain (as the closed-form legs' are).
+                    format!("{}.offset", b.decl.chain(pair.id.chain).name),
+                    o,
+                    format!("offset_{q}"),
+                );
                 slide = Expr::minus(slide, o);
             }
             expr::vadd(&home, &expr::vscale(&slide, &e))
@@ -93,11 +98,12 @@ pub fn placed(
             if kind == PairKind::H || kind == PairKind::C {
                 let e = part(b, 0, "e");
                 let rise = if kind == PairKind::H {
-                    let lead = pair.lead.as_ref().ok_or_else(|| {
+                    let lead = pair.lead.ok_or_else(|| {
                         err(pair.token.span(), "a helical pair needs its `lead = ...`")
                     })?;
                     let lead = b.scalar_constant(
-                        &format!("{}.lead.{q}", pair.token),
+                        Scalar::Lead(pair.id),
+                        format!("{}.lead", b.decl.chain(pair.id.chain).name),
                         lead,
                         format!("lead_{q}"),
                     );

@@ -13,31 +13,30 @@
 //! | `P`, between moving links | — | the link after the pair is the rail's motion plus a slide along the axis ([`prismatic`]) |
 //! | active `R`, `P`, `H`, `C` from the base | — | none: the link after the pair is explicit in the input ([`explicit`]) |
 //!
-//! A link's Eq. 3 then ties its points together. Equations that hold whatever the unknowns
-//! (between base points, or between points placed by the inputs) are dropped; the rest are
-//! checked at the home configuration, where the rank of the Jacobian decides the mobility and
-//! which equations are implied by the others (see [`crate::simplify::rank`]).
+//! The links, the points (by [`PointId`], never by name) and the pairs of the general chains
+//! are gathered first ([`mod@topology`], [`points`]). A link's Eq. 3 then ties its points
+//! together. Equations that hold whatever the unknowns (between base points, or between points
+//! placed by the inputs) are dropped; the rest are checked at the home configuration, where the
+//! rank of the Jacobian decides the mobility and which equations are implied by the others (see
+//! [`crate::simplify::rank`]).
 
 pub mod explicit;
+pub mod points;
 pub mod prismatic;
 pub mod relative;
+pub mod topology;
 pub mod universal;
 
 use crate::expr::{Expr, Vec3};
-use crate::front::ast::{ChainItem, Coord, LinkRole, Mechanism, PairDecl, PairKind};
-use crate::model::{normalize, Builder, PointRef};
+use crate::front::errors::Errors;
+use crate::front::ids::{LinkId, PairId, PivotId};
+use crate::front::resolved::{LinkRole, Pair, PairKind};
+use crate::model::builder::Scalar;
+use crate::model::{Builder, PointRef};
+pub use points::{PointId, Points};
 use proc_macro2::Span;
-use std::collections::HashMap;
-use syn::Ident;
-
-/// A link of the general model: a declared one, or an unnamed one between two pairs.
-pub struct Link {
-    pub name: String,
-    pub role: LinkRole,
-    pub length: Option<Coord>,
-    /// Point names, in order of first use.
-    pub members: Vec<String>,
-}
+use syn::Error;
+pub use topology::{topology, Joint, Link, Topology};
 
 /// How a point enters the equations.
 #[derive(Clone)]
@@ -56,165 +55,40 @@ impl Repr {
     }
 }
 
-/// A pair of a general chain, with the links it joins and its place in the chain.
-pub struct Joint<'a> {
-    pub pair: &'a PairDecl,
-    pub before: usize,
-    pub after: usize,
-    /// Centres of the nearest pairs before and after it in its chain (an S or U centre, an
-    /// R's first axis point), for the directions of legs.
-    pub previous_centre: Option<String>,
-    pub next_centre: Option<String>,
-    /// The points the model adds for this pair (a slide's axis tip, a U's second axis).
-    pub added: Vec<String>,
-}
+/// How every point enters the equations, by [`PointId`]; filled in a fixed order (base, platform,
+/// points the inputs place, then unknowns), so that every member of a link has its entry by
+/// the time the equations read it.
+pub struct Reprs(Vec<Option<Repr>>);
 
-/// The general chains, resolved: links, every point's home position, the pairs.
-pub struct Topology<'a> {
-    pub links: Vec<Link>,
-    pub home: HashMap<String, PointRef>,
-    pub joints: Vec<Joint<'a>>,
-}
-
-impl Topology<'_> {
-    pub fn link(&self, name: &str) -> Option<usize> {
-        self.links.iter().position(|l| l.name == name)
+impl Reprs {
+    pub fn get(&self, q: PointId) -> Option<&Repr> {
+        self.0[q.index()].as_ref()
     }
 
-    fn add_member(&mut self, link: usize, q: &str) {
-        if !self.links[link].members.iter().any(|m| m == q) {
-            self.links[link].members.push(q.to_string());
+    fn set(&mut self, q: PointId, r: Repr) {
+        self.0[q.index()] = Some(r);
+    }
+
+    /// The expression of a point the model has placed; zeros for one it has not, which
+    /// [`model`] reports as an error before any equation is kept.
+    pub fn expr(&self, q: PointId) -> Vec3 {
+        match self.get(q) {
+            Some(r) => r.expr().clone(),
+            None => [Expr::Num(0.0), Expr::Num(0.0), Expr::Num(0.0)],
         }
     }
 }
 
-pub fn err(span: Span, msg: impl Into<String>) -> (Span, String) {
-    (span, msg.into())
+pub fn err(span: Span, msg: impl std::fmt::Display) -> Error {
+    Error::new(span, msg)
 }
 
-/// A link's name in messages: unnamed links between two pairs are `chain#k`, k counted from
-/// the chain's first link.
-pub fn named(link: &str) -> String {
-    match link.split_once('#') {
-        Some((chain, k)) => format!("link {k} of chain `{chain}` (unnamed)"),
-        None => format!("`{link}`"),
+/// A link's name in messages: an unnamed link between two pairs by its place in its chain.
+pub fn named(link: &Link) -> String {
+    match (link.declared, &link.unnamed) {
+        (None, Some((chain, k))) => format!("link {k} of chain `{chain}` (unnamed)"),
+        _ => format!("`{}`", link.name),
     }
-}
-
-/// The centre a pair gives a leg's direction: an S or U centre, an R's first axis point.
-fn centre(p: &PairDecl) -> Option<&Ident> {
-    match p.kind {
-        PairKind::S | PairKind::U => p.pivots.first(),
-        PairKind::R => p.axis.as_ref().map(|(a, _)| a),
-        PairKind::P | PairKind::C | PairKind::H => None,
-    }
-}
-
-/// Collects the links and pairs of the `general` chains and adds the points their pairs need.
-pub fn topology<'a>(
-    b: &mut Builder,
-    m: &'a Mechanism,
-    general: &[&'a crate::front::ast::ChainDecl],
-) -> Result<Topology<'a>, (Span, String)> {
-    let mut topo = Topology {
-        links: Vec::new(),
-        home: HashMap::new(),
-        joints: Vec::new(),
-    };
-    for l in m.all_links() {
-        for p in &l.pivots {
-            let slots = b.pivot_slots(&l.name.to_string(), &p.name.to_string());
-            let at = if l.role == LinkRole::Platform {
-                PointRef::PlatformHome(slots)
-            } else {
-                PointRef::Slots(slots)
-            };
-            topo.home.entry(p.name.to_string()).or_insert(at);
-        }
-    }
-    for c in general {
-        // A chain that begins or ends at a pair has no link there: the checker reports it.
-        if !matches!(c.items.first(), Some(ChainItem::Link(_)))
-            || !matches!(c.items.last(), Some(ChainItem::Link(_)))
-        {
-            return Err(err(c.name.span(), "a chain begins and ends at a link"));
-        }
-        let n = normalize(m, c);
-        let mut ids = Vec::new();
-        for (k, l) in n.links.iter().enumerate() {
-            let (name, role, length) = match l {
-                Some(l) => (l.name.to_string(), l.role, l.length.clone()),
-                None => (format!("{}#{k}", c.name), LinkRole::Intermediate, None),
-            };
-            let id = match topo.link(&name) {
-                Some(id) => id,
-                None => {
-                    let members = l.map_or(Vec::new(), |l| {
-                        l.pivots.iter().map(|p| p.name.to_string()).collect()
-                    });
-                    topo.links.push(Link {
-                        name,
-                        role,
-                        length,
-                        members,
-                    });
-                    topo.links.len() - 1
-                }
-            };
-            ids.push(id);
-        }
-        for (k, p) in n.pairs.iter().enumerate() {
-            let previous_centre = n.pairs[..k]
-                .iter()
-                .rev()
-                .find_map(|q| centre(q))
-                .map(|c| c.to_string());
-            let next_centre = n.pairs[k + 1..]
-                .iter()
-                .find_map(|q| centre(q))
-                .map(|c| c.to_string());
-            topo.joints.push(Joint {
-                pair: p,
-                before: ids[k],
-                after: ids[k + 1],
-                previous_centre,
-                next_centre,
-                added: Vec::new(),
-            });
-        }
-    }
-    // The points the pairs share.
-    for k in 0..topo.joints.len() {
-        let j = &topo.joints[k];
-        let (p, i, a) = (j.pair, j.before, j.after);
-        let shared: Vec<&Ident> = match p.kind {
-            PairKind::S | PairKind::U => p.pivots.iter().take(1).collect(),
-            PairKind::R => p.axis.iter().flat_map(|(a, b)| [a, b]).collect(),
-            PairKind::P | PairKind::C | PairKind::H => Vec::new(),
-        };
-        for q in shared {
-            if !topo.home.contains_key(&q.to_string()) {
-                return Err(err(q.span(), format!("unknown pivot `{q}`")));
-            }
-            topo.add_member(i, &q.to_string());
-            topo.add_member(a, &q.to_string());
-        }
-    }
-    // The points some pairs add: a U's second axis, a slide's axis.
-    for k in 0..topo.joints.len() {
-        let p = topo.joints[k].pair;
-        match p.kind {
-            PairKind::U => universal::add_points(b, &mut topo, k)?,
-            PairKind::P => prismatic::add_points(b, &mut topo, k)?,
-            PairKind::C | PairKind::H if p.active.is_none() => {
-                prismatic::add_points(b, &mut topo, k)?
-            }
-            // Active C and H: a link placed from the base (`explicit`) or by its motion
-            // relative to the link before (`relative`); neither adds points to the links.
-            PairKind::C | PairKind::H | PairKind::S | PairKind::R => {}
-        }
-    }
-    Ok(topo)
 }
 
 /// What the general chains add to the model.
@@ -235,68 +109,70 @@ pub struct Added {
 }
 
 /// Builds the equations of the general chains into `b`. `platform` gives the platform's points
-/// (by pivot name); returns the platform's foreign members (points declared on other links).
+/// that are unknowns (by pivot); returns the platform's foreign members (points declared on
+/// other links), or `None` with the reasons in `errors`.
 pub fn model(
     b: &mut Builder,
-    m: &Mechanism,
     topo: &Topology,
-    explicit_pairs: &[(&PairDecl, String)],
-    platform: &HashMap<String, Vec3>,
+    explicit_pairs: &[(&Pair, usize)],
+    platform: &[(PivotId, Vec3)],
     added: &mut Added,
-) -> Result<Vec<(String, Repr)>, (Span, String)> {
-    let mut repr: HashMap<String, Repr> = HashMap::new();
+    errors: &mut Errors,
+) -> Option<Vec<(PointId, Repr)>> {
+    let d = b.decl;
+    let mut repr = Reprs(vec![None; topo.points.len()]);
     // Base pivots are constants.
-    if let Some(base) = &m.base {
-        for p in &base.pivots {
-            let name = p.name.to_string();
-            let e = b.pivot_constants("base", &name);
-            repr.insert(name, Repr::Known(e));
-        }
+    for &p in d.base_pivots() {
+        let e = b.pivot_constants(p);
+        repr.set(PointId::of(p), Repr::Known(e));
     }
     // Points the model adds to the base (the axis tip of a slide on a base rail) are constants
     // too, derived from the geometry.
     for l in topo.links.iter().filter(|l| l.role == LinkRole::Base) {
-        for q in &l.members {
-            if !repr.contains_key(q) {
-                let at = topo.home[q];
+        for &q in &l.members {
+            if repr.get(q).is_none() {
+                let at = topo.home(q);
                 let e = [0, 1, 2].map(|index| {
                     b.constant(
-                        format!("{}_{q}", ["x", "y", "z"][index]),
+                        format!("{}_{}", ["x", "y", "z"][index], topo.name(q)),
                         crate::model::Recipe::Coordinate { point: at, index },
                     )
                 });
-                repr.insert(q.clone(), Repr::Known(e));
+                repr.set(q, Repr::Known(e));
             }
         }
     }
-    for (name, e) in platform {
-        repr.insert(name.clone(), Repr::Unknown(e.clone()));
+    for (p, e) in platform {
+        repr.set(PointId::of(*p), Repr::Unknown(e.clone()));
     }
+    let mut ok = true;
     // Links placed by an active pair from the base: their points in closed form (Table I).
     let mut coincide: Vec<Vec3> = Vec::new();
-    for (pair, link) in explicit_pairs {
-        let Some(li) = topo.link(link) else {
-            continue;
-        };
-        let inputs: Vec<usize> = pair.variables.iter().map(|v| b.input_index(v)).collect();
+    for &(pair, li) in explicit_pairs {
+        let inputs: Vec<usize> = pair.inputs.iter().map(|i| i.index()).collect();
         for &input in &inputs {
             // Zero at the declared configuration; a slide with an offset reads the offset there.
-            let home = match (&pair.kind, &pair.offset) {
-                (PairKind::P, Some(o)) => b.coord_value(o),
+            let home = match (pair.kind, pair.offset) {
+                (PairKind::P, Some(o)) => d.value(o),
                 _ => 0.0,
             };
             added.home_inputs.push((input, home));
         }
-        for q in topo.links[li].members.clone() {
-            if matches!(repr.get(&q), Some(Repr::Known(_))) {
+        for &q in &topo.links[li].members {
+            if matches!(repr.get(q), Some(Repr::Known(_))) {
                 continue;
             }
-            let e = explicit::placed(b, pair, &inputs, &q, topo.home[&q], &topo.home)?;
-            match repr.get(&q) {
-                Some(Repr::Unknown(u)) => coincide.push(crate::expr::vsub(u, &e)),
-                _ => {
-                    repr.insert(q.clone(), Repr::Known(e));
+            let e = match explicit::placed(b, topo, pair, &inputs, q) {
+                Ok(e) => e,
+                Err(e) => {
+                    errors.add(e);
+                    ok = false;
+                    break;
                 }
+            };
+            match repr.get(q) {
+                Some(Repr::Unknown(u)) => coincide.push(crate::expr::vsub(u, &e)),
+                _ => repr.set(q, Repr::Known(e)),
             }
         }
     }
@@ -305,17 +181,37 @@ pub fn model(
         if l.role == LinkRole::Base {
             continue;
         }
-        for q in &l.members {
-            if !repr.contains_key(q) {
+        for &q in &l.members {
+            if repr.get(q).is_none() {
                 let first = b.unknowns.len();
                 for axis in ["x", "y", "z"] {
-                    b.unknowns.push(format!("{axis}_{q}"));
+                    b.unknowns.push(format!("{axis}_{}", topo.name(q)));
                 }
-                added.points.push((q.clone(), topo.home[q], first));
-                repr.insert(
-                    q.clone(),
+                added
+                    .points
+                    .push((topo.name(q).to_string(), topo.home(q), first));
+                repr.set(
+                    q,
                     Repr::Unknown([0, 1, 2].map(|k| Expr::Unknown(first + k))),
                 );
+            }
+        }
+    }
+    // Every point a link holds now has its place (base, platform, explicit or unknown): the
+    // equations below read them. Checked rather than assumed, so that a gap is an error and
+    // never a point at the origin.
+    for l in &topo.links {
+        for &q in &l.members {
+            if repr.get(q).is_none() {
+                errors.push(
+                    d.name.span(),
+                    format!(
+                        "point `{}` of {} is placed by nothing (a bug in the generator; please report it)",
+                        topo.name(q),
+                        named(l)
+                    ),
+                );
+                ok = false;
             }
         }
     }
@@ -325,9 +221,9 @@ pub fn model(
     }
     // The links an active pair places relative to the link before it: every point of theirs is
     // placed, so their Eq. 3 is implied.
-    let is_explicit = |p: &PairDecl| explicit_pairs.iter().any(|(q, _)| std::ptr::eq(*q, p));
+    let is_explicit = |p: PairId| explicit_pairs.iter().any(|(q, _)| q.id == p);
     let placed: Vec<usize> = (0..topo.joints.len())
-        .filter(|&k| relative::applies(topo, k, is_explicit(topo.joints[k].pair)))
+        .filter(|&k| relative::applies(topo, k, is_explicit(topo.joints[k].pair.id)))
         .map(|k| topo.joints[k].after)
         .collect();
     added.platform_placed = placed
@@ -336,37 +232,42 @@ pub fn model(
     // Eq. 3 for every moving intermediate link that is not explicit.
     let links_from = b.equations.len();
     for (li, l) in topo.links.iter().enumerate() {
-        let explicit = explicit_pairs.iter().any(|(_, n)| *n == l.name);
+        let explicit = explicit_pairs.iter().any(|&(_, e)| e == li);
         if l.role != LinkRole::Intermediate || explicit || placed.contains(&li) {
             continue;
         }
-        let members: Vec<(String, Repr, PointRef)> = l
+        let members: Vec<(String, Vec3, PointRef)> = l
             .members
             .iter()
-            .map(|q| (q.clone(), repr[q].clone(), topo.home[q]))
+            .map(|&q| (topo.name(q).to_string(), repr.expr(q), topo.home(q)))
             .collect();
-        let length = l
-            .length
-            .as_ref()
-            .map(|c| b.scalar_constant(&format!("{}.length", l.name), c, format!("l_{}", l.name)));
+        let length = match (l.declared, l.length) {
+            (Some(id), Some(len)) => Some(b.scalar_constant(
+                Scalar::Length(id),
+                format!("{}.length", l.name),
+                len,
+                format!("l_{}", l.name),
+            )),
+            _ => None,
+        };
         crate::model::rigid::link_equations(b, &l.name, &members, length);
     }
     added.link_equations = links_from..b.equations.len();
     // Three points of every named moving link locate it.
     for l in &topo.links {
-        if l.role != LinkRole::Intermediate || l.name.contains('#') {
+        if l.role != LinkRole::Intermediate || l.declared.is_none() {
             continue;
         }
-        let homes: Vec<[f64; 3]> = l.members.iter().map(|q| b.home(topo.home[q])).collect();
+        let homes: Vec<[f64; 3]> = l.members.iter().map(|&q| b.home(topo.home(q))).collect();
         let frame = crate::model::rigid::frame_of(&homes).map(|f| {
             f.map(|i| {
-                let q = &l.members[i];
-                let home = match topo.home[q] {
+                let q = l.members[i];
+                let home = match topo.home(q) {
                     PointRef::Auto(_) => crate::model::HomeOf::Constants([0, 1, 2].map(|index| {
                         let c = b.constant(
-                            format!("h{}_{q}", ["x", "y", "z"][index]),
+                            format!("h{}_{}", ["x", "y", "z"][index], topo.name(q)),
                             crate::model::Recipe::Coordinate {
-                                point: topo.home[q],
+                                point: topo.home(q),
                                 index,
                             },
                         );
@@ -374,7 +275,7 @@ pub fn model(
                     })),
                     at => crate::model::HomeOf::Point(at),
                 };
-                (repr[q].expr().clone(), home)
+                (repr.expr(q), home)
             })
         });
         added.links.push(crate::model::LinkFrame {
@@ -385,29 +286,40 @@ pub fn model(
     // The pairs' own equations.
     for (k, joint) in topo.joints.iter().enumerate() {
         let p = joint.pair;
-        if is_explicit(p) {
+        if is_explicit(p.id) {
             continue;
         }
-        if relative::applies(topo, k, false) {
-            relative::equations(b, topo, &repr, k, &mut added.home_inputs)?;
-            continue;
-        }
-        match p.kind {
-            PairKind::U => universal::equation(b, topo, &repr, k),
-            PairKind::P | PairKind::C | PairKind::H => {
-                prismatic::equations(b, topo, &repr, k, added)?
+        let done = if relative::applies(topo, k, false) {
+            relative::equations(b, topo, &repr, k, &mut added.home_inputs).map(|_| ())
+        } else {
+            match p.kind {
+                PairKind::U => {
+                    universal::equation(b, topo, &repr, k);
+                    Ok(())
+                }
+                PairKind::P | PairKind::C | PairKind::H => {
+                    prismatic::equations(b, topo, &repr, k, added)
+                }
+                PairKind::S | PairKind::R => Ok(()),
             }
-            PairKind::S | PairKind::R => {}
+        };
+        if let Err(e) = done {
+            errors.add(e);
+            ok = false;
         }
     }
     // The platform's members declared elsewhere (a shared centre, an axis point on another link).
     let mut foreign = Vec::new();
-    if let Some(pl) = topo.links.iter().find(|l| l.role == LinkRole::Platform) {
-        for q in &pl.members {
-            if !platform.contains_key(q) {
-                foreign.push((q.clone(), repr[q].clone()));
+    if let Some(pl) = topo.link(LinkId::PLATFORM) {
+        for &q in &topo.links[pl].members {
+            let own = topo
+                .points
+                .pivot(q)
+                .is_some_and(|p| platform.iter().any(|(o, _)| *o == p));
+            if let (false, Some(r)) = (own, repr.get(q)) {
+                foreign.push((q, r.clone()));
             }
         }
     }
-    Ok(foreign)
+    ok.then_some(foreign)
 }

@@ -12,21 +12,23 @@
 //! of q in the rail's frame at home (T a third point of the rail, when q is off the axis). An
 //! active slide is `s = x − x_home`, a passive one an unknown: degree 2 either way.
 
-use super::{err, named, Added, Repr, Topology};
+use super::points::Addition;
+use super::{err, named, Added, PointId, Reprs, Topology};
 use crate::expr::{self, Expr};
-use crate::front::ast::PairKind;
+use crate::front::resolved::{LinkRole, PairKind};
+use crate::model::builder::Scalar;
 use crate::model::{Auto, Builder, PointRef, Recipe};
 use nalgebra::Vector3;
-use proc_macro2::Span;
 use std::collections::HashMap;
+use syn::Error;
 
 /// The rail's origin and the point the axis runs towards.
-fn axis_ends(topo: &Topology, k: usize) -> Result<(String, String), (Span, String)> {
+fn axis_ends(topo: &Topology, k: usize) -> Result<(PointId, PointId), Error> {
     let j = &topo.joints[k];
     let p = j.pair;
-    match (&p.axis, &j.previous_centre, &j.next_centre) {
-        (Some((a, b)), _, _) => Ok((a.to_string(), b.to_string())),
-        (None, Some(from), Some(to)) => Ok((from.clone(), to.clone())),
+    match (p.axis, j.previous_centre, j.next_centre) {
+        (Some([a, b]), _, _) => Ok((PointId::of(a.id), PointId::of(b.id))),
+        (None, Some(from), Some(to)) => Ok((from, to)),
         _ => Err(err(
             p.token.span(),
             "this prismatic pair needs its axis: `axis = A -> B`, or joints with centres on both sides (a leg)",
@@ -37,55 +39,62 @@ fn axis_ends(topo: &Topology, k: usize) -> Result<(String, String), (Span, Strin
 /// Whether the pair is a link placed from the base in closed form instead (see `explicit`).
 fn from_base(topo: &Topology, k: usize) -> bool {
     let j = &topo.joints[k];
-    topo.links[j.before].role == crate::front::ast::LinkRole::Base
-        && j.pair.active.is_some()
+    topo.links[j.before].role == LinkRole::Base
+        && j.pair.active
         && j.pair.axis.is_some()
-        && topo.links[j.after].role == crate::front::ast::LinkRole::Intermediate
+        && topo.links[j.after].role == LinkRole::Intermediate
 }
 
-pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), (Span, String)> {
+pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), Error> {
     if from_base(topo, k) {
         return Ok(());
     }
     let p = topo.joints[k].pair;
-    let cylinder = p.kind == PairKind::C && p.active.is_none();
+    let cylinder = p.kind == PairKind::C && !p.active;
     if p.kind != PairKind::P && !cylinder {
         return Err(err(
             p.token.span(),
             format!(
                 "a `{}` pair is modelled where it is active and joins the base to a declared link; here it joins {} to {}",
                 p.kind.letter(),
-                named(&topo.links[topo.joints[k].before].name),
-                named(&topo.links[topo.joints[k].after].name)
+                named(&topo.links[topo.joints[k].before]),
+                named(&topo.links[topo.joints[k].after])
             ),
         ));
     }
     let (origin, towards) = axis_ends(topo, k)?;
     let tip = b.auto_point(Auto::Along {
-        origin: topo.home[&origin],
-        toward: topo.home[&towards],
+        origin: topo.home(origin),
+        toward: topo.home(towards),
     });
+    let ends = format!("{}_{}", topo.name(origin), topo.name(towards));
     if b.home(tip).iter().any(|x| !x.is_finite()) {
         return Err(err(
             p.token.span(),
-            format!("the axis of this prismatic pair, from `{origin}` to `{towards}`, has no length at home"),
+            format!(
+                "the axis of this prismatic pair, from `{}` to `{}`, has no length at home",
+                topo.name(origin),
+                topo.name(towards)
+            ),
         ));
     }
-    let name = format!("{origin}_{towards}");
+    let at = topo
+        .points
+        .add(Addition::AxisTip { origin, towards }, ends.clone(), tip);
     let rail = topo.joints[k].before;
-    topo.home.insert(name.clone(), tip);
-    topo.add_member(rail, &origin);
-    topo.add_member(rail, &name);
-    topo.joints[k].added.push(name.clone());
+    topo.add_member(rail, origin);
+    topo.add_member(rail, at);
+    topo.joints[k].added.push(at);
     if cylinder {
         // The slider's own two points on the axis, where the rail's are at home.
         let slider = topo.joints[k].after;
-        for (copy, at) in [
-            (format!("{name}_c0"), topo.home[&origin]),
-            (format!("{name}_c1"), tip),
-        ] {
-            topo.home.insert(copy.clone(), at);
-            topo.add_member(slider, &copy);
+        for (end, home) in [topo.home(origin), tip].into_iter().enumerate() {
+            let copy = topo.points.add(
+                Addition::Copy { axis: at, end },
+                format!("{ends}_c{end}"),
+                home,
+            );
+            topo.add_member(slider, copy);
         }
     }
     Ok(())
@@ -94,60 +103,62 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
 pub fn equations(
     b: &mut Builder,
     topo: &Topology,
-    repr: &HashMap<String, Repr>,
+    repr: &Reprs,
     k: usize,
     added: &mut Added,
-) -> Result<(), (Span, String)> {
+) -> Result<(), Error> {
     let j = &topo.joints[k];
     let p = j.pair;
     let (origin, towards) = axis_ends(topo, k)?;
-    let Some(tip) = j.added.first() else {
+    let Some(&tip) = j.added.first() else {
         return Ok(());
     };
     let (rail, slider) = (&topo.links[j.before], &topo.links[j.after]);
-    let homes: HashMap<String, Vector3<f64>> = rail
+    let homes: HashMap<PointId, Vector3<f64>> = rail
         .members
         .iter()
         .chain(&slider.members)
-        .chain([&origin, &towards, tip])
-        .map(|q| (q.clone(), Vector3::from(b.home(topo.home[q]))))
+        .chain([&origin, &towards, &tip])
+        .map(|&q| (q, Vector3::from(b.home(topo.home(q)))))
         .collect();
-    let home = |q: &str| homes[q];
-    let (o, t) = (home(&origin), home(tip));
+    let home = |q: PointId| homes[&q];
+    let (o, t) = (home(origin), home(tip));
     let axis = t - o;
     let scale = rail
         .members
         .iter()
         .chain(&slider.members)
-        .map(|q| (home(q) - o).norm())
+        .map(|&q| (home(q) - o).norm())
         .fold(1.0f64, f64::max);
-    let off_axis = |q: &str| (home(q) - o).cross(&axis).norm() > 1e-9 * scale;
+    let off_axis = |q: PointId| (home(q) - o).cross(&axis).norm() > 1e-9 * scale;
     // A third point of the rail, off its axis, for slider points off the axis.
     let third = rail
         .members
         .iter()
-        .filter(|q| **q != origin && *q != tip)
-        .max_by(|a, b| {
+        .copied()
+        .filter(|&q| q != origin && q != tip)
+        .max_by(|&a, &b| {
             let (da, db) = (
                 (home(a) - o).cross(&axis).norm(),
                 (home(b) - o).cross(&axis).norm(),
             );
             da.total_cmp(&db)
         })
-        .filter(|q| off_axis(q))
-        .cloned();
+        .filter(|&q| off_axis(q));
+    let ends = format!("{}_{}", topo.name(origin), topo.name(towards));
     // The slide from home.
-    let slide = match (&p.active, p.variables.first()) {
-        (Some(_), Some(v)) => {
-            let input = b.input_index(v);
-            let offset = p.offset.as_ref().map(|c| {
+    let slide = match (p.active, p.inputs.first()) {
+        (true, Some(v)) => {
+            let input = v.index();
+            let offset = p.offset.map(|c| {
                 b.scalar_constant(
-                    &format!("{origin}_{towards}.offset"),
+                    Scalar::Offset(p.id),
+                    format!("{ends}.offset"),
                     c,
-                    format!("offset_{origin}_{towards}"),
+                    format!("offset_{ends}"),
                 )
             });
-            let offset_value = p.offset.as_ref().map_or(0.0, |c| b.coord_value(c));
+            let offset_value = p.offset.map_or(0.0, |c| b.decl.value(c));
             if p.axis.is_some() {
                 // x reads the offset at home.
                 added.home_inputs.push((input, offset_value));
@@ -158,15 +169,15 @@ pub fn equations(
             } else {
                 // A leg: x + offset is the distance between the joint centres.
                 let d0 = b.constant(
-                    format!("d_{origin}_{towards}"),
+                    format!("d_{ends}"),
                     Recipe::Distance {
-                        a: topo.home[&origin],
-                        b: topo.home[&towards],
+                        a: topo.home(origin),
+                        b: topo.home(towards),
                     },
                 );
                 added
                     .home_inputs
-                    .push((input, (home(&towards) - o).norm() - offset_value));
+                    .push((input, (home(towards) - o).norm() - offset_value));
                 let length = match offset {
                     Some(off) => Expr::plus(Expr::Input(input), off),
                     None => Expr::Input(input),
@@ -176,17 +187,17 @@ pub fn equations(
         }
         _ => {
             let first = b.unknowns.len();
-            b.unknowns.push(format!("s_{origin}_{towards}"));
+            b.unknowns.push(format!("s_{ends}"));
             added.scalars.push(first);
             Expr::Unknown(first)
         }
     };
-    let e = |q: &str| repr[q].expr().clone();
-    let (eo, et) = (e(&origin), e(tip));
+    let e = |q: PointId| repr.expr(q);
+    let (eo, et) = (e(origin), e(tip));
     let direction = expr::vsub(&et, &eo);
-    let at = |q: &str| -> PointRef { topo.home[q] };
+    let at = |q: PointId| -> PointRef { topo.home(q) };
     let cylinder = p.kind == PairKind::C;
-    for q in &slider.members {
+    for &q in &slider.members {
         // The turn about a cylindrical pair's axis is free: its slider's other points follow
         // from the slider's own Eq. 3.
         if cylinder && off_axis(q) {
@@ -196,9 +207,9 @@ pub fn equations(
             let c: Vec<Expr> = (0..2)
                 .map(|index| {
                     b.constant(
-                        format!("k{index}_{q}_{}", rail.name.replace('#', "_")),
+                        format!("k{index}_{}_{}", topo.name(q), rail.name.replace('#', "_")),
                         Recipe::Collinear {
-                            line: [at(&origin), at(tip)],
+                            line: [at(origin), at(tip)],
                             point: at(q),
                             index,
                         },
@@ -207,13 +218,14 @@ pub fn equations(
                 .collect();
             vec![expr::vscale(&c[0], &eo), expr::vscale(&c[1], &et)]
         } else {
-            let Some(third) = &third else {
+            let Some(third) = third else {
                 return Err(err(
                     p.token.span(),
                     format!(
-                        "`{q}` on {} is off the slide's axis, but the rail {} has no point off the axis to carry it: declare one",
-                        named(&slider.name),
-                        named(&rail.name)
+                        "`{}` on {} is off the slide's axis, but the rail {} has no point off the axis to carry it: declare one",
+                        topo.name(q),
+                        named(slider),
+                        named(rail)
                     ),
                 ));
             };
@@ -223,9 +235,9 @@ pub fn equations(
             let c: Vec<Expr> = (0..if coplanar { 3 } else { 4 })
                 .map(|index| {
                     b.constant(
-                        format!("k{index}_{q}_{}", rail.name.replace('#', "_")),
+                        format!("k{index}_{}_{}", topo.name(q), rail.name.replace('#', "_")),
                         Recipe::Rigid {
-                            frame: [at(&origin), at(tip), at(third)],
+                            frame: [at(origin), at(tip), at(third)],
                             point: at(q),
                             index,
                             coplanar,

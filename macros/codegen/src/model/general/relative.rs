@@ -27,12 +27,12 @@
 //! (an R's axis points, an S's or U's centre) need no equation, and the link's own Eq. 3 is
 //! implied, so it is left out.
 
-use super::{err, named, Repr, Topology};
+use super::{err, named, PointId, Reprs, Topology};
 use crate::expr::{self, Expr, Vec3};
-use crate::front::ast::{LinkRole, PairDecl, PairKind};
+use crate::front::resolved::{LinkRole, Pair, PairKind, PivotRef};
+use crate::model::builder::Scalar;
 use crate::model::{Auto, Builder, PointRef, Recipe};
-use proc_macro2::Span;
-use std::collections::HashMap;
+use syn::Error;
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
@@ -40,7 +40,7 @@ const AXES: [&str; 3] = ["x", "y", "z"];
 /// [`super::prismatic`]) that is not a link placed from the base in closed form.
 pub fn applies(topo: &Topology, k: usize, explicit: bool) -> bool {
     let p = topo.joints[k].pair;
-    p.active.is_some() && p.kind != PairKind::P && !explicit
+    p.active && p.kind != PairKind::P && !explicit
 }
 
 /// How the link before the pair carries a point of the link's home configuration.
@@ -61,31 +61,31 @@ impl Carrier {
     fn of(
         b: &Builder,
         topo: &Topology,
-        repr: &HashMap<String, Repr>,
+        repr: &Reprs,
         link: usize,
-        pair: &PairDecl,
-    ) -> Result<Carrier, (Span, String)> {
+        pair: &Pair,
+    ) -> Result<Carrier, Error> {
         let l = &topo.links[link];
         if l.role == LinkRole::Base {
             return Ok(Carrier::Base);
         }
-        let homes: Vec<[f64; 3]> = l.members.iter().map(|q| b.home(topo.home[q])).collect();
+        let homes: Vec<[f64; 3]> = l.members.iter().map(|&q| b.home(topo.home(q))).collect();
         let Some(f) = crate::model::rigid::frame_of(&homes) else {
             return Err(err(
                 pair.token.span(),
                 format!(
                     "the active `{}` turns its link relative to {}, whose points are all on one line: that link's own turn about the line is not defined, and with it neither is the pair's; declare a pivot on it off the line",
                     pair.kind.letter(),
-                    named(&l.name)
+                    named(l)
                 ),
             ));
         };
-        let e = |i: usize| repr[&l.members[f[i]]].expr().clone();
+        let e = |i: usize| repr.expr(l.members[f[i]]);
         let (p1, p2, p3) = (e(0), e(1), e(2));
         let (e1, e2) = (expr::vsub(&p2, &p1), expr::vsub(&p3, &p1));
         let e3 = expr::cross(&e1, &e2);
         Ok(Carrier::Link {
-            frame: f.map(|i| topo.home[&l.members[i]]),
+            frame: f.map(|i| topo.home(l.members[i])),
             origin: p1,
             basis: [e1, e2, e3],
         })
@@ -198,21 +198,21 @@ fn direction(b: &mut Builder, a: PointRef, to: PointRef, name: &str) -> Vec3 {
 pub fn equations(
     b: &mut Builder,
     topo: &Topology,
-    repr: &HashMap<String, Repr>,
+    repr: &Reprs,
     k: usize,
     home_inputs: &mut Vec<(usize, f64)>,
-) -> Result<usize, (Span, String)> {
+) -> Result<usize, Error> {
     let j = &topo.joints[k];
     let p = j.pair;
-    let inputs: Vec<usize> = p.variables.iter().map(|v| b.input_index(v)).collect();
+    let inputs: Vec<usize> = p.inputs.iter().map(|i| i.index()).collect();
     // Every input of these pairs reads zero at the declared configuration.
     home_inputs.extend(inputs.iter().map(|&i| (i, 0.0)));
     let (before, after) = (&topo.links[j.before], &topo.links[j.after]);
     let carrier = Carrier::of(b, topo, repr, j.before, p)?;
     let link_tag = before.name.replace('#', "_");
-    let motion = Motion::of(b, topo, p, &inputs)?;
-    for q in &after.members {
-        if before.members.contains(q) {
+    let motion = Motion::of(b, topo, k, &inputs)?;
+    for &q in &after.members {
+        if before.holds(q) {
             // A point both links hold needs no equation only where the pair's motion leaves
             // it: on its axis, at its centre. Anywhere else one link would carry it and the
             // other not, so the pair could not move at all.
@@ -220,9 +220,10 @@ pub fn equations(
                 return Err(err(
                     p.token.span(),
                     format!(
-                        "pivot `{q}` is on both {} and {}, off the {} of the active `{}` between them: the pair's motion would move it with one link and not the other, so the pair could not turn; declare it on one of the two links only",
-                        named(&before.name),
-                        named(&after.name),
+                        "pivot `{}` is on both {} and {}, off the {} of the active `{}` between them: the pair's motion would move it with one link and not the other, so the pair could not turn; declare it on one of the two links only",
+                        topo.name(q),
+                        named(before),
+                        named(after),
                         if matches!(p.kind, PairKind::S | PairKind::U) { "centre" } else { "axis" },
                         p.kind.letter()
                     ),
@@ -230,10 +231,10 @@ pub fn equations(
             }
             continue;
         }
-        let at = topo.home[q];
-        let t = motion.coefficients(b, &carrier, at, &format!("_{q}_{link_tag}"))?;
+        let at = topo.home(q);
+        let t = motion.coefficients(b, &carrier, at, &format!("_{}_{link_tag}", topo.name(q)))?;
         let placed = carrier.place(&t);
-        let here = repr[q].expr();
+        let here = repr.expr(q);
         for a in 0..3 {
             let eq = Expr::minus(here[a].clone(), placed[a].clone());
             if eq.degree() == 0 {
@@ -242,8 +243,8 @@ pub fn equations(
                     format!(
                         "the active `{}` joins {} to {}, which are both placed by inputs already: its input would be fixed by the others",
                         p.kind.letter(),
-                        named(&before.name),
-                        named(&after.name)
+                        named(before),
+                        named(after)
                     ),
                 ));
             }
@@ -256,32 +257,24 @@ pub fn equations(
 /// Whether the motion of pair `p` leaves point `q` where it is: its own pivots and the points
 /// the model adds for it, a point on its axis (R, C, H: the axis pivots slide with a C or H
 /// too, and are shared all the same), a point at its centre (S, U).
-fn stays(b: &Builder, topo: &Topology, p: &PairDecl, added: &[String], q: &str) -> bool {
-    let own = p.pivots.iter().any(|c| c == q)
-        || p.axis.as_ref().is_some_and(|(a, c)| a == q || c == q)
-        || added.iter().any(|a| a == q);
+fn stays(b: &Builder, topo: &Topology, p: &Pair, added: &[PointId], q: PointId) -> bool {
+    let is = |r: PivotRef| PointId::of(r.id) == q;
+    let own = p.centre.is_some_and(is)
+        || p.axis.is_some_and(|[a, c]| is(a) || is(c))
+        || added.contains(&q);
     if own {
         return true;
     }
-    let Some(&at) = topo.home.get(q) else {
-        return false;
-    };
-    let here = nalgebra::Vector3::from(b.home(at));
-    let home = |name: &syn::Ident| {
-        topo.home
-            .get(&name.to_string())
-            .map(|&r| nalgebra::Vector3::from(b.home(r)))
-    };
+    let here = nalgebra::Vector3::from(b.home(topo.home(q)));
+    let home = |r: PivotRef| nalgebra::Vector3::from(b.home(topo.home(PointId::of(r.id))));
     let scale = 1.0 + here.amax();
-    match (&p.axis, p.pivots.first()) {
-        (Some((a, c)), _) => match (home(a), home(c)) {
-            (Some(a), Some(c)) => {
-                let e = c - a;
-                e.norm() > 0.0 && e.cross(&(here - a)).norm() / e.norm() <= 1e-9 * scale
-            }
-            _ => false,
-        },
-        (None, Some(centre)) => home(centre).is_some_and(|c| (here - c).norm() <= 1e-9 * scale),
+    match (p.axis, p.centre) {
+        (Some([a, c]), _) => {
+            let (a, c) = (home(a), home(c));
+            let e = c - a;
+            e.norm() > 0.0 && e.cross(&(here - a)).norm() / e.norm() <= 1e-9 * scale
+        }
+        (None, Some(centre)) => (here - home(centre)).norm() <= 1e-9 * scale,
         (None, None) => false,
     }
 }
@@ -327,22 +320,15 @@ impl Rotation {
 }
 
 impl Motion {
-    fn of(
-        b: &mut Builder,
-        topo: &Topology,
-        p: &PairDecl,
-        inputs: &[usize],
-    ) -> Result<Motion, (Span, String)> {
-        let home = |q: &syn::Ident| -> Result<PointRef, (Span, String)> {
-            topo.home
-                .get(&q.to_string())
-                .copied()
-                .ok_or_else(|| err(q.span(), format!("unknown pivot `{q}`")))
-        };
+    fn of(b: &mut Builder, topo: &Topology, k: usize, inputs: &[usize]) -> Result<Motion, Error> {
+        let joint = &topo.joints[k];
+        let p = joint.pair;
+        let home = |q: PivotRef| topo.home(PointId::of(q.id));
+        let name = |q: PivotRef| topo.name(PointId::of(q.id));
         let input = |i: usize| Expr::Input(inputs[i]);
         match p.kind {
             PairKind::R | PairKind::C | PairKind::H => {
-                let Some((a, bb)) = &p.axis else {
+                let Some([a, bb]) = p.axis else {
                     return Err(err(
                         p.token.span(),
                         format!(
@@ -351,10 +337,11 @@ impl Motion {
                         ),
                     ));
                 };
-                let (a_at, b_at) = (home(a)?, home(bb)?);
+                let (a_at, b_at) = (home(a), home(bb));
+                let (a, bb) = (name(a), name(bb));
                 if linkage_geometry::along(b.home(a_at), b.home(b_at)).is_err() {
                     return Err(err(
-                        bb.span(),
+                        p.axis.map_or(p.token.span(), |[_, to]| to.span),
                         format!("the axis of this `{}` pair, from `{a}` to `{bb}`, has no length at home", p.kind.letter()),
                     ));
                 }
@@ -362,11 +349,12 @@ impl Motion {
                 let slide = match p.kind {
                     PairKind::C => Some(input(1)),
                     PairKind::H => {
-                        let lead = p.lead.as_ref().ok_or_else(|| {
+                        let lead = p.lead.ok_or_else(|| {
                             err(p.token.span(), "a helical pair needs its `lead = ...`")
                         })?;
                         let lead = b.scalar_constant(
-                            &format!("{}.lead.{a}_{bb}", p.token),
+                            Scalar::Lead(p.id),
+                            format!("{}.lead", b.decl.chain(p.id.chain).name),
                             lead,
                             format!("lead_{a}_{bb}"),
                         );
@@ -389,40 +377,36 @@ impl Motion {
                 })
             }
             PairKind::S => {
-                let Some(c) = p.pivots.first() else {
+                let Some(c) = p.centre else {
                     return Err(err(
                         p.token.span(),
                         "an `S` pair names its centre, e.g. `S(C)`",
                     ));
                 };
                 Ok(Motion::Turn {
-                    centre: home(c)?,
+                    centre: home(c),
                     rotation: Rotation::Euler([input(0), input(1), input(2)]),
                 })
             }
             PairKind::U => {
-                let (Some(c), Some((pa, qa))) = (p.pivots.first(), &p.axis) else {
+                let (Some(c), Some([pa, qa])) = (p.centre, p.axis) else {
                     return Err(err(
                         p.token.span(),
                         "an active `U` names its centre and its first axis: `U(C, axis = P -> Q, active a b)`",
                     ));
                 };
-                let joint = topo
-                    .joints
-                    .iter()
-                    .find(|j| std::ptr::eq(j.pair, p))
-                    .expect("the pair is one of the topology's joints");
-                let Some(second) = joint.added.first() else {
+                let Some(&second) = joint.added.first() else {
                     return Err(err(p.token.span(), "this `U` has no second axis"));
                 };
-                let centre = home(c)?;
-                let first = direction(b, home(pa)?, home(qa)?, &format!("{pa}_{qa}"));
-                let second = direction(b, centre, topo.home[second], second);
+                let centre = home(c);
+                let first = direction(b, home(pa), home(qa), &format!("{}_{}", name(pa), name(qa)));
+                let second = direction(b, centre, topo.home(second), topo.name(second));
                 let (t1, t2) = (input(0), input(1));
                 // The first axis is fixed in the link that declares P and Q: the outer turn if
                 // that is the link before the pair.
-                let first_before = topo.links[joint.before].members.iter().any(|m| pa == m)
-                    && topo.links[joint.before].members.iter().any(|m| qa == m);
+                let holder = &topo.links[joint.before];
+                let first_before =
+                    holder.holds(PointId::of(pa.id)) && holder.holds(PointId::of(qa.id));
                 let rotation = if first_before {
                     Rotation::Axes {
                         outer: (first, t1),
@@ -447,7 +431,7 @@ impl Motion {
         carrier: &Carrier,
         at: PointRef,
         tag: &str,
-    ) -> Result<[Expr; 3], (Span, String)> {
+    ) -> Result<[Expr; 3], Error> {
         Ok(match self {
             Motion::Axis {
                 a,

@@ -4,57 +4,60 @@
 //! is fixed in the other link, which carries the point `C_u` one unit along it. The constraint:
 //! `(Q − P)·(C_u − C) = 0`, the two axes stay perpendicular — degree 2 in the points.
 
-use super::{err, named, Repr, Topology};
+use super::points::Addition;
+use super::{err, named, PointId, Reprs, Topology};
 use crate::expr;
 use crate::model::{Auto, Builder};
-use proc_macro2::Span;
-use std::collections::HashMap;
+use syn::Error;
 
-pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), (Span, String)> {
+pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), Error> {
     let j = &topo.joints[k];
     let p = j.pair;
-    let Some(centre) = p.pivots.first() else {
+    let Some(centre) = p.centre else {
         return Err(err(
             p.token.span(),
             "a `U` pair names its centre, e.g. `U(C, axis = P -> Q)`",
         ));
     };
-    let Some((pa, qa)) = &p.axis else {
+    let Some([pa, qa]) = p.axis else {
         return Err(err(
             p.token.span(),
             "this universal joint needs its first axis, `U(C, axis = P -> Q)` with P and Q on one of the links it joins (outside the leg forms, where it acts as an `S`)",
         ));
     };
-    let holds = |l: usize| {
-        let m = &topo.links[l].members;
-        m.iter().any(|x| pa == x) && m.iter().any(|x| qa == x)
-    };
-    let (holder, other, towards) = if holds(j.before) {
-        (j.before, j.after, j.next_centre.clone())
+    let (c, a, q) = (
+        PointId::of(centre.id),
+        PointId::of(pa.id),
+        PointId::of(qa.id),
+    );
+    let holds = |l: usize| topo.links[l].holds(a) && topo.links[l].holds(q);
+    let (other, towards) = if holds(j.before) {
+        (j.after, j.next_centre)
     } else if holds(j.after) {
-        (j.after, j.before, j.previous_centre.clone())
+        (j.before, j.previous_centre)
     } else {
         return Err(err(
-            pa.span(),
+            pa.span,
             format!(
-                "the axis `{pa} -> {qa}` of this `U` is on neither of the links it joins ({} and {})",
-                named(&topo.links[j.before].name),
-                named(&topo.links[j.after].name)
+                "the axis `{} -> {}` of this `U` is on neither of the links it joins ({} and {})",
+                topo.name(a),
+                topo.name(q),
+                named(&topo.links[j.before]),
+                named(&topo.links[j.after])
             ),
         ));
     };
-    let c = centre.to_string();
     // At the end of a chain no joint follows: the other link's pivot farthest from the centre
     // gives the direction instead.
     let towards = towards.or_else(|| {
-        let h = b.home(topo.home[&c]);
+        let h = b.home(topo.home(c));
         topo.links[other]
             .members
             .iter()
-            .filter(|q| **q != c)
-            .map(|q| (q, linkage_geometry::distance(b.home(topo.home[q]), h)))
+            .filter(|&&m| m != c)
+            .map(|&m| (m, linkage_geometry::distance(b.home(topo.home(m)), h)))
             .max_by(|x, y| x.1.total_cmp(&y.1))
-            .map(|(q, _)| q.clone())
+            .map(|(m, _)| m)
     });
     let Some(towards) = towards else {
         return Err(err(
@@ -62,40 +65,45 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             "the second axis of this `U` is perpendicular to the first and to the line from its centre to the next joint's, but no joint follows it and the link after it has no other pivot",
         ));
     };
-    let at = |q: &str| topo.home[q];
     let auto = b.auto_point(Auto::Normal {
-        origin: at(&c),
-        a: [at(&pa.to_string()), at(&qa.to_string())],
-        b: [at(&c), at(&towards)],
+        origin: topo.home(c),
+        a: [topo.home(a), topo.home(q)],
+        b: [topo.home(c), topo.home(towards)],
     });
     if b.home(auto).iter().any(|x| !x.is_finite()) {
         return Err(err(
-            pa.span(),
-            format!("the axis `{pa} -> {qa}` of this `U` lies along the leg from `{c}` to `{towards}` at home: the second axis is undefined"),
+            pa.span,
+            format!(
+                "the axis `{} -> {}` of this `U` lies along the leg from `{}` to `{}` at home: the second axis is undefined",
+                topo.name(a),
+                topo.name(q),
+                topo.name(c),
+                topo.name(towards)
+            ),
         ));
     }
-    let name = format!("{c}_u");
-    let _ = holder;
-    topo.home.insert(name.clone(), auto);
+    let name = format!("{}_u", topo.name(c));
+    let second = topo
+        .points
+        .add(Addition::SecondAxis { centre: c }, name, auto);
     // A passive U holds the second axis in the other link; an active one turns about it by its
     // input (see `relative`), which needs only its direction at home.
-    if p.active.is_none() {
-        topo.add_member(other, &name);
+    if !p.active {
+        topo.add_member(other, second);
     }
-    topo.joints[k].added.push(name);
+    topo.joints[k].added.push(second);
     Ok(())
 }
 
-pub fn equation(b: &mut Builder, topo: &Topology, repr: &HashMap<String, Repr>, k: usize) {
+pub fn equation(b: &mut Builder, topo: &Topology, repr: &Reprs, k: usize) {
     let j = &topo.joints[k];
-    let (Some(centre), Some((pa, qa)), Some(tip)) =
-        (j.pair.pivots.first(), &j.pair.axis, j.added.first())
+    let (Some(centre), Some([pa, qa]), Some(&tip)) = (j.pair.centre, j.pair.axis, j.added.first())
     else {
         return;
     };
-    let e = |q: &str| repr[q].expr().clone();
-    let first = expr::vsub(&e(&qa.to_string()), &e(&pa.to_string()));
-    let second = expr::vsub(&e(tip), &e(&centre.to_string()));
+    let e = |q: PointId| repr.expr(q);
+    let first = expr::vsub(&e(PointId::of(qa.id)), &e(PointId::of(pa.id)));
+    let second = expr::vsub(&e(tip), &e(PointId::of(centre.id)));
     let eq = expr::dot(&first, &second);
     if eq.degree() > 0 {
         b.equations.push(eq);

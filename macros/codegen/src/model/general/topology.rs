@@ -1,0 +1,180 @@
+//! The general chains' links, points and pairs: every declared link a chain passes through,
+//! an unnamed link between every two pairs, the points the pairs share between the links they
+//! join, and the points some pairs add (a slide's axis, a U's second axis).
+
+use super::points::Points;
+use super::{prismatic, universal, PointId};
+use crate::front::errors::Errors;
+use crate::front::ids::{ChainId, LinkId, PivotId};
+use crate::front::resolved::{Decl, LinkRole, Pair, PairKind, Value};
+use crate::model::{Builder, PointRef};
+
+/// A link of the general model: a declared one, or an unnamed one between two pairs.
+pub struct Link {
+    /// Its name in the listing: the declared name, or `chain#k` for the k-th link of a chain.
+    pub name: String,
+    /// The declared link, if it is one.
+    pub declared: Option<LinkId>,
+    /// Else its chain's name and its place there (k counted from the chain's first link).
+    pub unnamed: Option<(String, usize)>,
+    pub role: LinkRole,
+    pub length: Option<Value>,
+    /// Its points, in order of first use.
+    pub members: Vec<PointId>,
+}
+
+impl Link {
+    pub fn holds(&self, q: PointId) -> bool {
+        self.members.contains(&q)
+    }
+}
+
+/// A pair of a general chain, with the links it joins and its place in the chain.
+pub struct Joint<'a> {
+    pub pair: &'a Pair,
+    pub before: usize,
+    pub after: usize,
+    /// Centres of the nearest pairs before and after it in its chain (an S or U centre, an
+    /// R's first axis point), for the directions of legs.
+    pub previous_centre: Option<PointId>,
+    pub next_centre: Option<PointId>,
+    /// The points the model adds for this pair (a slide's axis tip, a U's second axis).
+    pub added: Vec<PointId>,
+}
+
+/// The general chains, resolved: links, every point and its home position, the pairs.
+pub struct Topology<'a> {
+    pub links: Vec<Link>,
+    pub points: Points,
+    pub joints: Vec<Joint<'a>>,
+    /// Where each declared link is among `links`, by [`LinkId`].
+    declared: Vec<Option<usize>>,
+}
+
+impl Topology<'_> {
+    /// The general model's link for a declared link, if a general chain passes through it.
+    pub fn link(&self, id: LinkId) -> Option<usize> {
+        self.declared[id.index()]
+    }
+
+    pub(super) fn add_member(&mut self, link: usize, q: PointId) {
+        if !self.links[link].holds(q) {
+            self.links[link].members.push(q);
+        }
+    }
+
+    /// A point's home position.
+    pub fn home(&self, q: PointId) -> PointRef {
+        self.points.home(q)
+    }
+
+    /// A point's name in the listing.
+    pub fn name(&self, q: PointId) -> &str {
+        self.points.name(q)
+    }
+}
+
+/// The centre a pair gives a leg's direction: an S or U centre, an R's first axis point.
+fn centre(p: &Pair) -> Option<PivotId> {
+    match p.kind {
+        PairKind::S | PairKind::U => p.centre.map(|c| c.id),
+        PairKind::R => p.axis.map(|[a, _]| a.id),
+        PairKind::P | PairKind::C | PairKind::H => None,
+    }
+}
+
+/// Collects the links and pairs of the `general` chains and adds the points their pairs need.
+/// `None` when a pair cannot be modelled (the reasons in `errors`, one per pair).
+pub fn topology<'a>(
+    b: &mut Builder,
+    d: &'a Decl,
+    general: &[ChainId],
+    errors: &mut Errors,
+) -> Option<Topology<'a>> {
+    let mut topo = Topology {
+        links: Vec::new(),
+        points: Points::new(b, d),
+        joints: Vec::new(),
+        declared: vec![None; d.links.len()],
+    };
+    for &c in general {
+        let chain = d.chain(c);
+        let mut ids = Vec::new();
+        for (k, l) in chain.links.iter().enumerate() {
+            let id = match l.and_then(|l| topo.link(l)) {
+                Some(id) => id,
+                None => {
+                    let link = match *l {
+                        Some(l) => {
+                            let decl = d.link(l);
+                            topo.declared[l.index()] = Some(topo.links.len());
+                            Link {
+                                name: decl.name.to_string(),
+                                declared: Some(l),
+                                unnamed: None,
+                                role: decl.role,
+                                length: decl.length,
+                                members: decl.pivots.iter().map(|&p| PointId::of(p)).collect(),
+                            }
+                        }
+                        None => Link {
+                            name: format!("{}#{k}", chain.name),
+                            declared: None,
+                            unnamed: Some((chain.name.to_string(), k)),
+                            role: LinkRole::Intermediate,
+                            length: None,
+                            members: Vec::new(),
+                        },
+                    };
+                    topo.links.push(link);
+                    topo.links.len() - 1
+                }
+            };
+            ids.push(id);
+        }
+        for (k, p) in chain.pairs.iter().enumerate() {
+            let previous_centre = chain.pairs[..k].iter().rev().find_map(centre);
+            let next_centre = chain.pairs[k + 1..].iter().find_map(centre);
+            topo.joints.push(Joint {
+                pair: p,
+                before: ids[k],
+                after: ids[k + 1],
+                previous_centre: previous_centre.map(PointId::of),
+                next_centre: next_centre.map(PointId::of),
+                added: Vec::new(),
+            });
+        }
+    }
+    // The points the pairs share.
+    for k in 0..topo.joints.len() {
+        let j = &topo.joints[k];
+        let (p, i, a) = (j.pair, j.before, j.after);
+        let shared: Vec<PivotId> = match p.kind {
+            PairKind::S | PairKind::U => p.centre.iter().map(|c| c.id).collect(),
+            PairKind::R => p.axis.iter().flat_map(|[a, b]| [a.id, b.id]).collect(),
+            PairKind::P | PairKind::C | PairKind::H => Vec::new(),
+        };
+        for q in shared {
+            topo.add_member(i, PointId::of(q));
+            topo.add_member(a, PointId::of(q));
+        }
+    }
+    // The points some pairs add: a U's second axis, a slide's axis.
+    let mut ok = true;
+    for k in 0..topo.joints.len() {
+        let p = topo.joints[k].pair;
+        let added = match p.kind {
+            PairKind::U => universal::add_points(b, &mut topo, k),
+            PairKind::P => prismatic::add_points(b, &mut topo, k),
+            PairKind::C | PairKind::H if !p.active => prismatic::add_points(b, &mut topo, k),
+            // Active C and H: a link placed from the base (`explicit`) or by its motion
+            // relative to the link before (`relative`); neither adds points to the links.
+            PairKind::C | PairKind::H | PairKind::S | PairKind::R => Ok(()),
+        };
+        if let Err(e) = added {
+            errors.add(e);
+            ok = false;
+        }
+    }
+    ok.then_some(topo)
+}
