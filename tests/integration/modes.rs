@@ -39,7 +39,7 @@ fn close<const N: usize>(a: &[f64; N], b: &[f64; N], tol: f64) -> bool {
 
 /// Distinct nonsingular real roots reached by Newton's method (dense LU, real arithmetic) from
 /// `starts` random poses anywhere within `reach` (any orientation, above or below the base).
-fn newton_roots<S: Mechanism<N, M>, const N: usize, const M: usize>(
+pub(crate) fn newton_roots<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     x: &[f64; M],
     reach: f64,

@@ -45,6 +45,7 @@
 mod complex;
 mod dense;
 mod endpoint;
+mod inputs;
 mod monodromy;
 mod path;
 mod rng;
@@ -59,11 +60,15 @@ pub use roots::{Endpoint, EndpointKind, RealRoot, Roots};
 pub use taylor::Series;
 
 use crate::Mechanism;
+use inputs::Inputs;
 use monodromy::{contains, Stopping, SAME};
 use path::ParameterPath;
 use rng::Rng;
 use sparse_lu::Plan;
 use track::{Chart, Model, Settings, Workspace};
+
+/// Random seeds tried before [`AllModes::new`] gives up.
+const SEED_ATTEMPTS: usize = 12;
 
 /// The largest first Newton correction (weighted) a stored start may need.
 const STORED: f64 = 1e-8;
@@ -147,10 +152,13 @@ pub enum ModesError {
     NonFinite,
     /// Input `input` is out of its range (e.g. a negative leg length).
     InvalidInput { input: usize },
-    /// ∂F/∂v was singular at every configuration the seeding reached: the geometry is
-    /// architecture-singular (or has a self-motion everywhere), so the family has no isolated
-    /// roots to count.
+    /// The seeding reached solutions of F(v, x) = 0, and ∂F/∂v was singular at every one: the
+    /// geometry is architecture-singular (or has a self-motion everywhere), so the family has
+    /// no isolated roots to count.
     Degenerate,
+    /// No seeding attempt converged onto F(v, x) = 0 at all (from random complex placements
+    /// and inputs): nothing is known about the geometry, only that no start was found.
+    Unseeded { attempts: usize },
     /// Monodromy found more than `K` solutions.
     Capacity { capacity: usize },
     /// More than 255 unknowns.
@@ -166,7 +174,12 @@ impl core::fmt::Display for ModesError {
             ModesError::InvalidInput { input } => write!(f, "joint input {input} is out of range"),
             ModesError::Degenerate => write!(
                 f,
-                "∂F/∂v is singular at every configuration tried: the geometry is architecture-singular"
+                "∂F/∂v is singular at every solution the seeding reached: the geometry is \
+                 architecture-singular or has a self-motion"
+            ),
+            ModesError::Unseeded { attempts } => write!(
+                f,
+                "no start solution: none of {attempts} random seeds converged onto F(v, x) = 0"
             ),
             ModesError::Capacity { capacity } => {
                 write!(f, "more than {capacity} solutions: raise the capacity K")
@@ -203,6 +216,7 @@ pub struct AllModes<S, const N: usize, const M: usize, const K: usize> {
     plan: Plan<N>,
     chart: Option<Chart<N>>,
     scale: f64,
+    inputs: Inputs<M>,
     p0: [Complex; M],
     gamma: Complex,
     /// The start solutions in tracking coordinates (see `track::Chart`).
@@ -218,14 +232,22 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         let mut me = Self::prepare(sys, options)?;
         let mut rng = Rng::new(options.seed);
         me.gamma = gamma(&mut rng);
-        let mut first = None;
-        for attempt in 1..=12 {
-            if let Some(found) = seed::seed(&me.model(), &mut rng) {
-                first = Some((found, attempt));
-                break;
+        let mut first = Err(ModesError::Unseeded {
+            attempts: SEED_ATTEMPTS,
+        });
+        for attempt in 1..=SEED_ATTEMPTS {
+            match seed::seed(&me.model(), &me.inputs, &mut rng) {
+                Ok(found) => {
+                    first = Ok((found, attempt));
+                    break;
+                }
+                // Converged, but B is singular there: evidence of a degenerate family (one
+                // converged attempt with a regular B would have been a seed).
+                Err(seed::Miss::Singular) => first = Err(ModesError::Degenerate),
+                Err(seed::Miss::Walk) => {}
             }
         }
-        let ((v, p0), seeds) = first.ok_or(ModesError::Degenerate)?;
+        let ((v, p0), seeds) = first?;
         let model = me.model();
         let mut starts = [[Complex::ZERO; N]; K];
         if K == 0 {
@@ -238,7 +260,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             max_loops: options.max_loops.max(1),
             expected: options.expected,
         };
-        let found = monodromy::monodromy(&model, &p0, &mut starts, &mut rng, &stop);
+        let found = monodromy::monodromy(&model, &me.inputs, &p0, &mut starts, &mut rng, &stop);
         if found.overflow {
             return Err(ModesError::Capacity { capacity: K });
         }
@@ -255,7 +277,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     }
 
     /// Moves the start set to a parameter point near the real inputs `center` (each input
-    /// perturbed by a random complex number of size `spread` × the scale), so that queries near
+    /// perturbed by a random complex number of size `spread` × the scale, or `spread` radians for
+    /// an angle), so that queries near
     /// `center` follow short paths. Every start is tracked there; if one fails, another random
     /// point is tried (four in all); if all fail, nothing changes and the error names the start
     /// that failed last.
@@ -272,7 +295,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         let mut error = ModesError::BadStart { index: 0 };
         for _ in 0..4 {
             let p1: [Complex; M] = core::array::from_fn(|i| {
-                Complex::real(center[i]) + rng.complex_normal().scale(spread * self.scale)
+                Complex::real(center[i]) + rng.complex_normal().scale(spread * self.inputs.unit(i))
             });
             match self.moved_to(&p1) {
                 Ok(moved) => {
@@ -393,11 +416,13 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 c: [0; N].map(|_| rng.complex_normal().scale(1.0 / (scale * N as f64))),
                 degree,
             });
+        let inputs = Inputs::detect(&sys, scale, &mut rng);
         Ok(AllModes {
             sys,
             plan,
             chart,
             scale,
+            inputs,
             p0: [Complex::ZERO; M],
             gamma: Complex::ONE,
             starts: [[Complex::ZERO; N]; K],

@@ -9,6 +9,7 @@
 //! advance.
 
 use super::complex::Complex;
+use super::inputs::Inputs;
 use super::path::ParameterPath;
 use super::rng::Rng;
 use super::track::{Model, Outcome, Settings, Workspace};
@@ -139,6 +140,7 @@ pub(crate) fn contains<S, const N: usize>(
 /// solutions split into two components of eight over its leg lengths).
 pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     model: &Model<'_, S, N>,
+    inputs: &Inputs<M>,
     p0: &[Complex; M],
     out: &mut [[Complex; N]; K],
     rng: &mut Rng,
@@ -157,15 +159,16 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             || found.loops >= stop.max_loops
             || stop.expected.is_some_and(|e| found.count >= e)
     };
-    // Loop points as far from zero as p₀'s entries, times LOOP_SIZE.
-    let size = libm::sqrt(p0.iter().map(|p| p.norm_sqr()).sum::<f64>() / M.max(1) as f64);
+    // Loop points as far from zero as p₀'s lengths, times LOOP_SIZES (angles: anywhere on
+    // the turn, imaginary parts LOOP_SIZES / 6 in size).
+    let size = inputs.length_size(p0);
     loop {
         let mut stale = 0;
         while stale < stop.stable_loops && !done(&found) {
             found.loops += 1;
             let ls = LOOP_SIZES[found.loops % LOOP_SIZES.len()];
-            let a = [0; M].map(|_| rng.complex_normal().scale(ls * size));
-            let b = [0; M].map(|_| rng.complex_normal().scale(ls * size));
+            let a = inputs.random(rng, ls * size, ls / 6.0);
+            let b = inputs.random(rng, ls * size, ls / 6.0);
             let legs = [
                 ParameterPath::new(*p0, a, Complex::ONE),
                 ParameterPath::new(a, b, Complex::ONE),
@@ -195,7 +198,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         while !new && stale_seeds < stop.stable_seeds && !done(&found) {
             found.seeds += 1;
             stale_seeds += 1;
-            let Some((v, p)) = super::seed::seed(model, rng) else {
+            let Ok((v, p)) = super::seed::seed(model, inputs, rng) else {
                 continue;
             };
             let mut v = model.enter(&v);

@@ -9,6 +9,7 @@
 
 use super::complex::Complex;
 use super::dense;
+use super::inputs::Inputs;
 use super::rng::Rng;
 use super::sparse_lu::Lu;
 use super::taylor::Series;
@@ -45,14 +46,24 @@ fn rotation(q: [Complex; 4]) -> Option<[[Complex; 3]; 3]> {
     Some(r.map(|row| row.map(|x| x * inv)))
 }
 
-/// A random complex point (v, x) with F(v, x) = 0 and B = ∂F/∂v regular there, or `None`
-/// if this attempt did not reach one.
+/// Why an attempt made no seed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Miss {
+    /// The walk did not converge onto F = 0 (or the random placement was unusable).
+    Walk,
+    /// It converged, to a point where B is singular.
+    Singular,
+}
+
+/// A random complex point (v, x) with F(v, x) = 0 and B = ∂F/∂v regular there, or why this
+/// attempt did not reach one.
 pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
     model: &Model<'_, S, N>,
+    inputs: &Inputs<M>,
     rng: &mut Rng,
-) -> Option<([Complex; N], [Complex; M])> {
+) -> Result<([Complex; N], [Complex; M]), Miss> {
     let scale = model.scale;
-    let r = rotation([0; 4].map(|_| rng.complex_normal()))?;
+    let r = rotation([0; 4].map(|_| rng.complex_normal())).ok_or(Miss::Walk)?;
     let t = [0; 3].map(|_| rng.complex_normal().scale(scale));
     let k = S::POINTS.len();
     let mut v = [Complex::ZERO; N];
@@ -74,7 +85,7 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
             }
         }
     }
-    let mut x = [0; M].map(|_| rng.complex_normal().scale(scale));
+    let mut x = inputs.random(rng, scale, 0.5);
     let mut converged = false;
     for _ in 0..80 {
         // F and the columns of A = ∂F/∂x, one directional derivative per input.
@@ -113,7 +124,7 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         let mut y = f;
         if !dense::solve(&mut g, &mut y) {
-            return None;
+            return Err(Miss::Walk);
         }
         let mut dv = [Complex::ZERO; N];
         let mut dx = [Complex::ZERO; M];
@@ -127,10 +138,10 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         let mut size = model.norm(&dv, &v);
         for l in 0..M {
-            size = size.max(dx[l].abs_max() / scale.max(x[l].abs_max()));
+            size = size.max(dx[l].abs_max() / inputs.unit(l).max(x[l].abs_max()));
         }
         if !size.is_finite() {
-            return None;
+            return Err(Miss::Walk);
         }
         // Damped far from the variety: at most half the scale per step.
         let damp = if size > 0.5 { 0.5 / size } else { 1.0 };
@@ -146,7 +157,7 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
     }
     if !converged {
-        return None;
+        return Err(Miss::Walk);
     }
     let mut values = [[Complex::ZERO; N]; N];
     let mut lu = Lu::new();
@@ -154,5 +165,9 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
         chart: None,
         ..*model
     };
-    (affine.factor(&v, &x, &mut values, &mut lu) && lu.pivot_ratio() > 1e-9).then_some((v, x))
+    if affine.factor(&v, &x, &mut values, &mut lu) && lu.pivot_ratio() > 1e-9 {
+        Ok((v, x))
+    } else {
+        Err(Miss::Singular)
+    }
 }

@@ -4,6 +4,7 @@
 //! rule that decided it, each mechanism's invariant, and distinct assembly modes reached from
 //! different declared homes of the same machine.
 
+mod all_modes;
 mod delta;
 mod delta_tools;
 mod five_bar;
