@@ -1,65 +1,11 @@
-//! Newton's method at fixed inputs, ending by the rule every solver shares ([`newton`]), and
-//! Newton–Raphson (the paper's NRA), which is that method on F(v, x*) = 0 from the start's v.
-//! Fast, and with no notion of branch: near a singularity it may converge to another
-//! assembly mode. The det B sign check catches some of those, not all, so a converged
-//! result is [`Status::Unverified`](crate::Status::Unverified), never `Converged`.
+//! Newton's method at fixed inputs, ending by the rule every solver shares ([`newton`]): the
+//! corrector of continuation, the tracker's and Newton homotopy's steps, and all of
+//! Newton–Raphson (`newton_raphson.rs`).
 
 use crate::convergence::Convergence;
 use crate::correction::{Correction, Failure};
 use crate::math::size;
-use crate::outcome::{conclude, unverified, Account};
-use crate::{Mechanism, Options, Solution, SolveError, Start};
-
-/// Solves F(v, x) = 0 by Newton's method from `start.v`. A result that meets the tolerance
-/// with det B of the start's sign is [`Status::Unverified`](crate::Status::Unverified):
-/// Newton's method may converge to another assembly mode of the same det B sign, and nothing
-/// here can tell (where the branch matters, solve with [`arc_length`](crate::arc_length)).
-///
-/// ```
-/// use linkage::{newton_raphson, Mechanism, Options, Pose, Start, Status};
-///
-/// linkage::mechanism! {
-///     /// A 3-RPS: three hinged legs of variable length carry a triangular platform.
-///     pub struct Rps;
-///     base {
-///         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
-///         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
-///         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
-///     }
-///     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
-///     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
-///     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
-///     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
-/// }
-///
-/// let rps = Rps::new();
-/// // Start: platform level, 150 mm up; its leg lengths from inverse kinematics.
-/// let v0 = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
-/// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
-/// let start = Start::new(&rps, v0, x0).unwrap();
-/// let sol = newton_raphson(&rps, &start, &[160.0, 155.0, 158.0], &Options::TIGHT).unwrap();
-/// assert_eq!(sol.status, Status::Unverified);
-/// assert!(sol.status.meets_tolerance() && !sol.is_ok());
-/// assert!((rps.inverse(&sol.v, &x0).unwrap()[1] - 155.0).abs() < 1e-9);
-/// ```
-pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    start: &Start<N, M>,
-    x: &[f64; M],
-    options: &Options,
-) -> Result<Solution<N>, SolveError> {
-    // F at the start is Newton's first residual: its overflow shows there, not in a check.
-    crate::start::check_sample(sys, start, x, options)?;
-    let run = newton(sys, *start.v(), x, options, Rule::Final);
-    if run.ending == Ending::NonFinite && run.iterations == 0 {
-        return Err(SolveError::NonFinite);
-    }
-    let account = Account {
-        iterations: run.iterations,
-        ..Account::at(1.0)
-    };
-    Ok(unverified(conclude(sys, start, &run, x, account)))
-}
+use crate::{Mechanism, Options};
 
 /// Corrections that did not shrink at the rounding floor before a final run ends `Stalled`.
 const MAX_STALLS: u32 = 3;
