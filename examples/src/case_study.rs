@@ -1,59 +1,10 @@
 //! Section 5 of the paper, reproduced: test points (`sampling`), Table V (`table_v`) and the
-//! joint-space maps of Figs. 5–6 (`joint_map`).
+//! joint-space maps of Figs. 5–6 (`joint_map`), judged against ground truth (`truth`).
 
 pub mod joint_map;
 pub mod path_dependence;
 pub mod sampling;
 pub mod table_v;
+mod truth;
 
-use linkage::{Mechanism, Start};
-
-/// Ground truth for "the start's branch along the straight joint-space segment": natural-
-/// parameter continuation in `steps` small steps (Newton at each), with the number of sign
-/// changes of det B met on the way. Trustworthy when no sign change is met and the steps are
-/// small against the path's curvature.
-pub fn straight_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    start: &Start<N, M>,
-    target: &[f64; M],
-    steps: usize,
-) -> ([f64; N], usize) {
-    straight_segment_from(sys, (start.v(), start.x()), start.det(), target, steps)
-}
-
-/// [`straight_segment`] from any point `(v, x)` of the branch whose det B has the sign of
-/// `det` (such as the corners of a detour, which may lie too near a fold to be a [`Start`]).
-pub fn straight_segment_from<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    (v0, x0): (&[f64; N], &[f64; M]),
-    det: f64,
-    target: &[f64; M],
-    steps: usize,
-) -> ([f64; N], usize) {
-    let mut v = *v0;
-    let mut prev = det;
-    let mut flips = 0;
-    for k in 1..=steps {
-        let l = k as f64 / steps as f64;
-        let x: [f64; M] = std::array::from_fn(|j| x0[j] + l * (target[j] - x0[j]));
-        for _ in 0..if k == steps { 30 } else { 6 } {
-            let mut f = [0.0; N];
-            sys.residual(&v, &x, &mut f);
-            let mut b = [[0.0; N]; N];
-            sys.jacobian_dense(&v, &x, &mut b);
-            let Some(lu) = linkage::lu::Lu::new(b) else {
-                return (v, flips + 1);
-            };
-            lu.solve(&mut f);
-            for i in 0..N {
-                v[i] -= f[i];
-            }
-        }
-        let d = linkage::det_b(sys, &v, &x);
-        if d * prev <= 0.0 {
-            flips += 1;
-        }
-        prev = d;
-    }
-    (v, flips)
-}
+pub use truth::{straight_segment, straight_segment_from};
