@@ -7,7 +7,7 @@
 //! multipliers and static-row entries that depend on (v, x) (those that depend on the geometry
 //! alone are read from the constants again in the solve), then the complement's factors.
 
-use crate::emit::{lit, tokens};
+use crate::emit_expr::{lit, tokens};
 use crate::emit_lu::{self, Region};
 use crate::expr::{Expr, Var};
 use crate::factor::{count_ops, Plan};
