@@ -316,14 +316,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                 none.insert(f)
             }
         };
-        let mut a = [[0.0; M]; N];
-        self.sys.input_jacobian(&self.v, &self.x, &mut a);
         let dx: [f64; M] = core::array::from_fn(|j| x[j] - self.x[j]);
         // The predictor step is −dv: B dv = (∂F/∂x) dx.
         let mut dv = [0.0; N];
-        for i in 0..N {
-            dv[i] = (0..M).map(|j| a[i][j] * dx[j]).sum::<f64>();
-        }
+        self.sys.input_derivative(&self.v, &self.x, &dx, &mut dv);
         self.sys.solve(fac, &mut dv);
         let step = size(&dv);
         if !step.is_finite() {

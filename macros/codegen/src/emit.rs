@@ -78,6 +78,23 @@ pub fn expand(
             })
         })
     });
+    // The same products as `input_jacobian`'s nonzeros, summed per row in column order.
+    let input_derivative = model.equations.iter().enumerate().map(|(r, f)| {
+        let terms: Vec<TokenStream> = (0..m)
+            .filter_map(|j| {
+                let d = f.derivative(Var::Input(j));
+                (!d.is_zero()).then(|| {
+                    let d = tokens(&d);
+                    quote!(#d * dx[#j])
+                })
+            })
+            .collect();
+        if terms.is_empty() {
+            quote!(out[#r] = 0.0;)
+        } else {
+            quote!(out[#r] = #(#terms)+*;)
+        }
+    });
     let point_local = model.points.iter().enumerate().map(|(i, p)| {
         let [x, y, z] = p.local;
         quote!(#i => [g[#x], g[#y], g[#z]],)
@@ -345,6 +362,13 @@ pub fn expand(
                 let c = &self.constants;
                 *a = [[0.0; #m]; #n];
                 #(#input_jacobian)*
+            }
+
+            #[inline]
+            #[allow(unused_variables)]
+            fn input_derivative(&self, v: &[f64; #n], x: &[f64; #m], dx: &[f64; #m], out: &mut [f64; #n]) {
+                let c = &self.constants;
+                #(#input_derivative)*
             }
 
             fn point_local(&self, p: usize) -> [f64; 3] {
