@@ -162,35 +162,40 @@ pub fn fixed_factor(
 }
 
 /// The solve with the fixed-order factors on the complement's right-hand side, in place in
-/// `w` (a local `[f64; n]`): `rows[p]` holds the right-hand side of the p-th pivot row, and
+/// the locals `w(r)`: `w(rows[p])` holds the right-hand side of the p-th pivot row, and
 /// afterwards the solution for the p-th pivot column.
-pub fn fixed_solve(lu: &Symbolic, region: &Region, rows: &[usize]) -> TokenStream {
+pub fn fixed_solve(
+    lu: &Symbolic,
+    region: &Region,
+    rows: &[usize],
+    w: &dyn Fn(usize) -> TokenStream,
+) -> TokenStream {
     let k = lu.size();
     let at = fixed_offsets(lu, region.fixed);
     let mut body = Vec::new();
     for p in 0..k {
-        let rp = rows[p];
+        let wp = w(rows[p]);
         for i in lu.below(p) {
-            let ri = rows[i];
+            let wi = w(rows[i]);
             let o = at[i][p].unwrap_or(0);
-            body.push(quote!(w[#ri] -= f[#o] * w[#rp];));
+            body.push(quote!(#wi -= f[#o] * #wp;));
         }
     }
     for p in (0..k).rev() {
-        let rp = rows[p];
+        let wp = w(rows[p]);
         let terms: Vec<TokenStream> = lu
             .right(p)
             .map(|j| {
-                let rj = rows[j];
+                let wj = w(rows[j]);
                 let o = at[p][j].unwrap_or(0);
-                quote!(- f[#o] * w[#rj])
+                quote!(- f[#o] * #wj)
             })
             .collect();
         let o = at[p][p].unwrap_or(0);
         body.push(if terms.is_empty() {
-            quote!(w[#rp] *= f[#o];)
+            quote!(#wp *= f[#o];)
         } else {
-            quote!(w[#rp] = (w[#rp] #(#terms)*) * f[#o];)
+            quote!(#wp = (#wp #(#terms)*) * f[#o];)
         });
     }
     quote!(#(#body)*)
