@@ -2,13 +2,13 @@
 //! trajectory update, for every example mechanism. `cargo bench -p linkage-tests`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use linkage::{arc_length, newton_raphson, Mechanism, Options, Start, Tracker};
+use linkage_examples::{rps, rss_hexapod, stewart};
 // Not criterion's `black_box`: without its nightly-only `real_blackbox` feature that is a
 // volatile read of the value, which for a reference hides only the address, not the data
 // behind it, and does not keep the results' stores (the residual timed at 3 ns for about
 // 130 instructions). The standard one is an optimisation barrier on the data it is given.
 use std::hint::black_box;
-use linkage::{arc_length, newton_raphson, Mechanism, Options, Start, Tracker};
-use linkage_examples::{rps, rss_hexapod, stewart};
 
 fn bench_mechanism<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
     c: &mut Criterion,
