@@ -70,6 +70,19 @@ pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(
             );
         }
     }
+    // The generated (∂F/∂x) dx: the same products and sums as ∂F/∂x multiplied out.
+    let dx: [f64; M] = std::array::from_fn(|j| 0.5 + j as f64 * 0.25 - (j % 2) as f64);
+    let mut along = [f64::NAN; N];
+    sys.input_derivative(v, x, &dx, &mut along);
+    for r in 0..N {
+        let product: f64 = (0..M).map(|j| a[r][j] * dx[j]).sum();
+        assert!(
+            along[r] == product,
+            "{}: ((∂F/∂x) dx)[{r}] = {} vs {product} from ∂F/∂x",
+            S::NAME,
+            along[r]
+        );
+    }
 }
 
 /// Largest coordinate difference.

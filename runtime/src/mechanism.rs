@@ -100,6 +100,46 @@ pub trait Mechanism<const N: usize, const M: usize> {
     }
     /// `∂F/∂x` (the matrix A of Eq. 5 is its negative).
     fn input_jacobian(&self, v: &[f64; N], x: &[f64; M], a: &mut [[f64; M]; N]);
+    /// `(∂F/∂x) dx` at (v, x), written to `out`: the change of F along an input step, to first
+    /// order (the right-hand side of the predictor of Eq. 5). The default multiplies
+    /// [`Self::input_jacobian`] out; the generated one touches its nonzeros only (a leg's
+    /// length enters its own row only), with the same sums in the same order.
+    ///
+    /// ```
+    /// # linkage::mechanism! {
+    /// #     pub struct Rps;
+    /// #     base {
+    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+    /// #     }
+    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+    /// # }
+    /// use linkage::Mechanism;
+    /// let rps = Rps::new();
+    /// let v = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    /// let x = rps.inverse(&v, &[0.0; 3]).unwrap();
+    /// let dx = [1.0, -0.5, 0.25];
+    /// let mut out = [0.0; 9];
+    /// rps.input_derivative(&v, &x, &dx, &mut out);
+    /// // The same as ∂F/∂x times dx.
+    /// let mut a = [[0.0; 3]; 9];
+    /// rps.input_jacobian(&v, &x, &mut a);
+    /// for i in 0..9 {
+    ///     assert_eq!(out[i], (0..3).map(|j| a[i][j] * dx[j]).sum::<f64>());
+    /// }
+    /// ```
+    #[inline]
+    fn input_derivative(&self, v: &[f64; N], x: &[f64; M], dx: &[f64; M], out: &mut [f64; N]) {
+        let mut a = [[0.0; M]; N];
+        self.input_jacobian(v, x, &mut a);
+        for i in 0..N {
+            out[i] = (0..M).map(|j| a[i][j] * dx[j]).sum::<f64>();
+        }
+    }
     /// A platform pivot's coordinates in the platform frame; NaN for an index out of range.
     fn point_local(&self, p: usize) -> [f64; 3];
     /// Checks that joint inputs are physically meaningful (e.g. leg lengths positive);

@@ -7,7 +7,7 @@
 //! multipliers and static-row entries that depend on (v, x) (those that depend on the geometry
 //! alone are read from the constants again in the solve), then the complement's factors.
 
-use crate::emit::{lit, tokens};
+use crate::emit_expr::{lit, tokens};
 use crate::emit_lu::{self, Region};
 use crate::expr::{Expr, Var};
 use crate::factor::{count_ops, Plan};
@@ -385,19 +385,26 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
     });
     let dense = emit_lu::dense_factor(k, &region);
 
-    // The solve: forward elimination of the static rows, the complement, back-substitution.
+    // The solve: forward elimination of the static rows, the complement, back-substitution,
+    // on one local per row (`w3` for row 3), which the compiler keeps in registers where it
+    // can; an array would live in memory, its address being given to the fallback.
+    let w = |r: usize| {
+        let w = format_ident!("w{}", r);
+        quote!(#w)
+    };
     let mut forward = Vec::new();
     for (s, &(r, _, _)) in plan.statics.iter().enumerate() {
         for &i in &plan.rows {
             if let Some(g) = statics.g.get(&(i, s)) {
-                forward.push(match g.value().times_code(quote!(w[#r])) {
-                    (false, t) => quote!(w[#i] += #t;),
-                    (true, t) => quote!(w[#i] -= #t;),
+                let (wi, wr) = (w(i), w(r));
+                forward.push(match g.value().times_code(wr) {
+                    (false, t) => quote!(#wi += #t;),
+                    (true, t) => quote!(#wi -= #t;),
                 });
             }
         }
     }
-    // After the complement's solve, w[rows[p]] holds the unknown cols[p].
+    // After the complement's solve, w(rows[p]) holds the unknown cols[p].
     let solution_at: HashMap<usize, usize> = plan
         .cols
         .iter()
@@ -405,15 +412,16 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         .map(|(&c, &r)| (c, r))
         .collect();
     let back = plan.statics.iter().enumerate().map(|(s, &(r, c, p))| {
+        let wr = w(r);
         // x_c = (b_r − Σ X x) / p; for p = −1 written Σ X x − b_r, without a negation.
         let products: Vec<(bool, TokenStream)> = plan
             .cols
             .iter()
             .filter_map(|&j| {
-                statics.x.get(&(s, j)).map(|x| {
-                    let at = solution_at[&j];
-                    x.value().times_code(quote!(w[#at]))
-                })
+                statics
+                    .x
+                    .get(&(s, j))
+                    .map(|x| x.value().times_code(w(solution_at[&j])))
             })
             .collect();
         if p == -1.0 {
@@ -427,9 +435,9 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
                     (_, true) => quote!(- #t),
                 });
             return if products.is_empty() {
-                quote!(b[#c] = -w[#r];)
+                quote!(b[#c] = -#wr;)
             } else {
-                quote!(b[#c] = #(#sum)* - w[#r];)
+                quote!(b[#c] = #(#sum)* - #wr;)
             };
         }
         let terms = products.iter().map(|(neg, t)| match neg {
@@ -437,19 +445,18 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
             true => quote!(+ #t),
         });
         match p {
-            1.0 => quote!(b[#c] = w[#r] #(#terms)*;),
+            1.0 => quote!(b[#c] = #wr #(#terms)*;),
             _ => {
                 let inv = lit(1.0 / p);
-                quote!(b[#c] = (w[#r] #(#terms)*) * #inv;)
+                quote!(b[#c] = (#wr #(#terms)*) * #inv;)
             }
         }
     });
-    let scatter = plan
-        .cols
-        .iter()
-        .zip(&plan.rows)
-        .map(|(&c, &r)| quote!(b[#c] = w[#r];));
-    let fixed_solve = emit_lu::fixed_solve(&plan.lu, &region, &plan.rows);
+    let scatter = plan.cols.iter().zip(&plan.rows).map(|(&c, &r)| {
+        let wr = w(r);
+        quote!(b[#c] = #wr;)
+    });
+    let fixed_solve = emit_lu::fixed_solve(&plan.lu, &region, &plan.rows, &w);
     // The rows factored with a common factor taken out take it out of the right-hand side.
     let unscale = plan
         .row_scale
@@ -457,10 +464,11 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         .enumerate()
         .filter(|(_, &s)| s != 1.0)
         .map(|(r, &s)| {
-            let inv = lit(1.0 / s);
-            quote!(w[#r] *= #inv;)
+            let (inv, wr) = (lit(1.0 / s), w(r));
+            quote!(#wr *= #inv;)
         });
     let dense_solve = emit_lu::dense_solve(k, &region, &plan.rows);
+    let ws: Vec<TokenStream> = (0..n).map(w).collect();
     let ty = quote!([f64; #size]);
     let fns = quote! {
         fn new_factor(&self) -> Self::Factor {
@@ -503,7 +511,7 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         }
 
         #[inline]
-        #[allow(unused_variables)]
+        #[allow(unused_variables, unused_mut)]
         fn solve(&self, f: &Self::Factor, b: &mut [f64; #n]) {
             #[cold]
             #[inline(never)]
@@ -512,13 +520,15 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
                 #dense_solve
             }
             let c = &self.constants;
-            let mut w = *b;
+            let [#(mut #ws),*] = *b;
             #(#unscale)*
             #(#forward)*
             if f[0] == 0.0 {
                 #fixed_solve
             } else {
+                let mut w = [#(#ws),*];
                 pivoted(f, &mut w);
+                [#(#ws),*] = w;
             }
             #(#scatter)*
             #(#back)*

@@ -95,11 +95,15 @@ pub fn fixed_factor(
             let m = format_ident!("m{}_{}", i, p);
             let source = z(i, p);
             let o = at[i][p].unwrap_or(0);
+            // The largest and smallest multiplier rather than the largest |multiplier|: no
+            // copy for the absolute value (two-operand SSE2), one maxsd and one minsd, written
+            // so that the accumulator is their destination (a NaN multiplier makes it NaN,
+            // which fails the test below as it should).
             body.push(quote! {
                 let #m = #source * #recip;
                 f[#o] = #m;
-                let a = #m.abs();
-                worst = if a > worst { a } else { worst };
+                high = if high > #m { high } else { #m };
+                low = if low < #m { low } else { #m };
             });
             let right: Vec<usize> = lu.right(p).collect();
             if right.is_empty() {
@@ -144,11 +148,11 @@ pub fn fixed_factor(
         .reduce(|a, b| quote!(#a * #b))
         .unwrap_or_else(|| quote!(1.0f64));
     quote! {{
-        let mut worst = 0.0f64;
+        let (mut high, mut low) = (0.0f64, 0.0f64);
         #(#body)*
         let det = #det;
         let sink: f64 = #sink;
-        if worst <= #max && det.is_finite() && det != 0.0 && sink.is_finite() {
+        if high <= #max && low >= -#max && det.is_finite() && det != 0.0 && sink.is_finite() {
             let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
             for a in [#(#abs_pivots),*] {
                 pmin = if a < pmin { a } else { pmin };
@@ -162,35 +166,40 @@ pub fn fixed_factor(
 }
 
 /// The solve with the fixed-order factors on the complement's right-hand side, in place in
-/// `w` (a local `[f64; n]`): `rows[p]` holds the right-hand side of the p-th pivot row, and
+/// the locals `w(r)`: `w(rows[p])` holds the right-hand side of the p-th pivot row, and
 /// afterwards the solution for the p-th pivot column.
-pub fn fixed_solve(lu: &Symbolic, region: &Region, rows: &[usize]) -> TokenStream {
+pub fn fixed_solve(
+    lu: &Symbolic,
+    region: &Region,
+    rows: &[usize],
+    w: &dyn Fn(usize) -> TokenStream,
+) -> TokenStream {
     let k = lu.size();
     let at = fixed_offsets(lu, region.fixed);
     let mut body = Vec::new();
     for p in 0..k {
-        let rp = rows[p];
+        let wp = w(rows[p]);
         for i in lu.below(p) {
-            let ri = rows[i];
+            let wi = w(rows[i]);
             let o = at[i][p].unwrap_or(0);
-            body.push(quote!(w[#ri] -= f[#o] * w[#rp];));
+            body.push(quote!(#wi -= f[#o] * #wp;));
         }
     }
     for p in (0..k).rev() {
-        let rp = rows[p];
+        let wp = w(rows[p]);
         let terms: Vec<TokenStream> = lu
             .right(p)
             .map(|j| {
-                let rj = rows[j];
+                let wj = w(rows[j]);
                 let o = at[p][j].unwrap_or(0);
-                quote!(- f[#o] * w[#rj])
+                quote!(- f[#o] * #wj)
             })
             .collect();
         let o = at[p][p].unwrap_or(0);
         body.push(if terms.is_empty() {
-            quote!(w[#rp] *= f[#o];)
+            quote!(#wp *= f[#o];)
         } else {
-            quote!(w[#rp] = (w[#rp] #(#terms)*) * f[#o];)
+            quote!(#wp = (#wp #(#terms)*) * f[#o];)
         });
     }
     quote!(#(#body)*)

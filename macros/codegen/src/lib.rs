@@ -6,10 +6,12 @@
 //! declaration) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form shapes,
 //! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates,
 //! rank at home) → [`expr`] (the symbolic IR every phase shares) → [`factor`] (the elimination
-//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]) → [`emit`], [`emit_factor`] and
-//! [`emit_lu`] (the Rust).
+//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]) → [`emit`] → [`emit_factor`] →
+//! [`emit_lu`] (the Rust; every emitter writes expressions with [`emit_expr`], which depends on
+//! none of them).
 
 pub mod emit;
+pub mod emit_expr;
 pub mod emit_factor;
 pub mod emit_inverse;
 pub mod emit_lu;

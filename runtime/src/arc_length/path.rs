@@ -60,11 +60,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
 
     /// H_μ at `p`: `(∂F/∂x)(x* − x0) / ‖Δv‖`.
     pub fn column(&self, p: &Point<N>) -> [f64; N] {
-        let mut a = [[0.0; M]; N];
-        self.sys.input_jacobian(&p.v, &self.x(p.mu), &mut a);
         let mut c = [0.0; N];
-        for i in 0..N {
-            c[i] = (0..M).map(|j| a[i][j] * self.dx[j]).sum::<f64>() / self.length;
+        self.sys
+            .input_derivative(&p.v, &self.x(p.mu), &self.dx, &mut c);
+        for c in &mut c {
+            *c /= self.length;
         }
         c
     }
@@ -79,12 +79,8 @@ pub(super) fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: us
 ) -> Option<f64> {
     let mut fac = sys.new_factor();
     sys.factor(start.v(), start.x(), &mut fac)?;
-    let mut a = [[0.0; M]; N];
-    sys.input_jacobian(start.v(), start.x(), &mut a);
     let mut y = [0.0; N];
-    for i in 0..N {
-        y[i] = (0..M).map(|j| a[i][j] * dx[j]).sum();
-    }
+    sys.input_derivative(start.v(), start.x(), dx, &mut y);
     sys.solve(&fac, &mut y);
     let travel = norm(&y);
     (travel.is_finite() && travel > 1e-12 * norm(dx).max(1e-300)).then_some(travel)
