@@ -7,7 +7,7 @@ pub fn sq(x: f64) -> f64 {
     x * x
 }
 
-pub use crate::inverse::{solve as numerical_inverse, Plan as InversePlan};
+pub use crate::inverse::{Plan as InversePlan, solve as numerical_inverse};
 pub use crate::math::{cos, sin};
 
 pub use linkage_geometry::{

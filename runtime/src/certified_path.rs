@@ -2,8 +2,8 @@
 //! continued along the straight joint-space segment, proven by chained parametric Krawczyk
 //! certificates over the segment (as [`crate::CertifiedSteps`] chains a tracker's steps).
 
-use crate::certified_steps::{prove, StepProof, PATH_DEPTH, PATH_PIECES};
-use crate::{arc_length, Mechanism, Options, Solution, SolveError, Start};
+use crate::certified_steps::{PATH_DEPTH, PATH_PIECES, StepProof, prove};
+use crate::{Mechanism, Options, Solution, SolveError, Start, arc_length};
 
 /// [`arc_length`], and for a converged answer the proof that it lies on the start's branch:
 /// the segment from the start's inputs to `target` covered by parametric Krawczyk certificates

@@ -8,9 +8,9 @@
 //! the chain keeps one (from [`certify`] at its first point, then from each step's certificate,
 //! which encloses the root at the step's end) and checks it against the next box.
 
-use crate::certify::{certify, certify_step, CertifyError};
-use crate::interval::Interval;
 use crate::Mechanism;
+use crate::certify::{CertifyError, certify, certify_step};
+use crate::interval::Interval;
 
 /// Pieces a tracked step may be split into, at most (in halves, then quarters, …).
 const MAX_PIECES: u32 = 64;

@@ -28,7 +28,7 @@
 //! and the first goes through B's nonzeros only. The proof is for the model with its
 //! floating-point constants.
 
-use crate::ball::{up, Ball, U};
+use crate::ball::{Ball, U, up};
 use crate::interval::Interval;
 use crate::lu::Lu;
 use crate::{Mechanism, Scalar};

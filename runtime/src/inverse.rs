@@ -23,7 +23,7 @@
 //! within half a turn of the reference.
 
 use crate::lu::Lu;
-use crate::pose::{pose_from_unknowns, unknowns_from_pose, Pose};
+use crate::pose::{Pose, pose_from_unknowns, unknowns_from_pose};
 use crate::{InverseError, Mechanism};
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the given platform
@@ -102,10 +102,10 @@ pub fn solve<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>
             return Ok(nearest(x));
         }
     }
-    if let Some((home_v, home_x)) = plan.home {
-        if let Some(x) = follow(&solver, v, home_v, home_x, &scale) {
-            return Ok(nearest(x));
-        }
+    if let Some((home_v, home_x)) = plan.home
+        && let Some(x) = follow(&solver, v, home_v, home_x, &scale)
+    {
+        return Ok(nearest(x));
     }
     if !plan.turning.is_empty() {
         for k in 1..4 {
@@ -249,11 +249,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
         let mut f = [0.0; N];
         self.sys.residual(v, x, &mut f);
         let s: f64 = f.iter().map(|r| r * r).sum();
-        if s.is_finite() {
-            s
-        } else {
-            f64::INFINITY
-        }
+        if s.is_finite() { s } else { f64::INFINITY }
     }
 
     /// J = [∂F/∂x | ∂F/∂v after the platform's].
@@ -285,11 +281,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
             let w = row_weights(&j);
             let weighted = |f: &[f64; N]| -> f64 {
                 let c: f64 = (0..N).map(|r| (w[r] * f[r]) * (w[r] * f[r])).sum();
-                if c.is_finite() {
-                    c
-                } else {
-                    f64::INFINITY
-                }
+                if c.is_finite() { c } else { f64::INFINITY }
             };
             let cost = weighted(&f);
             if cost == 0.0 {
@@ -363,11 +355,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
                 .fold(0.0f64, |m, r| {
                     m.max(if moved { w[r] } else { 1.0 } * f[r].abs())
                 });
-            if m.is_finite() {
-                m
-            } else {
-                f64::INFINITY
-            }
+            if m.is_finite() { m } else { f64::INFINITY }
         };
         Left {
             solved: largest(true),

@@ -88,11 +88,7 @@ impl<const N: usize> Lu<N> {
         }
         let inverse_norm = self.inverse_norm1();
         let r = 1.0 / (self.norm1 * inverse_norm);
-        if r.is_nan() {
-            0.0
-        } else {
-            r
-        }
+        if r.is_nan() { 0.0 } else { r }
     }
 
     /// Hager–Higham estimate of ‖A⁻¹‖₁ (a lower bound, usually within a factor of 3).
@@ -264,11 +260,7 @@ impl<const N: usize> Square for Bordered<N> {
 impl<const N: usize> Column for Extended<N> {
     #[inline(always)]
     fn at(&self, i: usize) -> f64 {
-        if i < N {
-            self.head[i]
-        } else {
-            self.tail
-        }
+        if i < N { self.head[i] } else { self.tail }
     }
     #[inline(always)]
     fn set(&mut self, i: usize, x: f64) {

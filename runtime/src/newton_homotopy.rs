@@ -6,8 +6,8 @@
 //! sign), so a converged result is [`Status::Unverified`](crate::Status::Unverified), never
 //! `Converged`.
 
-use crate::newton::{newton, Ending, Rule};
-use crate::outcome::{conclude, finish, not_converged, unverified, Account};
+use crate::newton::{Ending, Rule, newton};
+use crate::outcome::{Account, conclude, finish, not_converged, unverified};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.

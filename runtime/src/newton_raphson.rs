@@ -3,8 +3,8 @@
 //! assembly mode. The det B sign check catches some of those, not all, so a converged result is
 //! [`Status::Unverified`](crate::Status::Unverified), never `Converged`.
 
-use crate::newton::{newton, Ending, Rule};
-use crate::outcome::{conclude, unverified, Account};
+use crate::newton::{Ending, Rule, newton};
+use crate::outcome::{Account, conclude, unverified};
 use crate::{Mechanism, Options, Solution, SolveError, Start};
 
 /// Solves F(v, x) = 0 by Newton's method from `start.v`. A result that meets the tolerance

@@ -158,7 +158,10 @@ impl fmt::Display for SolveError {
             SolveError::InvalidInput { input } => write!(f, "joint input {input} is out of range"),
             SolveError::SingularStart => write!(f, "the start configuration is singular"),
             SolveError::InconsistentStart { residual_norm } => {
-                write!(f, "the start configuration does not satisfy the constraints (‖F‖ = {residual_norm:.3e})")
+                write!(
+                    f,
+                    "the start configuration does not satisfy the constraints (‖F‖ = {residual_norm:.3e})"
+                )
             }
         }
     }

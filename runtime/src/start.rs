@@ -1,6 +1,6 @@
 //! The initial configuration every solve starts from, checked once.
 
-use crate::correction::{correction, Failure};
+use crate::correction::{Failure, correction};
 use crate::lu::Lu;
 use crate::math::{norm, size};
 use crate::{Mechanism, Options, SolveError};

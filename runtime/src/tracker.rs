@@ -3,7 +3,7 @@
 
 use crate::arc_length::arc_length;
 use crate::convergence::Contraction;
-use crate::correction::{det_b, Correction};
+use crate::correction::{Correction, det_b};
 use crate::math::size;
 use crate::{Mechanism, Options, SolveError, Start, Status, StepProof};
 
@@ -281,10 +281,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         let mut iterations = 0;
         if !self.refused {
             let mut v = self.v;
-            if let Some(det) = self.fast(x, &mut v, &mut iterations) {
-                if det * self.start.det() > 0.0 {
-                    return Ok(self.accept(v, x, det, iterations, false));
-                }
+            if let Some(det) = self.fast(x, &mut v, &mut iterations)
+                && det * self.start.det() > 0.0
+            {
+                return Ok(self.accept(v, x, det, iterations, false));
             }
             // The factorisation was overwritten on the way; continuation does not use it.
             self.factor = None;
@@ -333,15 +333,15 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         *v = linear;
         // The bend the last step had, scaled to this one, where it is a small part of it.
         let mut bend = 0.0;
-        if let Some(last) = &self.bend {
-            if let Some(s2) = last.toward(&dx) {
-                let expected = s2 * size(&last.dv);
-                if expected <= BEND_SHARE * step {
-                    for i in 0..N {
-                        v[i] += s2 * last.dv[i];
-                    }
-                    bend = expected;
+        if let Some(last) = &self.bend
+            && let Some(s2) = last.toward(&dx)
+        {
+            let expected = s2 * size(&last.dv);
+            if expected <= BEND_SHARE * step {
+                for i in 0..N {
+                    v[i] += s2 * last.dv[i];
                 }
+                bend = expected;
             }
         }
         let mut contraction = Contraction::new(step, tol);

@@ -3,7 +3,7 @@
 //! LU of the whole bordered matrix near a fold, where B is nearly singular but the bordered
 //! matrix stays regular.
 
-use super::path::{dot, Path, Point, Tangent};
+use super::path::{Path, Point, Tangent, dot};
 use crate::lu::{Bordered, BorderedLu, Extended, Lu};
 use crate::math::norm;
 use crate::{Linear, Mechanism};

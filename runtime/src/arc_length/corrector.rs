@@ -3,11 +3,11 @@
 //! step, under the [`Contraction`] test.
 
 use super::bordered::{DenseFrame, Frame};
-use super::path::{dot, Path, Point, Tangent};
+use super::path::{Path, Point, Tangent, dot};
+use crate::Mechanism;
 use crate::convergence::Contraction;
 use crate::correction::correction_in;
 use crate::lu::Extended;
-use crate::Mechanism;
 
 /// Most corrections of one step.
 const MAX_CORRECTOR: usize = 5;

@@ -34,11 +34,11 @@ mod path;
 mod step;
 
 use crate::math::norm;
-use crate::newton::{newton, Rule};
-use crate::outcome::{conclude, finish, Account};
+use crate::newton::{Rule, newton};
+use crate::outcome::{Account, conclude, finish};
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
-use path::{dot, first_order_travel, Path, Point, Tangent};
-use step::{det_dips, Previous, StepControl};
+use path::{Path, Point, Tangent, dot, first_order_travel};
+use step::{Previous, StepControl, det_dips};
 
 /// Below this cosine between successive tangents (about 37°) a step is rejected.
 const MIN_TANGENT_COS: f64 = 0.8;

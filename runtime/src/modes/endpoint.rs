@@ -4,8 +4,8 @@ use super::complex::Complex;
 use super::monodromy::polish;
 use super::roots::{Endpoint, EndpointKind};
 use super::track::{Model, Outcome, Tracked, Workspace};
-use crate::lu::Lu;
 use crate::Mechanism;
+use crate::lu::Lu;
 
 /// A path that stops this close to the target without reaching it is taken to approach a
 /// singular endpoint.

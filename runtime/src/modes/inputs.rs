@@ -47,11 +47,7 @@ impl<const M: usize> Inputs<M> {
 
     /// The unit of input j: radians for an angle, the length scale otherwise.
     pub(crate) fn unit(&self, j: usize) -> f64 {
-        if self.angular[j] {
-            1.0
-        } else {
-            self.scale
-        }
+        if self.angular[j] { 1.0 } else { self.scale }
     }
 
     /// A random complex input point: lengths complex normal × `size` (the same draws as before

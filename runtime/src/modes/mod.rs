@@ -61,7 +61,7 @@ pub use taylor::Series;
 
 use crate::Mechanism;
 use inputs::Inputs;
-use monodromy::{contains, Stopping, SAME};
+use monodromy::{SAME, Stopping, contains};
 use path::ParameterPath;
 use rng::Rng;
 use sparse_lu::Plan;
@@ -392,11 +392,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 .flat_map(|p| sys.point_local(p))
                 .filter(|c| c.is_finite())
                 .fold(0.0f64, |m, c| m.max(c.abs()));
-            if s > 0.0 {
-                s
-            } else {
-                1.0
-            }
+            if s > 0.0 { s } else { 1.0 }
         };
         // Two unrelated real points tell constant Jacobian entries from variable ones.
         let mut rng = Rng::new(options.seed ^ 0xA5A5);

@@ -92,11 +92,7 @@ impl<const N: usize> RealRoot<N> {
 
     /// The sign of det B: +1 or −1.
     pub fn det_sign(&self) -> i8 {
-        if self.det < 0.0 {
-            -1
-        } else {
-            1
-        }
+        if self.det < 0.0 { -1 } else { 1 }
     }
 }
 
