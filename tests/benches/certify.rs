@@ -2,10 +2,11 @@
 //! solution, one 1 kHz tracking step, and the certified tracker's 1 kHz sample (solve and
 //! proof). `cargo bench -p linkage-tests --bench certify`.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use linkage::{arc_length, certify, certify_step, Options, Start, Tracker};
 use linkage_examples::stewart::{home_start, legs_for_pose, Stewart};
 use linkage_tests::manoeuvre;
+use std::hint::black_box;
 
 fn certificates(c: &mut Criterion) {
     let s = Stewart::new();

@@ -3,10 +3,11 @@
 //! refined) per leg row of `examples/data/general_6_6_legs.csv`, cycling through the first 20.
 //! `cargo bench -p linkage-tests --bench modes`.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use linkage::modes::{AllModes, ModesOptions, Roots};
 use linkage_examples::cli::{geometry, legs_csv};
 use linkage_examples::stewart::{SixSix, StewartGeneral};
+use std::hint::black_box;
 use std::path::Path;
 
 fn all_modes(c: &mut Criterion) {
