@@ -96,3 +96,64 @@ fn five_bar_forward_kinematics_matches_circle_intersection() {
     }
     assert!(solved >= 50, "{solved} of 60 solved");
 }
+
+/// The numerical inverse (`linkage::__private::numerical_inverse` behind `FiveBar::inverse`) on
+/// points the five-bar can and cannot take: whatever it returns puts P where asked (by circle
+/// intersection), and a point off its plane by more than its tolerance, out of reach, or not
+/// finite is refused with the matching error, never answered.
+#[test]
+fn five_bar_inverse_answers_only_points_it_reaches() {
+    let fb = FiveBar::new();
+    let home = [FiveBar::HOME_V[0], FiveBar::HOME_V[1]];
+    let mut rng = Rng::new(12);
+    let mut reached = 0;
+    for _ in 0..60 {
+        // Points in and around the workspace (cranks 100, distal links 150, A at ±40).
+        let p = [rng.uniform(-260.0, 260.0), rng.uniform(-60.0, 280.0)];
+        let reachable = [-40.0f64, 40.0].iter().all(|a| {
+            let d = (p[0] - a).hypot(p[1]);
+            (50.0..=250.0).contains(&d)
+        });
+        match fb.inverse(&[p[0], p[1], 0.0], &FiveBar::HOME_INPUTS) {
+            Ok(q) => {
+                // Either assembly of the output point: P is one of the two intersections.
+                reached += 1;
+                let near = five_bar_point(q, p).expect("the returned inputs assemble");
+                assert!(
+                    (near[0] - p[0]).abs() < 1e-7 && (near[1] - p[1]).abs() < 1e-7,
+                    "{p:?}: inputs {q:?} put P at {near:?}"
+                );
+            }
+            Err(linkage::InverseError::Unreachable { .. }) => {
+                assert!(
+                    !reachable,
+                    "{p:?} is within both cranks' reach and was refused"
+                );
+            }
+            Err(e) => panic!("{p:?}: {e:?}"),
+        }
+    }
+    assert!(reached >= 20, "{reached} of 60 reached");
+    // Off the plane: 1 µm is far beyond the tolerance (1e-9 of the scale), 1e-12 mm within it.
+    let [x, y] = home;
+    assert!(matches!(
+        fb.inverse(&[x, y, 1e-3], &FiveBar::HOME_INPUTS),
+        Err(linkage::InverseError::Unreachable { .. })
+    ));
+    let q = fb.inverse(&[x, y, 1e-12], &FiveBar::HOME_INPUTS).unwrap();
+    assert!(linkage_tests::max_diff(&q, &FiveBar::HOME_INPUTS) < 1e-9);
+    // Not finite, or so large that the equations overflow: an error, not a panic or an answer.
+    for bad in [[f64::NAN, y, 0.0], [x, f64::INFINITY, 0.0]] {
+        assert_eq!(
+            fb.inverse(&bad, &FiveBar::HOME_INPUTS),
+            Err(linkage::InverseError::NonFinite)
+        );
+    }
+    assert!(fb
+        .inverse(&[1e200, -1e200, 0.0], &FiveBar::HOME_INPUTS)
+        .is_err());
+    assert_eq!(
+        fb.inverse(&[x, y, 0.0], &[f64::NAN, 0.0]),
+        Err(linkage::InverseError::NonFinite)
+    );
+}
