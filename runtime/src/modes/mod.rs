@@ -48,6 +48,7 @@ mod endpoint;
 mod inputs;
 mod monodromy;
 mod path;
+mod refill;
 mod rng;
 mod roots;
 mod seed;
@@ -63,6 +64,7 @@ use crate::Mechanism;
 use inputs::Inputs;
 use monodromy::{SAME, Stopping, contains};
 use path::ParameterPath;
+use refill::other_gammas;
 use rng::Rng;
 use sparse_lu::Plan;
 use track::{Chart, Model, Settings, Workspace};
@@ -470,6 +472,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     /// Every root at inputs `x`, into `out`. No heap, no panic; NaN, infinite or out-of-range
     /// inputs are errors. Each of the [`AllModes::start_count`] paths gets an endpoint; a
     /// target with fewer isolated roots than generic shows diverging or singular endpoints.
+    /// Where some paths end short of a regular root, every start is tracked again along up to
+    /// three other γ-bent paths, and the new roots they reach take the failed paths' places
+    /// (so an endpoint's index is its start's only where no such refill happened).
     pub fn solve(&self, x: &[f64; M], out: &mut Roots<N, K>) -> Result<(), ModesError> {
         if !x.iter().all(|c| c.is_finite()) {
             return Err(ModesError::NonFinite);
@@ -478,34 +483,66 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             .validate_inputs(x)
             .map_err(|input| ModesError::InvalidInput { input })?;
         let target = x.map(Complex::real);
+        let mut ws = Workspace::new();
+        out.paths = self.count;
+        out.n_real = 0;
         let path = ParameterPath::new(self.p0, target, self.gamma);
+        for i in 0..self.count {
+            out.endpoints[i] = self.retried_endpoint(&path, i, &target, &mut ws);
+        }
+        self.separate_duplicates(&path, &target, out, &mut ws);
+        // Paths that still end short of a regular root: every start again along other
+        // γ-bent paths, which pass the degenerate parameters elsewhere, their new roots filling
+        // the places of the failed paths (see `refill.rs`).
+        for gamma in other_gammas(self.gamma) {
+            if out.is_complete() {
+                break;
+            }
+            let path = ParameterPath::new(self.p0, target, gamma);
+            self.refill(&path, &target, out, &mut ws);
+        }
+        self.finish(x, out);
+        Ok(())
+    }
+
+    /// Tracks start `i` along `path` and classifies its end: first in affine coordinates (a
+    /// third cheaper per step, and enough for every path that stays within reach of double
+    /// precision), then, if it did not end at a regular root, in projective coordinates, then
+    /// with small steps. (At a target with fewer roots than generic it ends as it did.)
+    fn retried_endpoint(
+        &self,
+        path: &ParameterPath<M>,
+        i: usize,
+        target: &[Complex; M],
+        ws: &mut Workspace<N>,
+    ) -> Endpoint<N> {
         let model = self.model();
-        // First pass in affine coordinates: a third cheaper per step, and enough for every path
-        // that stays within reach of double precision.
         let affine = Model {
             chart: None,
             ..model
         };
-        let mut ws = Workspace::new();
-        out.paths = self.count;
-        out.n_real = 0;
-        for i in 0..self.count {
-            out.endpoints[i] =
-                self.endpoint(&affine, &path, i, &target, &Settings::DEFAULT, &mut ws);
-        }
-        // Paths that did not end at a regular root: again in projective coordinates, then with
-        // small steps. (At a target with fewer roots than generic they end as they did.)
-        for i in 0..self.count {
-            for (m, set) in [(&model, &Settings::DEFAULT), (&model, &Settings::CAREFUL)] {
-                if out.endpoints[i].is_root() {
-                    break;
-                }
-                let steps = out.endpoints[i].steps;
-                out.endpoints[i] = self.endpoint(m, &path, i, &target, set, &mut ws);
-                out.endpoints[i].steps += steps;
+        let mut e = self.endpoint(&affine, path, i, target, &Settings::DEFAULT, ws);
+        for set in [&Settings::DEFAULT, &Settings::CAREFUL] {
+            if e.is_root() {
+                break;
             }
+            let steps = e.steps;
+            e = self.endpoint(&model, path, i, target, set, ws);
+            e.steps += steps;
         }
-        // Two paths on one nonsingular root: one of them jumped. Track both again carefully.
+        e
+    }
+
+    /// Two paths on one nonsingular root: one of them jumped. Tracks both again carefully; if
+    /// they still meet, the second is a [`EndpointKind::Duplicate`].
+    fn separate_duplicates(
+        &self,
+        path: &ParameterPath<M>,
+        target: &[Complex; M],
+        out: &mut Roots<N, K>,
+        ws: &mut Workspace<N>,
+    ) {
+        let model = self.model();
         for i in 0..self.count {
             for j in i + 1..self.count {
                 if !(out.endpoints[i].is_root() && out.endpoints[j].is_root()) {
@@ -518,7 +555,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 for k in [i, j] {
                     let steps = out.endpoints[k].steps;
                     out.endpoints[k] =
-                        self.endpoint(&model, &path, k, &target, &Settings::CAREFUL, &mut ws);
+                        self.endpoint(&model, path, k, target, &Settings::CAREFUL, ws);
                     out.endpoints[k].steps += steps;
                 }
                 let (a, b) = (out.endpoints[i].z, out.endpoints[j].z);
@@ -527,8 +564,6 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 }
             }
         }
-        self.finish(x, out);
-        Ok(())
     }
 
     /// Tracks start `i` along `path` with `model` and classifies where it ends; the endpoint's

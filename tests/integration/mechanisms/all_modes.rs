@@ -355,7 +355,8 @@ fn delta_has_forty_complex_roots_two_of_them_translations() {
         "delta: 40 starts ({:?}); 50 random crank angles: {complete} with all 40 roots, {real} real roots of which {tilted} tilt the platform, both closed-form translations always among them; Newton from 200 complex points reached {newton_total} roots, all among the endpoints",
         modes.report()
     );
-    // Measured: 42 of 50 (the rest end some paths singular or failed: see BENCHMARKS.md). Not
-    // yet the 99 % the 6-6 platforms reach.
-    assert!(complete >= 40, "{complete} of 50 complete");
+    // Measured: 46 of 50 (42 before failed paths were refilled along other γ; the rest end some
+    // paths short of a root, near roots a million times the delta's size: see BENCHMARKS.md).
+    // Not yet the 99 % the 6-6 platforms reach.
+    assert!(complete >= 45, "{complete} of 50 complete");
 }
