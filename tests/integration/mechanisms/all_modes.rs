@@ -113,9 +113,21 @@ fn check_count<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
     reach: f64,
     spurious: impl Fn(&[Complex; N]) -> bool,
 ) -> (usize, usize) {
-    let modes = AllModes::<S, N, M, 64>::new(sys.clone(), &ModesOptions::default())
+    check_count_in::<S, N, M, 64>(name, sys, inputs, reach, 1000, spurious)
+}
+
+/// [`check_count`] with capacity `K` and `newton_starts` random complex points per input.
+fn check_count_in<S: Mechanism<N, M> + Clone, const N: usize, const M: usize, const K: usize>(
+    name: &str,
+    sys: S,
+    inputs: &[[f64; M]],
+    reach: f64,
+    newton_starts: usize,
+    spurious: impl Fn(&[Complex; N]) -> bool,
+) -> (usize, usize) {
+    let modes = AllModes::<S, N, M, K>::new(sys.clone(), &ModesOptions::default())
         .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let mut roots = Box::new(Roots::<N, 64>::new());
+    let mut roots = Box::new(Roots::<N, K>::new());
     let mut rng = Rng::new(41);
     let mut most = 0;
     for x in inputs {
@@ -127,7 +139,7 @@ fn check_count<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
         for r in roots.real() {
             assert!(r.residual < 1e-7, "{name} at {x:?}");
         }
-        let newton = complex_newton_roots(&sys, x, reach, &mut rng, 1000);
+        let newton = complex_newton_roots(&sys, x, reach, &mut rng, newton_starts);
         for w in &newton {
             let known = roots
                 .endpoints()
@@ -141,7 +153,7 @@ fn check_count<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
         most = most.max(newton.iter().filter(|w| !spurious(w)).count());
     }
     println!(
-        "{name}: {} complex roots by monodromy ({:?}); Newton from 1000 random complex points found at most {most}, all among them",
+        "{name}: {} complex roots by monodromy ({:?}); Newton from {newton_starts} random complex points found at most {most}, all among them",
         modes.start_count(),
         modes.report()
     );
@@ -359,4 +371,114 @@ fn delta_has_forty_complex_roots_two_of_them_translations() {
     // paths short of a root, near roots a million times the delta's size: see BENCHMARKS.md).
     // Not yet the 99 % the 6-6 platforms reach.
     assert!(complete >= 45, "{complete} of 50 complete");
+}
+
+/// The 6-PCS (60 unknowns: six platform pivots, each on a cylinder about its carriage's
+/// axis, and the legs' points on the axes, which follow linearly): 208 complex placements of
+/// the platform — the same count for the seeds 2015, 7 and 99 with three times the default
+/// stopping rule (30 loops of 208 paths and 20 fresh seeds bringing nothing new; BENCHMARKS.md).
+/// At inputs made by inverse kinematics from three poses: every path ends at a distinct
+/// nonsingular root, every start is a rigid placement, the generating pose is among the real
+/// roots, every real root gives its inputs back, and every root Newton's method in complex
+/// arithmetic reaches from 100 random points is among the endpoints.
+#[test]
+fn pcs_has_208_complex_placements() {
+    // A solver of capacity 256 for 60 unknowns is a few hundred kB, moved by value: more than
+    // a test thread's stack.
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(pcs_count)
+        .unwrap()
+        .join()
+        .unwrap();
+}
+
+fn pcs_count() {
+    use super::pcs::{pcs_inverse, Pcs};
+    let pcs = Pcs::new();
+    let modes = AllModes::<_, 60, 6, 256>::new(pcs.clone(), &ModesOptions::default()).unwrap();
+    assert_eq!(modes.start_count(), 208, "{:?}", modes.report());
+    // Rigid: the platform pivots' mutual distances (squared, complex) are those of home.
+    let d2 = |v: &[Complex; 60], i: usize, j: usize| {
+        (0..3).fold(Complex::ZERO, |s, c| {
+            let t = v[c * 6 + i] - v[c * 6 + j];
+            s + t * t
+        })
+    };
+    let home = Pcs::HOME_V.map(Complex::real);
+    for k in 0..modes.start_count() {
+        let v = modes.start(k).unwrap();
+        for (i, j) in [
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (3, 4),
+            (4, 5),
+            (0, 3),
+            (1, 4),
+            (2, 5),
+            (0, 2),
+        ] {
+            assert!(
+                (d2(&v, i, j) - d2(&home, i, j)).abs() < 1e-6 * d2(&home, i, j).abs(),
+                "start {k} is not a rigid placement"
+            );
+        }
+    }
+    let mut roots = Box::new(Roots::<60, 256>::new());
+    let mut rng = Rng::new(208);
+    let (mut real, mut newton_total) = (0, 0);
+    for _ in 0..3 {
+        let pose = linkage::Pose::from_euler(
+            rng.uniform(-0.2, 0.2),
+            rng.uniform(-0.15, 0.15),
+            rng.uniform(-0.15, 0.15),
+            [
+                rng.uniform(-15.0, 15.0),
+                rng.uniform(-15.0, 15.0),
+                200.0 + rng.uniform(-15.0, 15.0),
+            ],
+        );
+        let x = pcs_inverse(&pose).unwrap();
+        modes.solve(&x, &mut roots).unwrap();
+        assert!(
+            roots.is_complete(),
+            "at {x:?}: not every path ended at a root"
+        );
+        let found = roots.real().iter().any(|r| {
+            let p = pose_from_unknowns(&pcs, &r.v).unwrap();
+            linkage_tests::max_diff(&p.translation, &pose.translation) < 1e-7
+                && (0..3).all(|i| linkage_tests::max_diff(&p.rotation[i], &pose.rotation[i]) < 1e-9)
+        });
+        assert!(
+            found,
+            "at {x:?}: the generating pose is not among the real roots"
+        );
+        for r in roots.real() {
+            assert!(r.residual < 1e-7, "at {x:?}: residual {}", r.residual);
+            // From all the unknowns: the platform alone has two carriage heights per leg (below
+            // or above its pivot), and the real roots include both.
+            let back = pcs.inverse(&r.v, &x).unwrap();
+            assert!(
+                linkage_tests::max_diff(&back, &x) < 1e-7,
+                "{back:?} vs {x:?}"
+            );
+        }
+        real += roots.real().len();
+        let newton = complex_newton_roots(&pcs, &x, 300.0, &mut rng, 100);
+        for w in &newton {
+            assert!(
+                roots
+                    .endpoints()
+                    .iter()
+                    .any(|e| e.is_root() && same(&e.v, w, 1e-5 * 300.0)),
+                "at {x:?}: Newton reached a root the solver missed"
+            );
+        }
+        newton_total += newton.len();
+    }
+    println!(
+        "6-PCS: 208 complex placements ({:?}); 3 inputs: {real} real roots, the generating pose among them; Newton from 100 complex points reached {newton_total} roots, all among the endpoints",
+        modes.report()
+    );
 }

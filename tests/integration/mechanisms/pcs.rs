@@ -49,7 +49,7 @@ const RP: f64 = 80.0;
 
 /// Each carriage's height for a platform pose: its platform pivot is at the leg's distance r
 /// from the carriage's axis, a horizontal line at that height through the rail.
-fn pcs_inverse(pose: &Pose) -> Option<[f64; 6]> {
+pub(super) fn pcs_inverse(pose: &Pose) -> Option<[f64; 6]> {
     let da = std::f64::consts::FRAC_PI_4;
     // r² at home: 100 mm up, and 70 mm inwards of which the part across the axis counts.
     let r2 = 100.0f64.powi(2) + 70.0f64.powi(2) * (1.0 - da.cos().powi(2));
