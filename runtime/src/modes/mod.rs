@@ -53,6 +53,7 @@ mod rng;
 mod roots;
 mod seed;
 mod sparse_lu;
+mod stored;
 mod taylor;
 mod track;
 
