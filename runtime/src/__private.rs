@@ -51,3 +51,18 @@ pub fn set_pivot(
     }
     Ok(())
 }
+
+/// The larger of `worst` and |g| / ‖∇g‖ (`grad_sq` = ‖∇g‖²): to first order the distance from
+/// v to the surface g = 0, a length. NaN, or g ≠ 0 where ∇g = 0, is infinitely far.
+pub fn dependent_worst(worst: f64, g: f64, grad_sq: f64) -> f64 {
+    let off = if g == 0.0 {
+        0.0
+    } else {
+        g.abs() / libm::sqrt(grad_sq)
+    };
+    if off.is_nan() {
+        f64::INFINITY
+    } else {
+        worst.max(off)
+    }
+}

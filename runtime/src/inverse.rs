@@ -358,7 +358,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
 /// the largest |∂F_r/∂v_j| — a length, whichever unknowns an equation holds. (Not over the
 /// derivatives by the inputs: an angle's are the crank's length times larger, and a point
 /// 1 µm off a planar mechanism's plane looked within 1e-9 of the scale that way.) An equation
-/// no coordinate enters counts only where it fails.
+/// no coordinate enters counts only where it fails. The equations left out as dependent at
+/// home count too ([`Mechanism::dependent_offset`]).
 fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
@@ -379,6 +380,9 @@ fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
         };
         off = off.max(here);
     }
+    // And the equations left out as dependent at home: platform pivots on another component
+    // of an over-constrained mechanism's square system are no placement of it.
+    off = off.max(sys.dependent_offset(v, x));
     if off.is_nan() { f64::INFINITY } else { off }
 }
 

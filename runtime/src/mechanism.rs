@@ -148,4 +148,16 @@ pub trait Mechanism<const N: usize, const M: usize> {
     /// Joint inputs that put the platform pivots at `v` (inverse kinematics); where a chain
     /// has two solutions, the one nearest `reference`.
     fn inverse(&self, v: &[f64; N], reference: &[f64; M]) -> Result<[f64; M], InverseError>;
+    /// How far `v` is from satisfying the equations the generator left out as dependent at
+    /// home (the listing's "dependent at home, implied by the above and left out"): the
+    /// largest |g| / ‖∂g/∂v‖ over them, to first order the distance from v to the surface g = 0
+    /// (a length); 0 where none were left out, infinite for NaN.
+    /// Near home the kept equations imply them; an over-constrained mechanism's square system
+    /// can also have solutions on which they fail (a planar linkage folded out of its plane),
+    /// which no solver may call an answer ([`crate::Status::BranchChanged`]).
+    #[inline]
+    fn dependent_offset(&self, v: &[f64; N], x: &[f64; M]) -> f64 {
+        let _ = (v, x);
+        0.0
+    }
 }

@@ -1,6 +1,7 @@
 //! How every solve's [`Solution`] is assembled, and the one place that may call it
 //! [`Status::Converged`]: a final Newton run whose returned point is finite, whose own
-//! correction is within the tolerance, and where det B has the start's sign.
+//! correction is within the tolerance, where det B has the start's sign, and where the
+//! equations left out as dependent at home hold.
 
 use crate::correction::{correction, det_b};
 use crate::math::{norm, size};
@@ -64,7 +65,7 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
             let finite = size(&run.v).is_finite() && run.estimate.is_finite();
             if !finite {
                 not_converged(sys, &run.v, x)
-            } else if run.det * start.det() > 0.0 {
+            } else if run.det * start.det() > 0.0 && holds_dependent(sys, &run.v, x) {
                 Status::Converged
             } else {
                 Status::BranchChanged
@@ -81,6 +82,19 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
         return account.into_solution(run.v, status, run.estimate, ratio);
     }
     finish(sys, start, run.v, x, status, account)
+}
+
+/// Whether the equations left out as dependent at home hold at `v` (see
+/// [`Mechanism::dependent_offset`]): within 1e-6 of the configuration's size. A point on the
+/// start's branch meets them as closely as it meets the kept ones (to the tolerance, far
+/// below); a point on another component of the square system misses them by a fraction of the
+/// mechanism's size.
+pub(crate) fn holds_dependent<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> bool {
+    sys.dependent_offset(v, x) <= 1e-6 * size(v).max(1.0)
 }
 
 /// `sol` from a method that follows no path (NR, NH): [`Status::Converged`] becomes

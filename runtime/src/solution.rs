@@ -23,7 +23,9 @@ pub enum Status {
     /// along the curve would lead to another assembly mode.
     Fold { lambda: f64 },
     /// The sign of det B differs from the start's: the result lies across a singular
-    /// surface, on another branch.
+    /// surface, on another branch. Also where an equation left out as dependent at home
+    /// fails at the result ([`Mechanism::dependent_offset`](crate::Mechanism::dependent_offset)):
+    /// another component of an over-constrained mechanism's square system.
     BranchChanged,
     /// Newton did not converge within the iteration limit, or its iterates overflowed.
     NotConverged { residual_norm: f64 },

@@ -283,6 +283,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             let mut v = self.v;
             if let Some(det) = self.fast(x, &mut v, &mut iterations)
                 && det * self.start.det() > 0.0
+                && crate::outcome::holds_dependent(&self.sys, &v, x)
             {
                 return Ok(self.accept(v, x, det, iterations, false));
             }

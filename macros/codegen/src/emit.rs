@@ -49,6 +49,7 @@ pub fn expand(
         .enumerate()
         .map(|(i, c)| recipe(model, i, &c.recipe));
 
+    let dependent_offset = crate::emit_dependent::dependent_offset(model);
     let residual = model.equations.iter().enumerate().map(|(i, e)| {
         let e = tokens(e);
         quote!(f[#i] = #e;)
@@ -394,6 +395,8 @@ pub fn expand(
             fn inverse(&self, v: &[f64; #n], reference: &[f64; #m]) -> ::core::result::Result<[f64; #m], ::linkage::InverseError> {
                 #inverse_body
             }
+
+            #dependent_offset
         }
     }
 }

@@ -11,6 +11,7 @@
 //! none of them).
 
 pub mod emit;
+pub mod emit_dependent;
 pub mod emit_expr;
 pub mod emit_factor;
 pub mod emit_inverse;

@@ -619,6 +619,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 out.endpoints[i].kind = EndpointKind::Complex;
                 continue;
             };
+            if !crate::outcome::holds_dependent(&self.sys, &v, x) {
+                out.endpoints[i].kind = EndpointKind::Spurious;
+                continue;
+            }
             let seen = out.real[..out.n_real].iter().any(|r| {
                 (0..N).all(|k| (r.v[k] - v[k]).abs() <= 1e-9 * self.scale.max(v[k].abs()))
             });

@@ -20,6 +20,10 @@ pub enum EndpointKind {
     Duplicate,
     /// The tracker gave up before the target, away from it.
     Failed,
+    /// A real root of the square system at which an equation left out as dependent at home
+    /// fails ([`Mechanism::dependent_offset`](crate::Mechanism::dependent_offset)): not an
+    /// assembly of the mechanism.
+    Spurious,
 }
 
 /// The end of one path.

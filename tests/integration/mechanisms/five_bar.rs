@@ -157,3 +157,43 @@ fn five_bar_inverse_answers_only_points_it_reaches() {
         Err(linkage::InverseError::NonFinite)
     );
 }
+
+/// The five-bar declared in space is over-constrained: the sphere of the right distal link
+/// about the right crank's upper axis point is left out as dependent at home (see its
+/// listing). `dependent_offset` measures how far a configuration is from it: 0 at home, the
+/// distance to that sphere (to first order) elsewhere, infinite for NaN — and the solvers
+/// refuse an answer off it (`Status::BranchChanged`).
+#[test]
+fn five_bar_measures_its_left_out_equation() {
+    let five = FiveBar::new();
+    assert!(FiveBar::LISTING.contains("dependent at home"));
+    let (v0, x0) = (FiveBar::HOME_V, FiveBar::HOME_INPUTS);
+    assert!(five.dependent_offset(&v0, &x0) < 1e-12);
+    let r = 100.0;
+    let centre = [
+        40.0 + r * (std::f64::consts::PI / 3.0).cos(),
+        r * (std::f64::consts::PI / 3.0).sin(),
+        1.0,
+    ];
+    let dist = |p: &[f64; 3]| {
+        (0..3)
+            .map(|k| (p[k] - centre[k]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let d = dist(&v0);
+    let mut rng = Rng::new(5);
+    for _ in 0..50 {
+        let p = [0, 1, 2].map(|k| v0[k] + rng.uniform(-2.0, 2.0));
+        let off = five.dependent_offset(&p, &x0);
+        let exact = (dist(&p) - d).abs();
+        assert!(
+            (off - exact).abs() <= 0.05 * exact + 1e-12,
+            "{off} vs {exact}"
+        );
+    }
+    assert_eq!(
+        five.dependent_offset(&[f64::NAN, 0.0, 0.0], &x0),
+        f64::INFINITY
+    );
+}

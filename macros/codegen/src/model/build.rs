@@ -226,6 +226,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         auto_points: b.auto_points,
         general_home_inputs: added.home_inputs,
         dropped: Vec::new(),
+        dependent: Vec::new(),
         mobility: None,
         counted: crate::model::mobility::of(d).describe(),
         links,

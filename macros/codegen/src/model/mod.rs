@@ -193,6 +193,10 @@ pub struct Model {
     pub general_home_inputs: Vec<(usize, f64)>,
     /// Equations dropped as dependent at home (rendered), for the listing.
     pub dropped: Vec<String>,
+    /// The same equations, for the check that they hold at every answer
+    /// (`Mechanism::dependent_offset`): implied near home, but not on every component of the
+    /// square system that is left.
+    pub dependent: Vec<Expr>,
     /// How the mobility was decided, when not by Grübler–Kutzbach.
     pub mobility: Option<String>,
     /// The mobility by Grübler–Kutzbach, as the listing states it where rank did not decide.

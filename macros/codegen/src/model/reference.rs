@@ -259,6 +259,7 @@ pub fn rank_at_home(
         } else {
             let text = model.render(&e);
             model.dropped.push(text);
+            model.dependent.push(e);
         }
     }
     model.mobility = Some(rule);

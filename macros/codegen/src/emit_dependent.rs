@@ -1,0 +1,52 @@
+//! Emission of `Mechanism::dependent_offset`: how far an answer is from satisfying the
+//! equations the rank pass left out as dependent at home ([`crate::simplify::rank`]): the
+//! largest |g| / ‖∂g/∂v‖ over them — to first order the distance from v to the surface g = 0
+//! at the given inputs. An equation no coordinate enters constrains the inputs alone and is
+//! not checked here.
+//!
+//! Near home they are implied by the kept ones; an over-constrained mechanism's square system
+//! can have other components on which they fail (a planar linkage folded out of its plane, a
+//! wrist whose platform pivots leave their mutual distances). A solver that lands there has
+//! solved the kept equations and still answered wrongly; the runtime refuses such answers.
+
+use crate::emit_expr::tokens;
+use crate::expr::Var;
+use crate::model::Model;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// The method, or nothing (the trait's default, 0) when no equation was left out.
+pub fn dependent_offset(model: &Model) -> TokenStream {
+    if model.dependent.is_empty() {
+        return TokenStream::new();
+    }
+    let (n, m) = (model.unknowns.len(), model.inputs.len());
+    let terms = model
+        .dependent
+        .iter()
+        .filter(|g| (0..n).any(|j| g.depends_on(Var::Unknown(j))))
+        .map(|g| {
+            let value = tokens(g);
+            // Over the coordinates only: an angle input's derivative is a crank's length times
+            // larger and would make a point far off the surface look close to it.
+            let squares = (0..n)
+                .map(|j| g.derivative(Var::Unknown(j)).simplify())
+                .filter(|d| !d.is_zero())
+                .map(|d| {
+                    let d = tokens(&d);
+                    quote!({ let d = #d; d * d })
+                });
+            quote! {
+                worst = ::linkage::__private::dependent_worst(worst, #value, 0.0 #(+ #squares)*);
+            }
+        });
+    quote! {
+        #[allow(unused_variables)]
+        fn dependent_offset(&self, v: &[f64; #n], x: &[f64; #m]) -> f64 {
+            let c = &self.constants;
+            let mut worst = 0.0f64;
+            #(#terms)*
+            worst
+        }
+    }
+}
