@@ -65,7 +65,6 @@ use crate::Mechanism;
 use inputs::Inputs;
 use monodromy::{SAME, Stopping, contains};
 use path::ParameterPath;
-use refill::other_gammas;
 use rng::Rng;
 use sparse_lu::Plan;
 use track::{Chart, Model, Settings, Workspace};
@@ -495,13 +494,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         // Paths that still end short of a regular root: every start again along other
         // γ-bent paths, which pass the degenerate parameters elsewhere, their new roots filling
         // the places of the failed paths (see `refill.rs`).
-        for gamma in other_gammas(self.gamma) {
-            if out.is_complete() {
-                break;
-            }
-            let path = ParameterPath::new(self.p0, target, gamma);
-            self.refill(&path, &target, out, &mut ws);
-        }
+        self.refill_failed(&target, out, &mut ws);
         self.finish(x, out);
         Ok(())
     }

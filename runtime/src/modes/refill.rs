@@ -30,7 +30,7 @@ const APART: f64 = 100.0;
 /// The other values of γ tried for an incomplete query: its conjugate, and the two whose
 /// arguments mirror γ's within the range π/6 ≤ |θ| ≤ π/2 that `gamma` draws from (θ ↦
 /// ±(2π/3 − |θ|), moved where that is γ's own argument). All stay clear of −1, where the rational path has its pole.
-pub(crate) fn other_gammas(gamma: Complex) -> [Complex; 3] {
+fn other_gammas(gamma: Complex) -> [Complex; 3] {
     let theta = libm::atan2(gamma.im, gamma.re);
     let mut mirrored = 2.0 * core::f64::consts::FRAC_PI_3 - theta.abs();
     if (mirrored - theta.abs()).abs() < 0.2 {
@@ -42,9 +42,26 @@ pub(crate) fn other_gammas(gamma: Complex) -> [Complex; 3] {
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllModes<S, N, M, K> {
+    /// If some paths of `out` ended short of a regular root: every start along the paths of
+    /// the other γ in turn ([`other_gammas`]), until every place holds a root or all were tried.
+    pub(super) fn refill_failed(
+        &self,
+        target: &[Complex; M],
+        out: &mut Roots<N, K>,
+        ws: &mut Workspace<N>,
+    ) {
+        for gamma in other_gammas(self.gamma) {
+            if out.is_complete() {
+                return;
+            }
+            let path = ParameterPath::new(self.p0, *target, gamma);
+            self.refill(&path, target, out, ws);
+        }
+    }
+
     /// Tracks every start along `path` (another γ) and puts each new nonsingular root in the
     /// place of a path that did not end at one, until none is left.
-    pub(super) fn refill(
+    fn refill(
         &self,
         path: &ParameterPath<M>,
         target: &[Complex; M],
