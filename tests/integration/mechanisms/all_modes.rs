@@ -100,6 +100,32 @@ fn same<const N: usize>(a: &[Complex; N], b: &[Complex; N], tol: f64) -> bool {
         .all(|(p, q)| (*p - *q).abs() <= tol.max(1e-7 * p.abs()))
 }
 
+/// Newton's method in complex arithmetic from `starts` random points of size `reach` at the
+/// inputs `x`: every root it reaches must be among the endpoints of `roots`, or be one that
+/// `spurious` accepts. Returns the roots it reached that `spurious` does not accept.
+fn newton_among<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
+    sys: &S,
+    x: &[f64; M],
+    roots: &Roots<N, K>,
+    (reach, starts): (f64, usize),
+    rng: &mut Rng,
+    spurious: impl Fn(&[Complex; N]) -> bool,
+    label: &str,
+) -> usize {
+    let newton = complex_newton_roots(sys, x, reach, rng, starts);
+    for w in &newton {
+        let known = roots
+            .endpoints()
+            .iter()
+            .any(|e| e.is_root() && same(&e.v, w, 1e-5 * reach));
+        assert!(
+            known || spurious(w),
+            "{label} at {x:?}: Newton reached a root the solver missed"
+        );
+    }
+    newton.iter().filter(|w| !spurious(w)).count()
+}
+
 /// Builds the solver with the default options and checks, at each of `inputs`: every path
 /// ends at a distinct nonsingular root, every real root has a tiny residual (a point output such
 /// as the five-bar's has no pose), and every
@@ -139,18 +165,16 @@ fn check_count_in<S: Mechanism<N, M> + Clone, const N: usize, const M: usize, co
         for r in roots.real() {
             assert!(r.residual < 1e-7, "{name} at {x:?}");
         }
-        let newton = complex_newton_roots(&sys, x, reach, &mut rng, newton_starts);
-        for w in &newton {
-            let known = roots
-                .endpoints()
-                .iter()
-                .any(|e| e.is_root() && same(&e.v, w, 1e-5 * reach));
-            assert!(
-                known || spurious(w),
-                "{name} at {x:?}: Newton reached a root the solver missed"
-            );
-        }
-        most = most.max(newton.iter().filter(|w| !spurious(w)).count());
+        let reached = newton_among(
+            &sys,
+            x,
+            &roots,
+            (reach, newton_starts),
+            &mut rng,
+            &spurious,
+            name,
+        );
+        most = most.max(reached);
     }
     println!(
         "{name}: {} complex roots by monodromy ({:?}); Newton from {newton_starts} random complex points found at most {most}, all among them",
@@ -351,17 +375,15 @@ fn delta_has_forty_complex_roots_two_of_them_translations() {
             tilted += usize::from(!is_identity(&pose.rotation, 1e-7));
         }
         real += roots.real().len();
-        let newton = complex_newton_roots(&delta, &q, 300.0, &mut rng, 200);
-        for w in &newton {
-            assert!(
-                roots
-                    .endpoints()
-                    .iter()
-                    .any(|e| e.is_root() && same(&e.v, w, 1e-5 * 300.0)),
-                "q = {q:?}: Newton reached a root the solver missed"
-            );
-        }
-        newton_total += newton.len();
+        newton_total += newton_among(
+            &delta,
+            &q,
+            &roots,
+            (300.0, 200),
+            &mut rng,
+            |_| false,
+            "delta",
+        );
     }
     println!(
         "delta: 40 starts ({:?}); 50 random crank angles: {complete} with all 40 roots, {real} real roots of which {tilted} tilt the platform, both closed-form translations always among them; Newton from 200 complex points reached {newton_total} roots, all among the endpoints",
@@ -465,17 +487,7 @@ fn pcs_count() {
             );
         }
         real += roots.real().len();
-        let newton = complex_newton_roots(&pcs, &x, 300.0, &mut rng, 100);
-        for w in &newton {
-            assert!(
-                roots
-                    .endpoints()
-                    .iter()
-                    .any(|e| e.is_root() && same(&e.v, w, 1e-5 * 300.0)),
-                "at {x:?}: Newton reached a root the solver missed"
-            );
-        }
-        newton_total += newton.len();
+        newton_total += newton_among(&pcs, &x, &roots, (300.0, 100), &mut rng, |_| false, "6-PCS");
     }
     println!(
         "6-PCS: 208 complex placements ({:?}); 3 inputs: {real} real roots, the generating pose among them; Newton from 100 complex points reached {newton_total} roots, all among the endpoints",
