@@ -2,8 +2,6 @@
 //! ([`Convergence`]), and when a corrector may be trusted to have stayed on its branch
 //! ([`Contraction`]).
 
-use crate::math::size;
-
 /// When Newton's method at fixed inputs stops.
 ///
 /// A solve's answer is *converged* only at a point where the Newton correction, measured with
@@ -26,10 +24,16 @@ pub(crate) struct Convergence {
 }
 
 impl Convergence {
+    #[cfg(test)]
     pub(crate) fn new<const N: usize>(tolerance: f64, v: &[f64; N]) -> Self {
+        Self::with_scale(tolerance, crate::math::size(v))
+    }
+
+    /// For iterates of size about `scale` (‖v‖ of the start point).
+    pub(crate) fn with_scale(tolerance: f64, scale: f64) -> Self {
         Convergence {
             tolerance,
-            floor: 1e-6 * size(v).max(1.0),
+            floor: 1e-6 * scale.max(1.0),
             previous: f64::INFINITY,
             estimate: f64::INFINITY,
         }

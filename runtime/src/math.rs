@@ -10,10 +10,19 @@ pub use linkage_geometry::math::*;
 /// bad vector.
 #[inline(always)]
 pub(crate) fn size<const N: usize>(v: &[f64; N]) -> f64 {
-    let mut s = 0.0;
-    for x in v {
-        s += x * x;
+    // Two partial sums (even and odd entries): the compiler pairs them in one SSE2 register
+    // instead of one long chain of scalar additions.
+    let (mut even, mut odd) = (0.0, 0.0);
+    let pairs = v.chunks_exact(2);
+    let last = pairs.remainder();
+    for p in pairs {
+        even += p[0] * p[0];
+        odd += p[1] * p[1];
     }
+    for x in last {
+        even += x * x;
+    }
+    let s = even + odd;
     if s.is_finite() && s > 1e-280 {
         sqrt(s)
     } else {

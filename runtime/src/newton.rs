@@ -59,6 +59,7 @@ struct Best {
     det: f64,
 }
 
+#[inline]
 pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: [f64; N],
@@ -66,15 +67,27 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
     rule: Rule,
 ) -> Newton<N> {
+    newton_scaled(sys, &v, size(&v), x, options, rule)
+}
+
+/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::Start)'s, computed once).
+pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    scale: f64,
+    x: &[f64; M],
+    options: &Options,
+    rule: Rule,
+) -> Newton<N> {
     let tolerance = options.tolerance;
-    let mut convergence = Convergence::new(tolerance, &v);
+    let mut convergence = Convergence::with_scale(tolerance, scale);
     let mut fac = sys.new_factor();
     let mut c = Correction::new();
-    let mut current = v;
+    let mut current = *v;
     let mut best: Option<Best> = None;
     // The best point is `current` itself until the step moves it, then `best_v`: it is copied
     // only as the step is taken, and only while the corrections keep shrinking.
-    let mut best_v = v;
+    let mut best_v = *v;
     let mut best_here = false;
     let mut iterations = 0;
     let mut previous = f64::INFINITY;
@@ -164,7 +177,7 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
             v: if size(&current).is_finite() {
                 current
             } else {
-                v
+                *v
             },
             ending,
             iterations,

@@ -3,7 +3,7 @@
 //! assembly mode. The det B sign check catches some of those, not all, so a converged result is
 //! [`Status::Unverified`](crate::Status::Unverified), never `Converged`.
 
-use crate::newton::{Ending, Rule, newton};
+use crate::newton::{Ending, Rule, newton_scaled};
 use crate::outcome::{Account, conclude, unverified};
 use crate::{Mechanism, Options, Solution, SolveError, Start};
 
@@ -47,7 +47,7 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Result<Solution<N>, SolveError> {
     // F at the start is Newton's first residual: its overflow shows there, not in a check.
     crate::start::check_sample(sys, start, x, options)?;
-    let run = newton(sys, *start.v(), x, options, Rule::Final);
+    let run = newton_scaled(sys, start.v(), start.scale(), x, options, Rule::Final);
     if run.ending == Ending::NonFinite && run.iterations == 0 {
         return Err(SolveError::NonFinite);
     }

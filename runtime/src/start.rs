@@ -18,17 +18,27 @@ const MIN_RCOND: f64 = 1e-7;
 /// Only checked constructors make one ([`Start::new`]), so every solve can rely on it:
 ///
 /// ```compile_fail
-/// let start: linkage::Start<1, 1> = linkage::Start { v: [0.0], x: [1.0], det: 1.0 };
+/// let start: linkage::Start<1, 1> = linkage::Start { v: [0.0], x: [1.0], det: 1.0, scale: 0.0 };
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Start<const N: usize, const M: usize> {
     v: [f64; N],
     x: [f64; M],
     det: f64,
+    /// ‖v‖ ([`size`]), which every solve from here checks its options against and sets its
+    /// rounding floor by: computed once, not per solve.
+    scale: f64,
 }
 
-pub(crate) fn all_finite(a: &[f64]) -> bool {
-    a.iter().all(|x| x.is_finite())
+/// Whether every entry is finite, without a branch per entry: `x · 0` is 0 for finite x and
+/// NaN for an infinite or NaN one, and a sum of zeros cannot overflow.
+#[inline]
+pub(crate) fn all_finite<const K: usize>(a: &[f64; K]) -> bool {
+    let mut zero = 0.0;
+    for x in a {
+        zero += x * 0.0;
+    }
+    zero == 0.0
 }
 
 /// Rejects invalid options and non-finite, out-of-range or overflowing targets before any
@@ -56,7 +66,7 @@ pub(crate) fn check_sample<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
 ) -> Result<(), SolveError> {
-    options.check(size(&start.v))?;
+    options.check(start.scale)?;
     if !all_finite(x) {
         return Err(SolveError::NonFinite);
     }
@@ -174,14 +184,24 @@ impl<const N: usize, const M: usize> Start<N, M> {
             return Err(inconsistent);
         }
         // `c` was computed at `v` itself: det B belongs to the stored point.
-        Ok(Start { v, x, det: c.det })
+        Ok(Start::accepted(v, x, c.det))
     }
 
     /// A point the crate has itself accepted on a start's branch (a tracked sample, a
     /// converged solve, a point of a continuation path): consistent and regular as far as
     /// that acceptance showed, with det B measured at `v`. Not for unchecked input.
     pub(crate) fn accepted(v: [f64; N], x: [f64; M], det: f64) -> Self {
-        Start { v, x, det }
+        Start {
+            v,
+            x,
+            det,
+            scale: size(&v),
+        }
+    }
+
+    /// ‖v0‖.
+    pub(crate) fn scale(&self) -> f64 {
+        self.scale
     }
 
     /// The pivot coordinates v0, refined to full precision.
@@ -197,5 +217,23 @@ impl<const N: usize, const M: usize> Start<N, M> {
     /// det B at `(v0, x0)`: its sign marks the start's branch.
     pub fn det(&self) -> f64 {
         self.det
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::all_finite;
+
+    #[test]
+    fn all_finite_rejects_any_infinite_or_nan_entry() {
+        assert!(all_finite(&[0.0, -1.0, 1e308, -1e308, 5e-324, -0.0]));
+        assert!(all_finite::<0>(&[]));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for i in 0..6 {
+                let mut a = [1e308; 6];
+                a[i] = bad;
+                assert!(!all_finite(&a), "{a:?}");
+            }
+        }
     }
 }

@@ -182,7 +182,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             refused: false,
             bend: None,
             certified: None,
-            options_checked: options.check(crate::math::size(start.v())),
+            options_checked: options.check(start.scale()),
         }
     }
 

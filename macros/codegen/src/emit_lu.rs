@@ -97,8 +97,9 @@ pub fn fixed_factor(
             let o = at[i][p].unwrap_or(0);
             // The largest and smallest multiplier rather than the largest |multiplier|: no
             // copy for the absolute value (two-operand SSE2), one maxsd and one minsd, written
-            // so that the accumulator is their destination (a NaN multiplier makes it NaN,
-            // which fails the test below as it should).
+            // so that the accumulator is their destination. A NaN multiplier is not caught
+            // here (the next one replaces a NaN accumulator): it comes from a NaN entry or
+            // pivot, which reaches det Z or the sink (see the module documentation).
             body.push(quote! {
                 let #m = #source * #recip;
                 f[#o] = #m;
