@@ -85,6 +85,17 @@ pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
 }
 
+/// How many cases a sweep runs: `quick` on a plain `cargo test`, `full` when `LINKAGE_STRESS`
+/// is set (to any k ≥ 1; `.ci/run` sets it). Sweeps number their cases 0, 1, …, so the quick
+/// sample is the full sweep's first cases: every check runs on both, the full sweep on more
+/// random machines.
+pub fn sweep(quick: usize, full: usize) -> usize {
+    match std::env::var("LINKAGE_STRESS") {
+        Ok(_) => full,
+        Err(_) => quick,
+    }
+}
+
 /// Largest coordinate difference.
 pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter()

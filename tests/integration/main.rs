@@ -6,7 +6,7 @@ mod certified_tracking;
 mod certify;
 mod certify_adversarial;
 mod cli_regressions;
-mod front_end_robustness;
+mod file_readers_robustness;
 mod generated_systems;
 mod jacobians;
 mod mechanisms;

@@ -9,7 +9,7 @@ use linkage_examples::rps::Rps3;
 use linkage_examples::stewart::{
     legs_for_pose, SixSix, Stewart, StewartGeneral, HOME_LEGS, HOME_POSE,
 };
-use linkage_tests::Rng;
+use linkage_tests::{sweep, Rng};
 
 /// A point at radius 0.5…1 × `radius` around the z axis, up to `height` off the plane z = 0.
 fn random_point(rng: &mut Rng, radius: f64, height: f64) -> [f64; 3] {
@@ -189,7 +189,8 @@ fn summary(cases: &[(bool, usize, usize)], label: &str) {
 
 #[test]
 fn general_six_six_platforms_have_all_forty_roots() {
-    let cases: Vec<_> = (0..50)
+    // 10 random platforms (about 7 s on an idle core); 50 with LINKAGE_STRESS set.
+    let cases: Vec<_> = (0..sweep(10, 50) as u64)
         .map(|k| {
             let mut rng = Rng::new(6600 + k);
             let base = [0; 6].map(|_| random_point(&mut rng, 150.0, 20.0));
@@ -204,7 +205,8 @@ fn general_six_six_platforms_have_all_forty_roots() {
 
 #[test]
 fn planar_six_six_platforms_have_all_forty_roots() {
-    let cases: Vec<_> = (0..20)
+    // 5 random platforms; 20 with LINKAGE_STRESS set.
+    let cases: Vec<_> = (0..sweep(5, 20) as u64)
         .map(|k| {
             let mut rng = Rng::new(4400 + k);
             let base = [0; 6].map(|_| random_point(&mut rng, 150.0, 0.0));

@@ -1,9 +1,26 @@
-//! The generator and the file readers on mangled input: an error, never a panic. A stable,
-//! deterministic cousin of the cargo-fuzz targets in `tests/fuzz`.
+//! The generator on mangled declarations: an error, never a panic. A stable, deterministic
+//! cousin of the cargo-fuzz targets in `tests/fuzz`. (The file readers' half is in the
+//! integration tests, `file_readers_robustness.rs`: it needs the CLI, this half only this crate;
+//! here it keeps the generator out of the integration binary's dependencies.)
 
-use linkage_examples::cli::{geometry, legs_csv};
-use linkage_tests::Rng;
 use proc_macro2::{TokenStream, TokenTree};
+
+/// SplitMix64, the sequence of `linkage_tests::Rng` (which this crate cannot depend on: the
+/// tests crate depends on it through the macro).
+struct Rng(u64);
+
+impl Rng {
+    fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+}
 
 const DECLARATION: &str = r#"
     pub struct M;
@@ -171,31 +188,4 @@ fn mangle(declaration: &str, seed: u64, valid: bool) {
         }
     }
     assert!(rejected > rounds / 3, "{rejected}");
-}
-
-#[test]
-fn the_file_readers_survive_mangled_input() {
-    let toml = "base = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\nplatform = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\n[start]\nlegs = [1,1,1,1,1,1]\npose = [0,0,0,0,0,1]\n";
-    let csv = "t,L1,L2,L3,L4,L5,L6\n0,170,170,170,170,170,170\n1,\"a\",2,3,4,5,6\n";
-    let mut rng = Rng::new(7);
-    for _ in 0..3000 {
-        for (text, is_toml) in [(toml, true), (csv, false)] {
-            let mut bytes = text.as_bytes().to_vec();
-            for _ in 0..1 + rng.next_u64() % 6 {
-                let i = (rng.next_u64() as usize) % bytes.len();
-                match rng.next_u64() % 3 {
-                    0 => bytes[i] = (rng.next_u64() % 256) as u8,
-                    1 => {
-                        bytes.remove(i);
-                    }
-                    _ => bytes.insert(i, b"[],=\"\n-e9."[(rng.next_u64() % 10) as usize]),
-                }
-            }
-            if is_toml {
-                let _ = geometry::parse(&String::from_utf8_lossy(&bytes));
-            } else {
-                let _ = legs_csv::read_from(bytes.as_slice());
-            }
-        }
-    }
 }
