@@ -20,6 +20,13 @@ fn stewart() -> &'static Path {
         let workspace = Path::new(env!("CARGO_MANIFEST_DIR"))
             .parent()
             .expect("workspace");
+        let built = profile_dir.join("examples").join("stewart");
+        // `cargo test --workspace` has built the example already, with the workspace's
+        // features; building it again here with this package's would compile linkage and the
+        // examples a second time. Used only if it is newer than every source it is made of.
+        if newer_than_sources(&built, workspace) {
+            return built;
+        }
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         let mut build = Command::new(cargo);
         build
@@ -42,6 +49,27 @@ fn stewart() -> &'static Path {
         assert!(status.success(), "building the stewart example failed");
         profile_dir.join("examples").join("stewart")
     })
+}
+
+/// Whether `bin` exists and was written after every file under the workspace's source
+/// directories (the runtime, the generator, the examples) and its manifests.
+fn newer_than_sources(bin: &Path, workspace: &Path) -> bool {
+    fn newest(path: &Path) -> Option<std::time::SystemTime> {
+        let meta = std::fs::metadata(path).ok()?;
+        let mut latest = meta.modified().ok()?;
+        if meta.is_dir() {
+            for entry in std::fs::read_dir(path).ok()? {
+                latest = latest.max(newest(&entry.ok()?.path())?);
+            }
+        }
+        Some(latest)
+    }
+    let Some(built) = std::fs::metadata(bin).and_then(|m| m.modified()).ok() else {
+        return false;
+    };
+    ["runtime", "macros", "examples", "Cargo.toml", "Cargo.lock"]
+        .iter()
+        .all(|p| newest(&workspace.join(p)).is_some_and(|t| t < built))
 }
 
 /// A scratch directory for one test.
