@@ -8,6 +8,7 @@ pub fn sq(x: f64) -> f64 {
 }
 
 pub use crate::inverse::{Plan as InversePlan, solve as numerical_inverse};
+pub use crate::lu::{fallback_factor, fallback_solve};
 pub use crate::math::{cos, sin};
 
 pub use linkage_geometry::{

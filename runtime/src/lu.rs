@@ -277,6 +277,45 @@ impl<const N: usize> Column for Extended<N> {
     }
 }
 
+/// The fallback of a factorisation `mechanism!` generates (not public API): `z`, the Schur
+/// complement its fixed pivot order could not factor, factored with partial pivoting by the
+/// one kernel of this module, and stored in `stored` — the K² factors row by row, then the K
+/// row swaps (as numbers: the generated storage is `f64`) — for [`fallback_solve`].
+/// `Some((det Z, pivot ratio))`, `None` where a column has no usable pivot.
+///
+/// A function generic over K rather than code unrolled into every mechanism: this path is
+/// cold, and unrolled it was an eighth of the code the integration tests compiled.
+#[doc(hidden)]
+pub fn fallback_factor<const K: usize>(
+    mut z: [[f64; K]; K],
+    stored: &mut [f64],
+) -> Option<(f64, f64)> {
+    let piv: Pivots<K> = eliminate(&mut z)?;
+    for (i, row) in z.iter().enumerate() {
+        stored[i * K..(i + 1) * K].copy_from_slice(row);
+    }
+    for (k, &p) in piv.swaps.iter().enumerate() {
+        stored[K * K + k] = p as f64;
+    }
+    Some((piv.info.det, piv.info.pivot_ratio))
+}
+
+/// Solves `Z y = b` in place with what [`fallback_factor`] stored.
+#[doc(hidden)]
+pub fn fallback_solve<const K: usize>(stored: &[f64], y: &mut [f64; K]) {
+    let mut z = [[0.0; K]; K];
+    for (i, row) in z.iter_mut().enumerate() {
+        row.copy_from_slice(&stored[i * K..(i + 1) * K]);
+    }
+    let mut swaps = [0usize; K];
+    for (k, p) in swaps.iter_mut().enumerate() {
+        // Written by `fallback_factor` from an index below K; clamped all the same, so that a
+        // storage that did not come from it cannot make the solve index out of bounds.
+        *p = (stored[K * K + k] as usize).min(K.saturating_sub(1));
+    }
+    substitute(&z, &swaps, y);
+}
+
 /// `P A = L U` in place, with partial pivoting: the row swap of each step (the last step of
 /// an (S+1)×(S+1) matrix has none to record), det A and the pivot ratio. `None` when a pivot
 /// column is zero or not finite. det A itself may have over- or underflowed.

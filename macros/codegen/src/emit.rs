@@ -1,7 +1,7 @@
 //! Emission: the model as plain, allocation-free, `no_std` Rust implementing
 //! `::linkage::Mechanism`. Only absolute paths are named, so the user's imports never matter.
 
-use crate::emit_expr::{lit, tokens, tokens_in};
+use crate::emit_expr::{lit, tokens, Arithmetic, Emitter};
 use crate::expr::{Expr, Var};
 use crate::front::ast::Mechanism;
 use crate::model::{Auto, HomeOf, Inverse, Model, PointRef, Recipe};
@@ -50,52 +50,84 @@ pub fn expand(
         .map(|(i, c)| recipe(model, i, &c.recipe));
 
     let dependent_offset = crate::emit_dependent::dependent_offset(model);
-    let residual = model.equations.iter().enumerate().map(|(i, e)| {
-        let e = tokens(e);
-        quote!(f[#i] = #e;)
-    });
-    let jacobian_sparse = jac.iter().enumerate().map(|(k, (_, _, e))| {
-        let e = tokens(e);
-        quote!(values[#k] = #e;)
-    });
-    let residual_in = model.equations.iter().enumerate().map(|(i, e)| {
-        let e = tokens_in(e);
-        quote!(f[#i] = #e;)
-    });
-    let jacobian_in = jac.iter().enumerate().map(|(k, (_, _, e))| {
-        let e = tokens_in(e);
-        quote!(values[#k] = #e;)
-    });
-    let jacobian_dense = jac.iter().map(|(r, c, e)| {
-        let e = tokens(e);
-        quote!(b[#r][#c] = #e;)
-    });
-    let input_jacobian = model.equations.iter().enumerate().flat_map(|(r, f)| {
-        (0..m).filter_map(move |j| {
-            let d = f.derivative(Var::Input(j));
-            (!d.is_zero()).then(|| {
-                let d = tokens(&d);
-                quote!(a[#r][#j] = #d;)
-            })
+    let residual = assignments(
+        Arithmetic::F64,
+        model
+            .equations
+            .iter()
+            .enumerate()
+            .map(|(i, e)| (quote!(f[#i]), e)),
+    );
+    let jacobian_sparse = assignments(
+        Arithmetic::F64,
+        jac.iter()
+            .enumerate()
+            .map(|(k, (_, _, e))| (quote!(values[#k]), e)),
+    );
+    let residual_in = assignments(
+        Arithmetic::Generic,
+        model
+            .equations
+            .iter()
+            .enumerate()
+            .map(|(i, e)| (quote!(f[#i]), e)),
+    );
+    let jacobian_in = assignments(
+        Arithmetic::Generic,
+        jac.iter()
+            .enumerate()
+            .map(|(k, (_, _, e))| (quote!(values[#k]), e)),
+    );
+    let jacobian_dense = assignments(
+        Arithmetic::F64,
+        jac.iter().map(|(r, c, e)| (quote!(b[#r][#c]), e)),
+    );
+    // ∂F/∂x's nonzeros, row by row in column order.
+    let input_terms: Vec<Vec<(usize, Expr)>> = model
+        .equations
+        .iter()
+        .map(|f| {
+            (0..m)
+                .map(|j| (j, f.derivative(Var::Input(j))))
+                .filter(|(_, d)| !d.is_zero())
+                .collect()
         })
-    });
+        .collect();
+    let input_jacobian = assignments(
+        Arithmetic::F64,
+        input_terms
+            .iter()
+            .enumerate()
+            .flat_map(|(r, terms)| terms.iter().map(move |(j, d)| (quote!(a[#r][#j]), d))),
+    );
     // The same products as `input_jacobian`'s nonzeros, summed per row in column order.
-    let input_derivative = model.equations.iter().enumerate().map(|(r, f)| {
-        let terms: Vec<TokenStream> = (0..m)
-            .filter_map(|j| {
-                let d = f.derivative(Var::Input(j));
-                (!d.is_zero()).then(|| {
-                    let d = tokens(&d);
-                    quote!(#d * dx[#j])
-                })
+    let input_derivative = {
+        let mut emitter = Emitter::new(Arithmetic::F64);
+        input_terms
+            .iter()
+            .flatten()
+            .for_each(|(_, d)| emitter.count(d));
+        let rows: Vec<TokenStream> = input_terms
+            .iter()
+            .enumerate()
+            .map(|(r, terms)| {
+                let terms: Vec<TokenStream> = terms
+                    .iter()
+                    .map(|(j, d)| {
+                        let d = emitter.tokens(d);
+                        quote!(#d * dx[#j])
+                    })
+                    .collect();
+                if terms.is_empty() {
+                    quote!(out[#r] = 0.0;)
+                } else {
+                    quote!(out[#r] = #(#terms)+*;)
+                }
             })
             .collect();
-        if terms.is_empty() {
-            quote!(out[#r] = 0.0;)
-        } else {
-            quote!(out[#r] = #(#terms)+*;)
-        }
-    });
+        let lets = emitter.bindings();
+        quote!(#lets #(#rows)*)
+    };
     let point_local = model.points.iter().enumerate().map(|(i, p)| {
         let [x, y, z] = p.local;
         quote!(#i => [g[#x], g[#y], g[#z]],)
@@ -310,7 +342,7 @@ pub fn expand(
             #allow
             fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
                 let c = &self.constants;
-                #(#residual)*
+                #residual
             }
 
             #[inline]
@@ -321,14 +353,14 @@ pub fn expand(
                     Some(s) => s,
                     None => return,
                 };
-                #(#jacobian_sparse)*
+                #jacobian_sparse
             }
 
             #[inline]
             #allow
             fn residual_in<T: ::linkage::Scalar>(&self, v: &[T; #n], x: &[T; #m], f: &mut [T; #n]) {
                 let c = &self.constants;
-                #(#residual_in)*
+                #residual_in
             }
 
             #[inline]
@@ -339,7 +371,7 @@ pub fn expand(
                     Some(s) => s,
                     None => return,
                 };
-                #(#jacobian_in)*
+                #jacobian_in
             }
 
             #[inline]
@@ -347,7 +379,7 @@ pub fn expand(
             fn jacobian_dense(&self, v: &[f64; #n], x: &[f64; #m], b: &mut [[f64; #n]; #n]) {
                 let c = &self.constants;
                 *b = [[0.0; #n]; #n];
-                #(#jacobian_dense)*
+                #jacobian_dense
             }
 
             type Factor = #factor_type;
@@ -359,14 +391,14 @@ pub fn expand(
             fn input_jacobian(&self, v: &[f64; #n], x: &[f64; #m], a: &mut [[f64; #m]; #n]) {
                 let c = &self.constants;
                 *a = [[0.0; #m]; #n];
-                #(#input_jacobian)*
+                #input_jacobian
             }
 
             #[inline]
             #[allow(unused_variables)]
             fn input_derivative(&self, v: &[f64; #n], x: &[f64; #m], dx: &[f64; #m], out: &mut [f64; #n]) {
                 let c = &self.constants;
-                #(#input_derivative)*
+                #input_derivative
             }
 
             fn point_local(&self, p: usize) -> [f64; 3] {
@@ -534,4 +566,24 @@ fn recipe(model: &Model, i: usize, r: &Recipe) -> TokenStream {
             quote!(c[#i] = #p::axis_frame(#a, #b, #q)?[#index];)
         }
     }
+}
+
+/// The statements `place = expression;` of one function body, after the `let`s of the
+/// subexpressions they share ([`Emitter`]).
+fn assignments<'e>(
+    arithmetic: Arithmetic,
+    items: impl Iterator<Item = (TokenStream, &'e Expr)>,
+) -> TokenStream {
+    let items: Vec<(TokenStream, &Expr)> = items.collect();
+    let mut emitter = Emitter::new(arithmetic);
+    items.iter().for_each(|(_, e)| emitter.count(e));
+    let statements: Vec<TokenStream> = items
+        .iter()
+        .map(|(place, e)| {
+            let e = emitter.tokens(e);
+            quote!(#place = #e;)
+        })
+        .collect();
+    let lets = emitter.bindings();
+    quote!(#lets #(#statements)*)
 }

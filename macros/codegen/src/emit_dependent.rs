@@ -9,8 +9,8 @@
 //! wrist whose platform pivots leave their mutual distances). A solver that lands there has
 //! solved the kept equations and still answered wrongly; the runtime refuses such answers.
 
-use crate::emit_expr::tokens;
-use crate::expr::Var;
+use crate::emit_expr::{Arithmetic, Emitter};
+use crate::expr::{Expr, Var};
 use crate::model::Model;
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -21,29 +21,46 @@ pub fn dependent_offset(model: &Model) -> TokenStream {
         return TokenStream::new();
     }
     let (n, m) = (model.unknowns.len(), model.inputs.len());
-    let terms = model
+    // Each left-out equation with the derivatives of it that are not zero: over the
+    // coordinates only, since an angle input's derivative is a crank's length times larger and
+    // would make a point far off the surface look close to it.
+    let checked: Vec<(&Expr, Vec<Expr>)> = model
         .dependent
         .iter()
         .filter(|g| (0..n).any(|j| g.depends_on(Var::Unknown(j))))
         .map(|g| {
-            let value = tokens(g);
-            // Over the coordinates only: an angle input's derivative is a crank's length times
-            // larger and would make a point far off the surface look close to it.
-            let squares = (0..n)
+            let derivatives = (0..n)
                 .map(|j| g.derivative(Var::Unknown(j)).simplify())
                 .filter(|d| !d.is_zero())
-                .map(|d| {
-                    let d = tokens(&d);
-                    quote!({ let d = #d; d * d })
-                });
+                .collect();
+            (g, derivatives)
+        })
+        .collect();
+    let mut emitter = Emitter::new(Arithmetic::F64);
+    for (g, derivatives) in &checked {
+        emitter.count(g);
+        derivatives.iter().for_each(|d| emitter.count(d));
+    }
+    let terms: Vec<TokenStream> = checked
+        .iter()
+        .map(|(g, derivatives)| {
+            let value = emitter.tokens(g);
+            let squares = derivatives.iter().map(|d| {
+                let d = emitter.tokens(d);
+                quote!({ let d = #d; d * d })
+            });
+            let squares: Vec<TokenStream> = squares.collect();
             quote! {
                 worst = ::linkage::__private::dependent_worst(worst, #value, 0.0 #(+ #squares)*);
             }
-        });
+        })
+        .collect();
+    let lets = emitter.bindings();
     quote! {
         #[allow(unused_variables)]
         fn dependent_offset(&self, v: &[f64; #n], x: &[f64; #m]) -> f64 {
             let c = &self.constants;
+            #lets
             let mut worst = 0.0f64;
             #(#terms)*
             worst

@@ -1,10 +1,31 @@
 //! Expressions as Rust tokens: the leaves every emitter shares ([`emit`](crate::emit) for the
 //! `Mechanism` impl, [`emit_factor`](crate::emit_factor) for the factorisation), so that both
 //! depend on this module and neither on the other.
+//!
+//! The model's expressions are trees. Where an active pair turns a link that carries other
+//! pivots (a U or S wrist on a delta's carriage), its rotation — Rodrigues' formula of one
+//! angle applied to the rotation of the other — enters every coordinate of every pivot the
+//! link carries and every derivative of them: written out as trees, one such mechanism came to
+//! 5 MB of Rust, most of the integration tests' compile time, and as many sines, cosines and
+//! products at run time (the compiler merges repeated arithmetic only after it has
+//! type-checked and lowered every copy, and not repeated calls). So the expressions of one
+//! function body are emitted through an [`Emitter`]: it hash-conses them into a DAG, and a
+//! subexpression that occurs more than once and costs at least [`SHARED_COST`] operations is
+//! bound once, to a `let` at the top of the body ([`Emitter::bindings`]), and named where it
+//! occurs.
 
 use crate::expr::Expr;
-use proc_macro2::{Literal, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
+use std::collections::HashMap;
+
+/// Operations a repeated subexpression must cost to be bound to a name: below it (a difference
+/// of two coordinates, a square of one) the compiler's own merging does as well, and a binding
+/// would only lengthen what is live at a time.
+pub const SHARED_COST: usize = 3;
+
+/// What a call of sin or cos counts for against [`SHARED_COST`].
+const CALL_COST: usize = 10;
 
 pub fn lit(x: f64) -> TokenStream {
     let l = Literal::f64_suffixed(x.abs());
@@ -15,76 +36,195 @@ pub fn lit(x: f64) -> TokenStream {
     }
 }
 
+/// One expression in `f64`, nothing shared.
 pub fn tokens(e: &Expr) -> TokenStream {
-    emit_expr(e, Arithmetic::F64)
-}
-
-/// [`tokens`] for the generic scalar `T` of `residual_in` and `jacobian_in`: numbers and
-/// constants enter through `T::from_f64`.
-pub fn tokens_in(e: &Expr) -> TokenStream {
-    emit_expr(e, Arithmetic::Generic)
+    Emitter::new(Arithmetic::F64).tokens(e)
 }
 
 /// The number type an expression is emitted for.
 #[derive(Clone, Copy, PartialEq)]
-enum Arithmetic {
+pub enum Arithmetic {
     F64,
+    /// The generic scalar `T` of `residual_in` and `jacobian_in`: numbers and constants enter
+    /// through `T::from_f64`.
     Generic,
 }
 
-fn emit_expr(e: &Expr, a: Arithmetic) -> TokenStream {
-    let generic = a == Arithmetic::Generic;
-    let call = |f: &str, e: &Expr| {
-        let e = emit_expr(e, a);
-        let f = format_ident!("{f}");
-        if generic {
-            quote!(::linkage::Scalar::#f(#e))
-        } else {
-            quote!(::linkage::__private::#f(#e))
+/// A node of the DAG: children by index.
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Node {
+    /// The number's bits.
+    Num(u64),
+    Unknown(usize),
+    Input(usize),
+    Constant(usize),
+    /// Terms with their sign, so that `a - b` is written rather than `a + (-1.0 * b)`.
+    Sum(Vec<(bool, usize)>),
+    Product(Vec<usize>),
+    Neg(usize),
+    Square(usize),
+    Sin(usize),
+    Cos(usize),
+}
+
+/// Emits the expressions of one function body, binding their shared subexpressions.
+///
+/// Use: [`Emitter::count`] every expression the body will contain, then [`Emitter::tokens`]
+/// each where it goes, then put [`Emitter::bindings`] at the top of the body (they read only
+/// `v`, `x` and `c`). Without `count`, nothing is shared and `tokens` writes trees.
+pub struct Emitter {
+    arithmetic: Arithmetic,
+    nodes: Vec<Node>,
+    index: HashMap<Node, usize>,
+    /// Occurrences in the counted trees.
+    uses: Vec<usize>,
+    /// Operations of the subtree, calls weighted.
+    cost: Vec<usize>,
+    name: Vec<Option<Ident>>,
+    lets: Vec<TokenStream>,
+}
+
+impl Emitter {
+    pub fn new(arithmetic: Arithmetic) -> Emitter {
+        Emitter {
+            arithmetic,
+            nodes: Vec::new(),
+            index: HashMap::new(),
+            uses: Vec::new(),
+            cost: Vec::new(),
+            name: Vec::new(),
+            lets: Vec::new(),
         }
-    };
-    match e {
-        Expr::Num(n) => {
-            let n = lit(*n);
+    }
+
+    /// Records one occurrence of `e` (and of each of its subexpressions).
+    pub fn count(&mut self, e: &Expr) {
+        self.intern(e, true);
+    }
+
+    /// `e` as tokens, with every shared subexpression named.
+    pub fn tokens(&mut self, e: &Expr) -> TokenStream {
+        let id = self.intern(e, false);
+        self.emit(id)
+    }
+
+    /// The `let` of every subexpression [`Emitter::tokens`] has named so far, in order.
+    pub fn bindings(&self) -> TokenStream {
+        let lets = &self.lets;
+        quote!(#(#lets)*)
+    }
+
+    fn intern(&mut self, e: &Expr, count: bool) -> usize {
+        let node = match e {
+            Expr::Num(n) => Node::Num(n.to_bits()),
+            Expr::Unknown(i) => Node::Unknown(*i),
+            Expr::Input(i) => Node::Input(*i),
+            Expr::Constant(i) => Node::Constant(*i),
+            Expr::Sum(ts) => Node::Sum(
+                ts.iter()
+                    .map(|t| {
+                        let (negative, magnitude) = split_sign(t);
+                        (negative, self.intern(&magnitude, count))
+                    })
+                    .collect(),
+            ),
+            Expr::Product(fs) => match split_sign(e) {
+                (true, magnitude) => Node::Neg(self.intern(&magnitude, count)),
+                (false, _) if fs.is_empty() => Node::Num(1f64.to_bits()),
+                (false, _) => Node::Product(fs.iter().map(|f| self.intern(f, count)).collect()),
+            },
+            Expr::Square(e) => Node::Square(self.intern(e, count)),
+            Expr::Sin(e) => Node::Sin(self.intern(e, count)),
+            Expr::Cos(e) => Node::Cos(self.intern(e, count)),
+        };
+        let id = match self.index.get(&node) {
+            Some(&id) => id,
+            None => {
+                let cost = match &node {
+                    Node::Num(_) | Node::Unknown(_) | Node::Input(_) | Node::Constant(_) => 0,
+                    Node::Sum(ts) => {
+                        ts.len() - 1 + ts.iter().map(|t| self.cost[t.1]).sum::<usize>()
+                    }
+                    Node::Product(fs) => {
+                        fs.len() - 1 + fs.iter().map(|&f| self.cost[f]).sum::<usize>()
+                    }
+                    Node::Neg(a) => self.cost[*a],
+                    Node::Square(a) => 1 + self.cost[*a],
+                    Node::Sin(a) | Node::Cos(a) => CALL_COST + self.cost[*a],
+                };
+                self.nodes.push(node.clone());
+                self.index.insert(node, self.nodes.len() - 1);
+                self.uses.push(0);
+                self.cost.push(cost);
+                self.name.push(None);
+                self.nodes.len() - 1
+            }
+        };
+        if count {
+            self.uses[id] += 1;
+        }
+        id
+    }
+
+    fn emit(&mut self, id: usize) -> TokenStream {
+        if let Some(name) = &self.name[id] {
+            return quote!(#name);
+        }
+        let generic = self.arithmetic == Arithmetic::Generic;
+        let call = |f: &str, e: TokenStream| {
+            let f = format_ident!("{f}");
             if generic {
-                quote!(T::from_f64(#n))
+                quote!(::linkage::Scalar::#f(#e))
             } else {
-                n
+                quote!(::linkage::__private::#f(#e))
             }
-        }
-        Expr::Unknown(i) => quote!(v[#i]),
-        Expr::Input(i) => quote!(x[#i]),
-        Expr::Constant(i) if generic => quote!(T::from_f64(c[#i])),
-        Expr::Constant(i) => quote!(c[#i]),
-        Expr::Sum(ts) => {
-            // Negative terms become subtractions: `a - b` rather than `a + (-1.0 * b)`.
-            let mut out = TokenStream::new();
-            for (k, t) in ts.iter().enumerate() {
-                let (negative, magnitude) = split_sign(t);
-                let m = emit_expr(&magnitude, a);
-                out.extend(match (k, negative) {
-                    (0, false) => quote!(#m),
-                    (0, true) => quote!(-#m),
-                    (_, false) => quote!(+ #m),
-                    (_, true) => quote!(- #m),
-                });
+        };
+        let code = match self.nodes[id].clone() {
+            Node::Num(bits) => {
+                let n = lit(f64::from_bits(bits));
+                if generic {
+                    quote!(T::from_f64(#n))
+                } else {
+                    n
+                }
             }
-            quote!((#out))
-        }
-        Expr::Product(fs) => {
-            let (negative, magnitude) = split_sign(e);
-            if negative {
-                let m = emit_expr(&magnitude, a);
-                return quote!((-#m));
+            Node::Unknown(i) => quote!(v[#i]),
+            Node::Input(i) => quote!(x[#i]),
+            Node::Constant(i) if generic => quote!(T::from_f64(c[#i])),
+            Node::Constant(i) => quote!(c[#i]),
+            Node::Sum(ts) => {
+                let mut out = TokenStream::new();
+                for (k, (negative, t)) in ts.into_iter().enumerate() {
+                    let m = self.emit(t);
+                    out.extend(match (k, negative) {
+                        (0, false) => quote!(#m),
+                        (0, true) => quote!(-#m),
+                        (_, false) => quote!(+ #m),
+                        (_, true) => quote!(- #m),
+                    });
+                }
+                quote!((#out))
             }
-            let mut it = fs.iter().map(|f| emit_expr(f, a));
-            let first = it.next().unwrap_or_else(|| emit_expr(&Expr::Num(1.0), a));
-            let rest = it.map(|f| quote!(* #f));
-            quote!((#first #(#rest)*))
+            Node::Product(fs) => {
+                let fs: Vec<TokenStream> = fs.into_iter().map(|f| self.emit(f)).collect();
+                let (first, rest) = (&fs[0], &fs[1..]);
+                quote!((#first #(* #rest)*))
+            }
+            Node::Neg(a) => {
+                let m = self.emit(a);
+                quote!((-#m))
+            }
+            Node::Square(a) => call("sq", self.emit(a)),
+            Node::Sin(a) => call("sin", self.emit(a)),
+            Node::Cos(a) => call("cos", self.emit(a)),
+        };
+        if self.uses[id] < 2 || self.cost[id] < SHARED_COST {
+            return code;
         }
-        Expr::Square(e) => call("sq", e),
-        Expr::Sin(e) => call("sin", e),
-        Expr::Cos(e) => call("cos", e),
+        let name = format_ident!("cse{}", self.lets.len());
+        self.lets.push(quote!(let #name = #code;));
+        self.name[id] = Some(name.clone());
+        quote!(#name)
     }
 }
 
@@ -101,5 +241,59 @@ fn split_sign(e: &Expr) -> (bool, Expr) {
             _ => (false, e.clone()),
         },
         _ => (false, e.clone()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cos_x0() -> Expr {
+        Expr::Cos(Box::new(Expr::Input(0)))
+    }
+
+    #[test]
+    fn a_repeated_call_is_bound_once_and_named_where_it_occurs() {
+        let a = Expr::times(cos_x0(), Expr::Unknown(0));
+        let b = Expr::times(cos_x0(), Expr::Unknown(1));
+        let mut emitter = Emitter::new(Arithmetic::F64);
+        emitter.count(&a);
+        emitter.count(&b);
+        let (ta, tb) = (
+            emitter.tokens(&a).to_string(),
+            emitter.tokens(&b).to_string(),
+        );
+        let lets = emitter.bindings().to_string();
+        assert_eq!(
+            lets,
+            "let cse0 = :: linkage :: __private :: cos (x [0usize]) ;"
+        );
+        assert_eq!(ta, "(cse0 * v [0usize])");
+        assert_eq!(tb, "(cse0 * v [1usize])");
+    }
+
+    #[test]
+    fn cheap_or_single_subexpressions_are_written_out() {
+        // v0 - c0 twice: one operation, left to the compiler; cos(x0) once: nothing to share.
+        let d = Expr::minus(Expr::Unknown(0), Expr::Constant(0));
+        let a = Expr::times(d.clone(), cos_x0());
+        let b = Expr::times(d, Expr::Unknown(2));
+        let mut emitter = Emitter::new(Arithmetic::F64);
+        emitter.count(&a);
+        emitter.count(&b);
+        let _ = (emitter.tokens(&a), emitter.tokens(&b));
+        assert!(emitter.bindings().is_empty());
+    }
+
+    #[test]
+    fn without_counts_the_tree_is_written_as_before() {
+        let e = Expr::minus(
+            Expr::times(Expr::Num(2.0), Expr::Unknown(0)),
+            Expr::times(cos_x0(), Expr::Constant(1)),
+        );
+        assert_eq!(
+            tokens(&e).to_string(),
+            "((2f64 * v [0usize]) - (:: linkage :: __private :: cos (x [0usize]) * c [1usize]))"
+        );
     }
 }

@@ -7,7 +7,7 @@
 //! multipliers and static-row entries that depend on (v, x) (those that depend on the geometry
 //! alone are read from the constants again in the solve), then the complement's factors.
 
-use crate::emit_expr::{lit, tokens};
+use crate::emit_expr::{lit, tokens, Arithmetic, Emitter};
 use crate::emit_lu::{self, Region};
 use crate::expr::{Expr, Var};
 use crate::factor::{count_ops, Plan};
@@ -313,16 +313,27 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         let e = format_ident!("e{}", i);
         quote!(#e)
     };
-    let define = |i: usize| {
+    let define = |emitter: &mut Emitter, i: usize| {
         let e = match negation_of[i] {
             Some(j) => {
                 let e_j = name(j);
                 quote!(-#e_j)
             }
-            None => tokens(&jac[i].2),
+            None => emitter.tokens(&jac[i].2),
         };
         let e_i = name(i);
         quote!(let #e_i = #e;)
+    };
+    // Each path names its entries through one emitter, which binds what they share (the
+    // rotation of an active wrist in every entry of the pivots it carries).
+    let define_all = |entries: &[usize]| {
+        let mut emitter = Emitter::new(Arithmetic::F64);
+        for &i in entries.iter().filter(|&&i| negation_of[i].is_none()) {
+            emitter.count(&jac[i].2);
+        }
+        let defined: Vec<TokenStream> = entries.iter().map(|&i| define(&mut emitter, i)).collect();
+        let lets = emitter.bindings();
+        quote!(#lets #(#defined)*)
     };
     let named = |i: usize| name(i);
     let inline = |i: usize| {
@@ -338,8 +349,12 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         };
         quote!((#e))
     };
-    let evals = (0..jac.len()).map(define);
-    let call_evals = (0..jac.len()).filter(|&i| has_call(&jac[i].2)).map(define);
+    let evals = define_all(&(0..jac.len()).collect::<Vec<_>>());
+    let call_evals = define_all(
+        &(0..jac.len())
+            .filter(|&i| has_call(&jac[i].2))
+            .collect::<Vec<_>>(),
+    );
     let (named_stores, named_sinks) = statics.stores(&named);
     let (stores, sinks) = statics.stores(&inline);
     let sink_check = |sinks: &[TokenStream]| {
@@ -485,7 +500,7 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
             // block: its loops run over 0..0.
             #[allow(unused_variables, unused_mut, clippy::reversed_empty_ranges)]
             fn pivoted(c: &[f64; #nc], v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #size]) -> ::core::option::Option<::linkage::lu::Factored> {
-                #(#evals)*
+                #evals
                 #named_sink_check
                 #(#named_stores)*
                 let mut z = [[0.0f64; #k]; #k];
@@ -499,7 +514,7 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
                 ::core::option::Option::Some(::linkage::lu::Factored { det, pivot_ratio })
             }
             let c = &self.constants;
-            #(#call_evals)*
+            #call_evals
             #sink_check
             let ::core::option::Option::Some((det, pivot_ratio)) = (#fixed) else {
                 return pivoted(c, v, x, f);

@@ -206,57 +206,18 @@ pub fn fixed_solve(
     quote!(#(#body)*)
 }
 
-/// LU with partial pivoting of the dense `k`×`k` local `z`, unrolled: every loop bound is a
-/// literal, so the compiler schedules the whole elimination as straight-line code. Stores the
-/// factors and row swaps at `region.dense`; evaluates to `Some((det Z, pivot ratio))`, or
-/// `None` when a column has no usable pivot.
+/// LU with partial pivoting of the dense `k`×`k` local `z` by the runtime's kernel
+/// (`linkage::lu::fallback_factor`, shared by every mechanism with a block of this size: the
+/// fallback is cold). Stores the factors and row swaps at `region.dense`; evaluates to
+/// `Some((det Z, pivot ratio))`, or `None` when a column has no usable pivot.
 pub fn dense_factor(k: usize, region: &Region) -> TokenStream {
-    let steps = (0..k).map(|c| {
-        let search =
-            (c + 1..k).map(|i| quote!(let a = z[#i][#c].abs(); if a > best { best = a; p = #i; }));
-        let rows = (c + 1..k).map(|i| {
-            let updates = (c + 1..k).map(|j| quote!(z[#i][#j] -= l * pr[#j];));
-            quote!({ let l = z[#i][#c] * inv; z[#i][#c] = l; #(#updates)* })
-        });
-        let swap = region.dense + k * k + c;
-        quote! {
-            let mut p = #c;
-            let mut best = z[#c][#c].abs();
-            #(#search)*
-            if !(best > 0.0) || !best.is_finite() {
-                return ::core::option::Option::None;
-            }
-            f[#swap] = p as f64;
-            if p != #c {
-                z.swap(#c, p);
-                det = -det;
-            }
-            let pr = z[#c];
-            det *= pr[#c];
-            pmin = pmin.min(best);
-            pmax = pmax.max(best);
-            let inv = 1.0 / pr[#c];
-            #(#rows)*
-        }
-    });
-    let base = region.dense;
-    quote! {{
-        let mut det = 1.0f64;
-        let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
-        #(#steps)*
-        for i in 0..#k {
-            for j in 0..#k {
-                f[#base + i * #k + j] = z[i][j];
-            }
-        }
-        ::core::option::Option::Some((det, if #k == 0 { 1.0 } else { pmin / pmax }))
-    }}
+    let (base, end) = (region.dense, region.dense + Region::dense_len(k));
+    quote!(::linkage::__private::fallback_factor::<#k>(z, &mut f[#base..#end]))
 }
 
 /// The solve with the fallback's dense factors, in place in `w` as [`fixed_solve`].
 pub fn dense_solve(k: usize, region: &Region, rows: &[usize]) -> TokenStream {
-    let base = region.dense;
-    let swaps = base + k * k;
+    let (base, end) = (region.dense, region.dense + Region::dense_len(k));
     let gather = rows
         .iter()
         .enumerate()
@@ -268,23 +229,7 @@ pub fn dense_solve(k: usize, region: &Region, rows: &[usize]) -> TokenStream {
     quote! {
         let mut y = [0.0f64; #k];
         #(#gather)*
-        for c in 0..#k {
-            let p = f[#swaps + c] as usize;
-            if p != c && p < #k {
-                y.swap(c, p);
-            }
-        }
-        for i in 0..#k {
-            for j in 0..i {
-                y[i] -= f[#base + i * #k + j] * y[j];
-            }
-        }
-        for i in (0..#k).rev() {
-            for j in i + 1..#k {
-                y[i] -= f[#base + i * #k + j] * y[j];
-            }
-            y[i] /= f[#base + i * #k + i];
-        }
+        ::linkage::__private::fallback_solve::<#k>(&f[#base..#end], &mut y);
         #(#scatter)*
     }
 }
