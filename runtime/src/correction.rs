@@ -35,8 +35,7 @@ impl<const N: usize> Correction<N> {
     }
 
     /// The correction at `(v, x)`, computed in place with the chosen linear solver and the
-    /// factorisation storage of a loop. On failure the fields are unspecified. See
-    /// [`Self::update_lifted`] for Newton's own loop.
+    /// factorisation storage of a loop. On failure the fields are unspecified.
     #[inline(always)]
     pub(crate) fn update<S: Mechanism<N, M>, const M: usize>(
         &mut self,
@@ -50,38 +49,6 @@ impl<const N: usize> Correction<N> {
             Linear::Generated => sys.newton_step(v, x, fac, &mut self.delta).map(|i| i.det),
             Linear::Dense => dense_step(sys, v, x, &mut self.delta),
         };
-        self.finish(sys, v, x, det)
-    }
-
-    /// [`Self::update`] on a point that is first lifted in place ([`Mechanism::lift`]) where
-    /// the generated solver is chosen and the mechanism has affine rows: the correction is
-    /// then the full one at the lifted point, computed without those rows.
-    #[inline(always)]
-    pub(crate) fn update_lifted<S: Mechanism<N, M>, const M: usize>(
-        &mut self,
-        sys: &S,
-        v: &mut [f64; N],
-        x: &[f64; M],
-        linear: Linear,
-        fac: &mut S::Factor,
-    ) -> Result<(), Failure> {
-        if !(S::LIFTS && linear == Linear::Generated) {
-            return self.update(sys, v, x, linear, fac);
-        }
-        let det = sys
-            .newton_step_lifted(v, x, fac, &mut self.delta)
-            .map(|i| i.det);
-        self.finish(sys, v, x, det)
-    }
-
-    #[inline(always)]
-    fn finish<S: Mechanism<N, M>, const M: usize>(
-        &mut self,
-        sys: &S,
-        v: &[f64; N],
-        x: &[f64; M],
-        det: Option<f64>,
-    ) -> Result<(), Failure> {
         // One pass gives the size callers need and rejects NaN or infinite corrections.
         self.size = size(&self.delta);
         match det {

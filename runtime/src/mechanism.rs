@@ -98,61 +98,6 @@ pub trait Mechanism<const N: usize, const M: usize> {
         self.solve(f, delta);
         Some(info)
     }
-    /// Whether [`Self::lift`] and [`Self::newton_step_lifted`] are generated: F has rows that
-    /// are affine in v with a ±1 entry in an unknown of their own (the rigid-body rows of
-    /// Eq. 19, which write a platform pivot as a fixed combination of three others). `false`
-    /// (the default) leaves the solvers' Newton loops as they were.
-    const LIFTS: bool = false;
-    /// Rebuilds, in place, the unknowns that the affine rows determine from the others, so that
-    /// those rows of F hold exactly (they evaluate to 0, not merely to rounding). The default
-    /// leaves `v` as it is.
-    ///
-    /// ```
-    /// # linkage::mechanism! {
-    /// #     pub struct Stewart;
-    /// #     base { D1 = [200.764, 53.795, 0.0], D2 = [169.706, 0.0, 0.0], D3 = [0.0, 0.0, 0.0],
-    /// #            D4 = [-31.058, 53.795, 0.0], D5 = [53.795, 200.764, 0.0], D6 = [115.911, 200.764, 0.0] }
-    /// #     platform(frame = [G1, G3, G5], form = coplanar, home = [0.0, 0.0, 0.0, 58.971, -11.739, 159.011]) {
-    /// #         G1 = [122.475, 122.475, 0.0], G2 = [51.764, 0.0, 0.0], G3 = [0.0, 0.0, 0.0],
-    /// #         G4 = [-70.711, 122.475, 0.0], G5 = [-44.829, 167.303, 0.0], G6 = [96.593, 167.303, 0.0] }
-    /// #     chain leg1 = base - S(D1) - P(active L1) - S(G1) - platform;
-    /// #     chain leg2 = base - S(D2) - P(active L2) - S(G2) - platform;
-    /// #     chain leg3 = base - S(D3) - P(active L3) - S(G3) - platform;
-    /// #     chain leg4 = base - S(D4) - P(active L4) - S(G4) - platform;
-    /// #     chain leg5 = base - S(D5) - P(active L5) - S(G5) - platform;
-    /// #     chain leg6 = base - S(D6) - P(active L6) - S(G6) - platform;
-    /// # }
-    /// use linkage::Mechanism;
-    /// let sys = Stewart::new();
-    /// assert!(Stewart::LIFTS);
-    /// // Any values of the frame pivots G1, G3, G5; G2, G4, G6 follow from them.
-    /// let mut v: [f64; 18] = core::array::from_fn(|i| (i as f64 * 1.7).sin() * 100.0);
-    /// sys.lift(&mut v, &[170.0; 6]);
-    /// let mut f = [0.0; 18];
-    /// sys.residual(&v, &[170.0; 6], &mut f);
-    /// // F7…F15, the rigid-body rows, are exactly 0.
-    /// assert!(f[6..15].iter().all(|&r| r == 0.0), "{f:?}");
-    /// ```
-    #[inline]
-    fn lift(&self, v: &mut [f64; N], x: &[f64; M]) {
-        let _ = (v, x);
-    }
-    /// Lifts `v` ([`Self::lift`]), then [`Self::newton_step`] there: the same correction,
-    /// determinant and pivot ratio, bit for bit, without evaluating the affine rows (they are
-    /// 0) or eliminating their right-hand sides. Afterwards `f` serves [`Self::solve`] only
-    /// for right-hand sides that are 0 in those rows. The default lifts and calls
-    /// [`Self::newton_step`].
-    #[inline(always)]
-    fn newton_step_lifted(
-        &self,
-        v: &mut [f64; N],
-        x: &[f64; M],
-        f: &mut Self::Factor,
-        delta: &mut [f64; N],
-    ) -> Option<crate::lu::Factored> {
-        self.lift(v, x);
-        self.newton_step(v, x, f, delta)
-    }
     /// `∂F/∂x` (the matrix A of Eq. 5 is its negative).
     fn input_jacobian(&self, v: &[f64; N], x: &[f64; M], a: &mut [[f64; M]; N]);
     /// `(∂F/∂x) dx` at (v, x), written to `out`: the change of F along an input step, to first

@@ -96,10 +96,7 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if iterations >= options.max_iterations {
             break Ending::Exhausted;
         }
-        // A mechanism with affine rows has them rebuilt here from the other unknowns, so
-        // that they hold exactly at every point whose correction is measured (the start
-        // moves by their rounding: it is a solution, or a prediction along them).
-        match c.update_lifted(sys, &mut current, x, options.linear, &mut fac) {
+        match c.update(sys, &current, x, options.linear, &mut fac) {
             Ok(()) => {}
             Err(Failure::Singular) => {
                 return Newton {

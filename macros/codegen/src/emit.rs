@@ -187,9 +187,7 @@ pub fn expand(
         Some(jac.iter().map(|(_, _, e)| e.eval(&r.v, &r.x, &c)).collect())
     });
     let plan = crate::factor::plan(n, &jac, sample.as_deref());
-    let lifts = crate::reduce::lifts(&plan, &model.equations);
-    let (factor_type, factor_fns, factor_ops) =
-        crate::emit_factor::factor(&plan, m, nc, &lifts, &model.equations);
+    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, m, nc);
     let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
     let new_doc =
         format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");

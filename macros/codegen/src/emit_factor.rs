@@ -13,7 +13,6 @@ use crate::expr::{Expr, Var};
 use crate::factor::{count_ops, Plan};
 use crate::model::Model;
 use crate::pivot_order::MAX_MULTIPLIER;
-use crate::reduce::Lift;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use std::collections::HashMap;
@@ -198,13 +197,7 @@ impl<'a> Statics<'a> {
 
     /// Stores of the values kept for the solve, B's entries written by `value`, and the
     /// values that feed no entry of the complement (their finiteness is not otherwise seen).
-    /// The multipliers g of the statics in `skip` are left out of the stores (a lifted step
-    /// never reads them), not out of the sinks.
-    fn stores(
-        &self,
-        value: &dyn Fn(usize) -> TokenStream,
-        skip: &[usize],
-    ) -> (Vec<TokenStream>, Vec<TokenStream>) {
+    fn stores(&self, value: &dyn Fn(usize) -> TokenStream) -> (Vec<TokenStream>, Vec<TokenStream>) {
         let (mut stores, mut sinks) = (Vec::new(), Vec::new());
         for (s, &(r, c, p)) in self.plan.statics.iter().enumerate() {
             let row_used = self
@@ -224,9 +217,7 @@ impl<'a> Statics<'a> {
                     let g = Value::of(&self.jac[e].2, value(e))
                         .scaled(-1.0 / p)
                         .tokens();
-                    if !skip.contains(&s) {
-                        stores.push(quote!(f[#o] = #g;));
-                    }
+                    stores.push(quote!(f[#o] = #g;));
                     if !row_used {
                         sinks.push(value(e));
                     }
@@ -301,16 +292,8 @@ fn entry(jac: &[(usize, usize, Expr)], r: usize, c: usize) -> Option<usize> {
     jac.iter().position(|(a, b, _)| *a == r && *b == c)
 }
 
-/// `(type, trait functions, (additions, multiplications))`. With `lifts` (see
-/// [`crate::reduce`]), the functions include the step at lifted points
-/// ([`crate::emit_reduced`]); `equations` are F's rows, for that step's residual.
-pub fn factor(
-    plan: &Plan,
-    m: usize,
-    nc: usize,
-    lifts: &[Lift],
-    equations: &[Expr],
-) -> (TokenStream, TokenStream, (usize, usize)) {
+/// `(type, trait functions, (additions, multiplications))`.
+pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (usize, usize)) {
     let n = plan.n;
     let k = plan.complement();
     let jac = &plan.jac[..];
@@ -357,10 +340,8 @@ pub fn factor(
     };
     let evals = (0..jac.len()).map(define);
     let call_evals = (0..jac.len()).filter(|&i| has_call(&jac[i].2)).map(define);
-    let (named_stores, named_sinks) = statics.stores(&named, &[]);
-    let (stores, sinks) = statics.stores(&inline, &[]);
-    let lifted: Vec<usize> = lifts.iter().map(|l| l.statics).collect();
-    let (lifted_stores, _) = statics.stores(&inline, &lifted);
+    let (named_stores, named_sinks) = statics.stores(&named);
+    let (stores, sinks) = statics.stores(&inline);
     let sink_check = |sinks: &[TokenStream]| {
         if sinks.is_empty() {
             return quote!();
@@ -412,20 +393,14 @@ pub fn factor(
         quote!(#w)
     };
     let mut forward = Vec::new();
-    let mut lifted_forward = Vec::new();
     for (s, &(r, _, _)) in plan.statics.iter().enumerate() {
         for &i in &plan.rows {
             if let Some(g) = statics.g.get(&(i, s)) {
                 let (wi, wr) = (w(i), w(r));
-                let line = match g.value().times_code(wr) {
+                forward.push(match g.value().times_code(wr) {
                     (false, t) => quote!(#wi += #t;),
                     (true, t) => quote!(#wi -= #t;),
-                };
-                // At a lifted point the static row's right-hand side is 0: nothing to add.
-                if !lifted.contains(&s) {
-                    lifted_forward.push(line.clone());
-                }
-                forward.push(line);
+                });
             }
         }
     }
@@ -436,10 +411,8 @@ pub fn factor(
         .zip(&plan.rows)
         .map(|(&c, &r)| (c, r))
         .collect();
-    let back_of = |s: usize, r: usize, c: usize, p: f64, zero: bool| {
-        // With `zero`, the static row's right-hand side is known to be 0 (a lifted point):
-        // x_c = Σ X x / −p.
-        let wr = if zero { quote!(0.0f64) } else { w(r) };
+    let back = plan.statics.iter().enumerate().map(|(s, &(r, c, p))| {
+        let wr = w(r);
         // x_c = (b_r − Σ X x) / p; for p = −1 written Σ X x − b_r, without a negation.
         let products: Vec<(bool, TokenStream)> = plan
             .cols
@@ -461,10 +434,10 @@ pub fn factor(
                     (_, false) => quote!(+ #t),
                     (_, true) => quote!(- #t),
                 });
-            return match (products.is_empty(), zero) {
-                (true, _) => quote!(b[#c] = -#wr;),
-                (false, false) => quote!(b[#c] = #(#sum)* - #wr;),
-                (false, true) => quote!(b[#c] = #(#sum)*;),
+            return if products.is_empty() {
+                quote!(b[#c] = -#wr;)
+            } else {
+                quote!(b[#c] = #(#sum)* - #wr;)
             };
         }
         let terms = products.iter().map(|(neg, t)| match neg {
@@ -478,31 +451,14 @@ pub fn factor(
                 quote!(b[#c] = (#wr #(#terms)*) * #inv;)
             }
         }
-    };
-    let back: Vec<TokenStream> = plan
-        .statics
-        .iter()
-        .enumerate()
-        .map(|(s, &(r, c, p))| back_of(s, r, c, p, false))
-        .collect();
-    let lifted_back: Vec<TokenStream> = plan
-        .statics
-        .iter()
-        .enumerate()
-        .map(|(s, &(r, c, p))| back_of(s, r, c, p, lifted.contains(&s)))
-        .collect();
-    let scatter: Vec<TokenStream> = plan
-        .cols
-        .iter()
-        .zip(&plan.rows)
-        .map(|(&c, &r)| {
-            let wr = w(r);
-            quote!(b[#c] = #wr;)
-        })
-        .collect();
+    });
+    let scatter = plan.cols.iter().zip(&plan.rows).map(|(&c, &r)| {
+        let wr = w(r);
+        quote!(b[#c] = #wr;)
+    });
     let fixed_solve = emit_lu::fixed_solve(&plan.lu, &region, &plan.rows, &w);
     // The rows factored with a common factor taken out take it out of the right-hand side.
-    let unscale: Vec<TokenStream> = plan
+    let unscale = plan
         .row_scale
         .iter()
         .enumerate()
@@ -510,34 +466,11 @@ pub fn factor(
         .map(|(r, &s)| {
             let (inv, wr) = (lit(1.0 / s), w(r));
             quote!(#wr *= #inv;)
-        })
-        .collect();
+        });
     let dense_solve = emit_lu::dense_solve(k, &region, &plan.rows);
     let ws: Vec<TokenStream> = (0..n).map(w).collect();
     let ty = quote!([f64; #size]);
-    let lifted_fns = crate::emit_reduced::lifted(&crate::emit_reduced::Pieces {
-        n,
-        m,
-        lifts,
-        equations,
-        call_evals: &(0..jac.len())
-            .filter(|&i| has_call(&jac[i].2))
-            .map(define)
-            .collect::<Vec<_>>(),
-        sink_check: &sink_check,
-        fixed: &fixed,
-        stores: &lifted_stores,
-        scaled_det: &scaled_det,
-        unscale: &unscale,
-        forward: &lifted_forward,
-        fixed_solve: &fixed_solve,
-        scatter: &scatter,
-        back: &lifted_back,
-        ws: &ws,
-    });
     let fns = quote! {
-        #lifted_fns
-
         fn new_factor(&self) -> Self::Factor {
             [0.0; #size]
         }

@@ -6,7 +6,7 @@
 //! declaration) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form shapes,
 //! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates,
 //! rank at home) → [`expr`] (the symbolic IR every phase shares) → [`factor`] (the elimination
-//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]; [`reduce`], its affine static rows) → [`emit`] → [`emit_factor`] →
+//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]) → [`emit`] → [`emit_factor`] →
 //! [`emit_lu`] (the Rust; every emitter writes expressions with [`emit_expr`], which depends on
 //! none of them).
 
@@ -16,13 +16,11 @@ pub mod emit_expr;
 pub mod emit_factor;
 pub mod emit_inverse;
 pub mod emit_lu;
-pub mod emit_reduced;
 pub mod expr;
 pub mod factor;
 pub mod front;
 pub mod model;
 pub mod pivot_order;
-pub mod reduce;
 pub mod simplify;
 
 use proc_macro2::TokenStream;
