@@ -45,11 +45,13 @@ pub fn dependent_offset(model: &Model) -> TokenStream {
         .iter()
         .map(|(g, derivatives)| {
             let value = emitter.tokens(g);
-            let squares = derivatives.iter().map(|d| {
-                let d = emitter.tokens(d);
-                quote!({ let d = #d; d * d })
-            });
-            let squares: Vec<TokenStream> = squares.collect();
+            let squares: Vec<TokenStream> = derivatives
+                .iter()
+                .map(|d| {
+                    let d = emitter.tokens(d);
+                    quote!({ let d = #d; d * d })
+                })
+                .collect();
             quote! {
                 worst = ::linkage::__private::dependent_worst(worst, #value, 0.0 #(+ #squares)*);
             }

@@ -1,7 +1,7 @@
-//! Emission of the Schur complement's LU, unrolled: the fast path in the pivot order fixed at
-//! generation time ([`crate::pivot_order`]), touching only the nonzeros of [`Symbolic`], and
+//! Emission of the Schur complement's LU: the fast path unrolled, in the pivot order fixed at
+//! generation time ([`crate::pivot_order`]), touching only the nonzeros of [`Symbolic`]; and
 //! the dense partial-pivoting fallback it hands over to when a multiplier exceeds
-//! [`MAX_MULTIPLIER`] (or a pivot is zero or not finite).
+//! [`MAX_MULTIPLIER`] (or a pivot is zero or not finite), a call of the runtime's LU kernel.
 //!
 //! Both write their factors into the flat `[f64; _]` storage of the generated `Factor` type at
 //! the offsets of [`Region`]. The fixed order stores reciprocal pivots, so that its solve only
