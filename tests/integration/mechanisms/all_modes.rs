@@ -132,7 +132,7 @@ fn newton_among<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usi
 /// root Newton reaches from 1000 random complex points (of size `reach`) is among the
 /// endpoints — except those `spurious` accepts. Returns the start count and the most roots
 /// Newton found at one input.
-fn check_count<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
+pub(super) fn check_count<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
     name: &str,
     sys: S,
     inputs: &[[f64; M]],

@@ -21,6 +21,7 @@ mod scara;
 mod slider_crank;
 mod spherical_wrist;
 mod translational_upu;
+mod triangle_platforms;
 
 use linkage::{Mechanism, Options};
 

@@ -94,59 +94,86 @@ linkage::mechanism! {
     chain leg3 = base - R(passive, axis = A3 -> A3z) - P(active L3) - R(passive, axis = G3 -> G3z) - platform;
 }
 
-const GENERIC_A: [[f64; 2]; 3] = [[0.0, 0.0], [250.0, 20.0], [90.0, 210.0]];
-const GENERIC_G: [[f64; 2]; 3] = [[-30.0, -20.0], [45.0, -10.0], [5.0, 40.0]];
+/// A planar 3-RPR's pivots: base `a`, platform `g` (its own frame).
+struct Rpr {
+    a: [[f64; 2]; 3],
+    g: [[f64; 2]; 3],
+}
+
+const GENERIC: Rpr = Rpr {
+    a: [[0.0, 0.0], [250.0, 20.0], [90.0, 210.0]],
+    g: [[-30.0, -20.0], [45.0, -10.0], [5.0, 40.0]],
+};
 
 fn rotate(phi: f64, g: [f64; 2]) -> [f64; 2] {
     let (s, c) = phi.sin_cos();
     [c * g[0] - s * g[1], s * g[0] + c * g[1]]
 }
 
-/// Closed-form inverse kinematics of [`PlanarRprGeneric`] at the planar pose (φ, x, y).
-fn generic_legs(pose: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| {
-        let g = rotate(pose[0], GENERIC_G[i]);
-        (g[0] + pose[1] - GENERIC_A[i][0]).hypot(g[1] + pose[2] - GENERIC_A[i][1])
-    })
-}
+impl Rpr {
+    /// Closed-form inverse kinematics at the planar pose (φ, x, y).
+    fn legs(&self, pose: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|i| {
+            let g = rotate(pose[0], self.g[i]);
+            (g[0] + pose[1] - self.a[i][0]).hypot(g[1] + pose[2] - self.a[i][1])
+        })
+    }
 
-/// An independent count of the real assembly modes: for each orientation φ (a fine scan of
-/// the circle), legs 1 and 2 put the platform origin on two circles, met in up to two points;
-/// leg 3's length error changes sign at every real mode.
-fn scanned_real_modes(legs: [f64; 3]) -> usize {
-    let samples = 200_000;
-    let mut count = 0;
-    let mut previous: [Option<f64>; 2] = [None, None];
-    for k in 0..=samples {
-        let phi = -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / samples as f64;
-        // Origin t with |R g_i + t − a_i| = L_i: circles about c_i = a_i − R g_i.
-        let c: [[f64; 2]; 2] = std::array::from_fn(|i| {
-            let g = rotate(phi, GENERIC_G[i]);
-            [GENERIC_A[i][0] - g[0], GENERIC_A[i][1] - g[1]]
-        });
-        let (dx, dy) = (c[1][0] - c[0][0], c[1][1] - c[0][1]);
-        let d = dx.hypot(dy);
-        let a = (legs[0] * legs[0] - legs[1] * legs[1] + d * d) / (2.0 * d);
-        let h2 = legs[0] * legs[0] - a * a;
-        for (b, sign) in [1.0, -1.0].into_iter().enumerate() {
-            let f = (h2 >= 0.0).then(|| {
-                let h = sign * h2.sqrt();
-                let t = [
-                    c[0][0] + (a * dx - h * dy) / d,
-                    c[0][1] + (a * dy + h * dx) / d,
-                ];
-                let g = rotate(phi, GENERIC_G[2]);
-                (g[0] + t[0] - GENERIC_A[2][0]).hypot(g[1] + t[1] - GENERIC_A[2][1]) - legs[2]
+    /// An independent count of the real assembly modes: for each orientation φ (a fine scan
+    /// of the circle), legs 1 and 2 put the platform origin on two circles, met in up to two
+    /// points; leg 3's length error changes sign at every real mode.
+    fn scanned_real_modes(&self, legs: [f64; 3]) -> usize {
+        let samples = 200_000;
+        let mut count = 0;
+        let mut previous: [Option<f64>; 2] = [None, None];
+        for k in 0..=samples {
+            let phi = -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / samples as f64;
+            // Origin t with |R g_i + t − a_i| = L_i: circles about c_i = a_i − R g_i.
+            let c: [[f64; 2]; 2] = std::array::from_fn(|i| {
+                let g = rotate(phi, self.g[i]);
+                [self.a[i][0] - g[0], self.a[i][1] - g[1]]
             });
-            if let (Some(p), Some(q)) = (previous[b], f) {
-                if p * q < 0.0 {
-                    count += 1;
+            let (dx, dy) = (c[1][0] - c[0][0], c[1][1] - c[0][1]);
+            let d = dx.hypot(dy);
+            let a = (legs[0] * legs[0] - legs[1] * legs[1] + d * d) / (2.0 * d);
+            let h2 = legs[0] * legs[0] - a * a;
+            for (b, sign) in [1.0, -1.0].into_iter().enumerate() {
+                let f = (h2 >= 0.0).then(|| {
+                    let h = sign * h2.sqrt();
+                    let t = [
+                        c[0][0] + (a * dx - h * dy) / d,
+                        c[0][1] + (a * dy + h * dx) / d,
+                    ];
+                    let g = rotate(phi, self.g[2]);
+                    (g[0] + t[0] - self.a[2][0]).hypot(g[1] + t[1] - self.a[2][1]) - legs[2]
+                });
+                if let (Some(p), Some(q)) = (previous[b], f) {
+                    if p * q < 0.0 {
+                        count += 1;
+                    }
                 }
+                previous[b] = f;
             }
-            previous[b] = f;
+        }
+        count
+    }
+
+    /// Every real root a query returned: planar, and giving the legs back.
+    fn check_real_roots<const N: usize>(
+        &self,
+        roots: &[linkage::modes::RealRoot<N>],
+        legs: [f64; 3],
+    ) {
+        for r in roots {
+            let p = r.pose.unwrap();
+            let [yaw, pitch, roll] = p.euler();
+            assert!(pitch.abs() < 1e-8 && roll.abs() < 1e-8 && p.translation[2].abs() < 1e-8);
+            let back = self.legs([yaw, p.translation[0], p.translation[1]]);
+            for i in 0..3 {
+                assert!((back[i] - legs[i]).abs() < 1e-8, "{back:?} vs {legs:?}");
+            }
         }
     }
-    count
 }
 
 /// Every assembly mode (`linkage::modes`) of a generic planar 3-RPR: 6 complex roots (the
@@ -169,21 +196,17 @@ fn generic_planar_rpr_has_six_assembly_modes() {
             100.0 + rng.uniform(-30.0, 30.0),
             70.0 + rng.uniform(-30.0, 30.0),
         ];
-        let legs = generic_legs(pose);
+        let legs = GENERIC.legs(pose);
         modes.solve(&legs, &mut roots).unwrap();
         assert!(roots.is_complete(), "{pose:?}");
-        let scanned = scanned_real_modes(legs);
+        let scanned = GENERIC.scanned_real_modes(legs);
         assert_eq!(roots.real().len(), scanned, "{pose:?}");
         real_total += scanned;
+        GENERIC.check_real_roots(roots.real(), legs);
         let mut truth = false;
         for r in roots.real() {
             let p = r.pose.unwrap();
-            let [yaw, pitch, roll] = p.euler();
-            assert!(pitch.abs() < 1e-8 && roll.abs() < 1e-8 && p.translation[2].abs() < 1e-8);
-            let back = generic_legs([yaw, p.translation[0], p.translation[1]]);
-            for i in 0..3 {
-                assert!((back[i] - legs[i]).abs() < 1e-8, "{pose:?}: {back:?}");
-            }
+            let [yaw, _, _] = p.euler();
             truth |= (yaw - pose[0]).abs() < 1e-8
                 && (p.translation[0] - pose[1]).abs() < 1e-7
                 && (p.translation[1] - pose[2]).abs() < 1e-7;
@@ -194,4 +217,55 @@ fn generic_planar_rpr_has_six_assembly_modes() {
         );
     }
     println!("generic 3-RPR: 20 random poses, {real_total} real modes, as the scan found");
+}
+
+/// The 3-RPR example used since Gosselin, Sefrioui & Richard (1992) to show that a planar
+/// 3-RPR can have six real assembly modes, the most its sextic allows: base pivots (0, 0),
+/// (15.91, 0), (0, 10); platform sides 17.04 and 16.54 from its first pivot, 0.8843 rad
+/// apart; legs 14.98, 15.38 and 12. Set on [`PlanarRprGeneric`] as runtime geometry: all six
+/// roots real, as the independent scan finds, each giving the legs back.
+#[test]
+fn published_planar_rpr_has_six_real_assembly_modes() {
+    use linkage::modes::{AllModes, ModesOptions, Roots};
+    let (l2, l3, theta) = (17.04, 16.54, 0.8843f64);
+    let published = Rpr {
+        a: [[0.0, 0.0], [15.91, 0.0], [0.0, 10.0]],
+        g: [[0.0, 0.0], [l2, 0.0], [l3 * theta.cos(), l3 * theta.sin()]],
+    };
+    let legs = [14.98, 15.38, 12.0];
+    assert_eq!(published.scanned_real_modes(legs), 6);
+    // All pivots at once (one at a time, the platform's pivots would pass through
+    // non-coplanar placements, which its rigid-body form refuses).
+    let mut geometry = *PlanarRprGeneric::new().geometry();
+    let mut set = |link: &str, pivot: String, p: [f64; 3]| {
+        for (axis, value) in ["x", "y", "z"].iter().zip(p) {
+            let name = format!("{link}.{pivot}.{axis}");
+            let i = PlanarRprGeneric::GEOMETRY_NAMES
+                .iter()
+                .position(|n| *n == name);
+            geometry[i.unwrap_or_else(|| panic!("{name}"))] = value;
+        }
+    };
+    for (k, (a, g)) in published.a.iter().zip(&published.g).enumerate() {
+        let (base, platform) = (format!("A{}", k + 1), format!("G{}", k + 1));
+        set("base", format!("{base}z"), [a[0], a[1], 1.0]);
+        set("base", base, [a[0], a[1], 0.0]);
+        set("platform", format!("{platform}z"), [g[0], g[1], 1.0]);
+        set("platform", platform, [g[0], g[1], 0.0]);
+    }
+    let rpr = PlanarRprGeneric::from_geometry(geometry).unwrap();
+    let modes = AllModes::<_, 27, 3, 16>::new(rpr, &ModesOptions::default()).unwrap();
+    assert_eq!(modes.start_count(), 6, "{:?}", modes.report());
+    let mut roots = Box::new(Roots::<27, 16>::new());
+    modes.solve(&legs, &mut roots).unwrap();
+    assert!(roots.is_complete());
+    assert_eq!(roots.real().len(), 6);
+    published.check_real_roots(roots.real(), legs);
+    let mut yaws: Vec<f64> = roots
+        .real()
+        .iter()
+        .map(|r| r.pose.unwrap().euler()[0])
+        .collect();
+    yaws.sort_by(f64::total_cmp);
+    println!("published 3-RPR: six real assembly modes at platform angles {yaws:.4?}");
 }
