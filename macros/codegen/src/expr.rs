@@ -297,6 +297,7 @@ fn simplify_sum(ts: Vec<Expr>) -> Expr {
             t => out.push(t),
         }
     }
+    let mut out = combine_like_terms(out);
     if number != 0.0 {
         out.push(Expr::Num(number));
     }
@@ -305,6 +306,36 @@ fn simplify_sum(ts: Vec<Expr>) -> Expr {
         1 => out.swap_remove(0),
         _ => Expr::Sum(out),
     }
+}
+
+/// Terms that differ only in their numeric factor merged into one, in the place of the first
+/// (`a − b + c + b` is `a + c`): chains substituted into one another leave such pairs, each an
+/// operation per evaluation. A sum without repeats is returned as it was, so the emitted code
+/// of such mechanisms does not change.
+fn combine_like_terms(terms: Vec<Expr>) -> Vec<Expr> {
+    let split: Vec<(f64, Option<Expr>)> = terms.iter().map(Expr::split_coefficient).collect();
+    let repeated = (0..split.len()).any(|i| (0..i).any(|j| split[j].1 == split[i].1));
+    if !repeated {
+        return terms;
+    }
+    let mut merged: Vec<(f64, Expr)> = Vec::with_capacity(split.len());
+    for (c, rest) in split {
+        // `split_coefficient` gives a rest for every non-number term, which is all a sum
+        // holds here (its numbers were folded).
+        let Some(rest) = rest else { continue };
+        match merged.iter_mut().find(|(_, r)| *r == rest) {
+            Some((sum, _)) => *sum += c,
+            None => merged.push((c, rest)),
+        }
+    }
+    merged
+        .into_iter()
+        .filter(|&(c, _)| c != 0.0)
+        .map(|(c, rest)| match c {
+            1.0 => rest,
+            _ => Expr::Product(vec![Expr::Num(c), rest]).simplify(),
+        })
+        .collect()
 }
 
 fn simplify_product(fs: Vec<Expr>) -> Expr {
@@ -468,6 +499,32 @@ mod tests {
         fn Sub2() -> Expr {
             Expr::minus(Expr::Unknown(1), Expr::Input(0)).square()
         }
+    }
+
+    #[test]
+    fn like_terms_merge_and_cancelling_pairs_vanish() {
+        let (u, i, c) = names();
+        let names = Names {
+            unknowns: &u,
+            inputs: &i,
+            constants: &c,
+        };
+        let (a, b, l) = (Expr::Unknown(0), Expr::Unknown(1), Expr::Input(0));
+        // c·(a − b + L + b) as substitution leaves it: c·(a + L).
+        let inner = Expr::plus(
+            Expr::minus(a.clone(), b.clone()),
+            Expr::plus(l.clone(), b.clone()),
+        );
+        let e = Expr::times(Expr::Constant(0), inner);
+        assert_eq!(e.render(&names), "E*(a + L)");
+        // Coefficients add: 2a − b + a is 3a − b; a sum without repeats keeps its order.
+        let e = Expr::plus(
+            Expr::minus(Expr::times(Expr::Num(2.0), a.clone()), b.clone()),
+            a.clone(),
+        );
+        assert_eq!(e.render(&names), "3*a - b");
+        assert_eq!(Expr::minus(b.clone(), a.clone()).render(&names), "b - a");
+        assert!(Expr::minus(Expr::plus(a.clone(), l), a).render(&names) == "L");
     }
 
     #[test]
