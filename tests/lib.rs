@@ -5,6 +5,7 @@ use linkage::Mechanism;
 
 pub mod dense;
 pub mod invariants;
+pub mod vec3;
 
 pub use linkage_examples::case_study::sampling::Rng;
 

@@ -4,6 +4,7 @@
 
 use super::{check_inverse, mobility_line};
 use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Options, Pose, Status};
+use linkage_tests::vec3::{cross, dot};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 macro_rules! wrist {
@@ -69,18 +70,6 @@ fn unit(elevation: f64, azimuth: f64) -> [f64; 3] {
         elevation.cos() * azimuth.cos(),
         elevation.cos() * azimuth.sin(),
         elevation.sin(),
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
     ]
 }
 

@@ -9,6 +9,7 @@ use super::all_modes::check_count;
 use super::{check_inverse, GENERAL_MODEL};
 use linkage::modes::{AllModes, ModesOptions, Roots};
 use linkage::{arc_length, Mechanism, Pose, Start, Status};
+use linkage_tests::vec3::{add, cross, dot, scaled, sub};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 linkage::mechanism! {
@@ -68,26 +69,6 @@ const THREE_THREE: Triangle = Triangle {
     base: [D33[0], D33[1], D33[1], D33[2], D33[2], D33[0]],
     platform: [[40.0, 35.0, 0.0], [-50.0, 10.0, 0.0], [15.0, -45.0, 0.0]],
 };
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn scaled(a: [f64; 3], s: f64) -> [f64; 3] {
-    a.map(|x| x * s)
-}
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
 
 /// The circle where two legs' spheres meet: centre, radius and two unit vectors spanning its
 /// plane. `None` where the spheres do not meet.
