@@ -10,6 +10,7 @@
 use super::complex::Complex;
 use super::dense;
 use super::inputs::Inputs;
+use super::monodromy::POLISHED;
 use super::rng::Rng;
 use super::sparse_lu::Lu;
 use super::taylor::Series;
@@ -87,6 +88,7 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     let mut x = inputs.random(rng, scale, 0.5);
     let mut converged = false;
+    let mut previous = f64::INFINITY;
     for _ in 0..80 {
         // F and the columns of A = ∂F/∂x, one directional derivative per input.
         let mut f = [Complex::ZERO; N];
@@ -107,6 +109,30 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let mut b = [[Complex::ZERO; N]; N];
         for (&(row, col), &val) in S::PATTERN.iter().zip(values.as_flattened()) {
             b[row][col] = val;
+        }
+        // Each row of [B A] and F scaled to unit length: the same equations, but G below no
+        // longer squares the spread between rows of unit coefficients and rows of squared
+        // lengths (a planar 3-RRR driven at its base: 10⁹ between G's diagonal entries,
+        // which the elimination's pivot test took for a singular G at every start).
+        for i in 0..N {
+            let mut sq = 0.0;
+            for l in 0..N {
+                sq += b[i][l].norm_sqr();
+            }
+            for l in 0..M {
+                sq += a[i][l].norm_sqr();
+            }
+            let inv = 1.0 / libm::sqrt(sq);
+            if !(inv.is_finite()) {
+                return Err(Miss::Walk);
+            }
+            for l in 0..N {
+                b[i][l] = b[i][l].scale(inv);
+            }
+            for l in 0..M {
+                a[i][l] = a[i][l].scale(inv);
+            }
+            f[i] = f[i].scale(inv);
         }
         // G = B Bᴴ + A Aᴴ.
         let mut g = [[Complex::ZERO; N]; N];
@@ -151,10 +177,13 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
         for l in 0..M {
             x[l] += dx[l].scale(damp);
         }
-        if size <= 1e-13 {
+        // Converged: below 1e-13, or stalled at a rounding floor below what `polish` accepts
+        // (inputs that enter through cos and sin leave steps near 1e-12 of the scale).
+        if size <= 1e-13 || (size <= POLISHED && size >= 0.5 * previous) {
             converged = true;
             break;
         }
+        previous = size;
     }
     if !converged {
         return Err(Miss::Walk);

@@ -94,10 +94,11 @@ linkage::mechanism! {
     chain leg3 = base - R(passive, axis = A3 -> A3z) - P(active L3) - R(passive, axis = G3 -> G3z) - platform;
 }
 
-/// A planar 3-RPR's pivots: base `a`, platform `g` (its own frame).
-struct Rpr {
-    a: [[f64; 2]; 3],
-    g: [[f64; 2]; 3],
+/// A planar 3-RPR's pivots: base `a`, platform `g` (its own frame). Also the closed form of
+/// any planar mechanism whose platform hangs from three fixed points by three rigid bars.
+pub(super) struct Rpr {
+    pub(super) a: [[f64; 2]; 3],
+    pub(super) g: [[f64; 2]; 3],
 }
 
 const GENERIC: Rpr = Rpr {
@@ -112,7 +113,7 @@ fn rotate(phi: f64, g: [f64; 2]) -> [f64; 2] {
 
 impl Rpr {
     /// Closed-form inverse kinematics at the planar pose (φ, x, y).
-    fn legs(&self, pose: [f64; 3]) -> [f64; 3] {
+    pub(super) fn legs(&self, pose: [f64; 3]) -> [f64; 3] {
         std::array::from_fn(|i| {
             let g = rotate(pose[0], self.g[i]);
             (g[0] + pose[1] - self.a[i][0]).hypot(g[1] + pose[2] - self.a[i][1])
@@ -122,7 +123,7 @@ impl Rpr {
     /// An independent count of the real assembly modes: for each orientation φ (a fine scan
     /// of the circle), legs 1 and 2 put the platform origin on two circles, met in up to two
     /// points; leg 3's length error changes sign at every real mode.
-    fn scanned_real_modes(&self, legs: [f64; 3]) -> usize {
+    pub(super) fn scanned_real_modes(&self, legs: [f64; 3]) -> usize {
         let samples = 200_000;
         let mut count = 0;
         let mut previous: [Option<f64>; 2] = [None, None];
@@ -159,7 +160,7 @@ impl Rpr {
     }
 
     /// Every real root a query returned: planar, and giving the legs back.
-    fn check_real_roots<const N: usize>(
+    pub(super) fn check_real_roots<const N: usize>(
         &self,
         roots: &[linkage::modes::RealRoot<N>],
         legs: [f64; 3],

@@ -5,6 +5,7 @@
 
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
 use linkage::{arc_length, det_b, pose_from_unknowns, Status};
+use linkage_tests::straight_path_truth as straight_segment;
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 linkage::mechanism! {
@@ -201,4 +202,139 @@ fn middle_rrr_input_is_the_distal_links_turn_relative_to_the_proximal() {
             assert!((turn - qi).abs() < 1e-9, "leg {i}: {turn} vs {qi}");
         }
     }
+}
+
+linkage::mechanism! {
+    /// The same planar 3-RRR driven at its base joints, as most are built.
+    pub struct BaseRrr;
+    params {
+        rb = 200.0, rp = 50.0, re = 130.0, d = 0.4,
+        p1 = pi / 2.0, p2 = pi / 2.0 + 2.0 * pi / 3.0, p3 = pi / 2.0 + 4.0 * pi / 3.0,
+    }
+    base {
+        A1 = [rb * cos(p1), rb * sin(p1), 0.0], A1z = [rb * cos(p1), rb * sin(p1), 1.0],
+        A2 = [rb * cos(p2), rb * sin(p2), 0.0], A2z = [rb * cos(p2), rb * sin(p2), 1.0],
+        A3 = [rb * cos(p3), rb * sin(p3), 0.0], A3z = [rb * cos(p3), rb * sin(p3), 1.0],
+    }
+    platform(home = [0.5, 0.0, 0.0, 0.0, 0.0, 0.0]) {
+        W1 = [rp * cos(p1), rp * sin(p1), 0.0], W1z = [rp * cos(p1), rp * sin(p1), 1.0],
+        W2 = [rp * cos(p2), rp * sin(p2), 0.0], W2z = [rp * cos(p2), rp * sin(p2), 1.0],
+        W3 = [rp * cos(p3), rp * sin(p3), 0.0], W3z = [rp * cos(p3), rp * sin(p3), 1.0],
+    }
+    link proximal1 { C1 = [re * cos(p1 + d), re * sin(p1 + d), 0.0], C1z = [re * cos(p1 + d), re * sin(p1 + d), 1.0] }
+    link proximal2 { C2 = [re * cos(p2 + d), re * sin(p2 + d), 0.0], C2z = [re * cos(p2 + d), re * sin(p2 + d), 1.0] }
+    link proximal3 { C3 = [re * cos(p3 + d), re * sin(p3 + d), 0.0], C3z = [re * cos(p3 + d), re * sin(p3 + d), 1.0] }
+    link distal1 { } link distal2 { } link distal3 { }
+    chain leg1 = base - R(active q1, axis = A1 -> A1z) - proximal1 - R(passive, axis = C1 -> C1z) - distal1 - R(passive, axis = W1 -> W1z) - platform;
+    chain leg2 = base - R(active q2, axis = A2 -> A2z) - proximal2 - R(passive, axis = C2 -> C2z) - distal2 - R(passive, axis = W2 -> W2z) - platform;
+    chain leg3 = base - R(active q3, axis = A3 -> A3z) - proximal3 - R(passive, axis = C3 -> C3z) - distal3 - R(passive, axis = W3 -> W3z) - platform;
+}
+
+/// The base joints' angles at a planar pose: each proximal link's heading from its value at
+/// home, the elbow on its home side (positive counterclockwise, about +z).
+fn base_inverse(pose: [f64; 3]) -> Option<[f64; 3]> {
+    let mut q = [0.0; 3];
+    for (i, qi) in q.iter_mut().enumerate() {
+        let [a, c, _] = leg(i, pose)?;
+        let [a0, c0, _] = leg(i, [YAW, 0.0, 0.0])?;
+        *qi = wrap(heading(sub(c, a)) - heading(sub(c0, a0)));
+    }
+    Some(q)
+}
+
+/// The elbows where the cranks put them: with the elbows fixed, the platform hangs from them
+/// by the three distal links, a 3-RPR of fixed legs.
+fn base_rrr_as_rpr(q: [f64; 3]) -> (super::planar_rpr::Rpr, [f64; 3]) {
+    let elbow = |i: usize| {
+        let a = polar(RB, angle(i));
+        let arm = sub(polar(RE, angle(i) + D), a);
+        let (s, c) = q[i].sin_cos();
+        [
+            a[0] + c * arm[0] - s * arm[1],
+            a[1] + s * arm[0] + c * arm[1],
+        ]
+    };
+    let distal = |i: usize| norm(sub(polar(RP, angle(i) + YAW), polar(RE, angle(i) + D)));
+    (
+        super::planar_rpr::Rpr {
+            a: [0, 1, 2].map(elbow),
+            g: [0, 1, 2].map(|i| polar(RP, angle(i))),
+        },
+        [0, 1, 2].map(distal),
+    )
+}
+
+/// Forward kinematics by continuation from home against the closed-form inverse, on the same
+/// branch all the way; then every assembly mode at crank angles from random poses: 6 complex
+/// roots (the elbows fixed, a 3-RPR's sextic), the real ones exactly those the 3-RPR's scan
+/// finds, each with its distal links at their lengths, the generating pose among them.
+#[test]
+fn base_rrr_forward_kinematics_and_all_modes() {
+    use linkage::modes::{AllModes, ModesOptions, Roots};
+    let rrr = BaseRrr::new();
+    let start = rrr.home_start().unwrap();
+    assert!(linkage_tests::max_diff(start.x(), &[0.0; 3]) < 1e-12);
+    check_jacobians(&rrr, start.v(), start.x());
+    check_factorization(&rrr, start.v(), start.x());
+    let det0 = det_b(&rrr, start.v(), start.x());
+    let modes = AllModes::<_, 18, 3, 16>::new(rrr.clone(), &ModesOptions::default()).unwrap();
+    assert_eq!(modes.start_count(), 6, "{:?}", modes.report());
+    let mut roots = Box::new(Roots::<18, 16>::new());
+    let mut rng = Rng::new(73);
+    let (mut checked, mut real_total, mut other_mode) = (0, 0, 0);
+    while checked < 30 {
+        let pose = [
+            YAW + rng.uniform(-0.15, 0.15),
+            rng.uniform(-20.0, 20.0),
+            rng.uniform(-20.0, 20.0),
+        ];
+        let Some(q) = base_inverse(pose) else {
+            continue;
+        };
+        let sol = arc_length(&rrr, &start, &q, &GENERAL_MODEL).unwrap();
+        assert_eq!(sol.status, Status::Converged, "{pose:?}: q = {q:?}");
+        // The start's branch along the straight segment, by many small Newton steps: this
+        // 3-RRR is cuspidal (two assembly modes with one sign of det B can share the inputs),
+        // so the pose the inputs came from need not be the one on the branch from home.
+        let (truth, flips) = straight_segment(&rrr, &start, &q, 2000);
+        assert_eq!(flips, 0, "{pose:?}: the segment meets a singularity");
+        assert!(
+            linkage_tests::max_diff(&sol.v, &truth) < 1e-7,
+            "{pose:?}: not the start's branch"
+        );
+        let got = pose_from_unknowns(&rrr, &sol.v).unwrap();
+        let [yaw, pitch, roll] = got.euler();
+        let t = got.translation;
+        assert!(pitch.abs() < 1e-9 && roll.abs() < 1e-9 && t[2].abs() < 1e-9);
+        assert!(det_b(&rrr, &sol.v, &q) * det0 > 0.0, "{pose:?}: branch");
+        let generating = (yaw - pose[0]).abs() < 1e-7
+            && (t[0] - pose[1]).abs() < 1e-6
+            && (t[1] - pose[2]).abs() < 1e-6;
+        other_mode += usize::from(!generating);
+        check_inverse(&rrr, &sol.v, &q, &BaseRrr::HOME_INPUTS, 1e-8);
+
+        modes.solve(&q, &mut roots).unwrap();
+        assert!(roots.is_complete(), "{pose:?}");
+        let (rpr, distal) = base_rrr_as_rpr(q);
+        assert_eq!(
+            roots.real().len(),
+            rpr.scanned_real_modes(distal),
+            "{pose:?}"
+        );
+        rpr.check_real_roots(roots.real(), distal);
+        real_total += roots.real().len();
+        assert!(
+            roots.real().iter().any(|r| {
+                let p = r.pose.unwrap();
+                (p.euler()[0] - pose[0]).abs() < 1e-7
+                    && (p.translation[0] - pose[1]).abs() < 1e-6
+                    && (p.translation[1] - pose[2]).abs() < 1e-6
+            }),
+            "{pose:?}: the generating pose is not among the real modes"
+        );
+        checked += 1;
+    }
+    println!(
+        "base-driven 3-RRR: 6 complex roots; 30 random poses, {real_total} real modes, as the 3-RPR scan found; continuation from home on the straight segment's branch every time, {other_mode} of them in another assembly mode than the pose the inputs came from"
+    );
 }
