@@ -477,6 +477,106 @@ fn a_repeated_leg_column_is_an_error() {
     }
 }
 
+/// `--output` naming the `--input` file (or a link to it, or the file standard input reads;
+/// or standard output appended to it) truncated the input under the reader: a small file lost
+/// every row and was left holding the results, exit code 0; a file larger than the reader's
+/// block (8 KB) was read on into its own results, rows past the first block came back
+/// `invalid_number`, and the loop ran until the disk was full. The same for `--output` over
+/// the `--geometry` file, and for `modes --png` over its input. Refused before anything is
+/// written, the files untouched.
+#[test]
+fn an_output_over_an_input_file_is_refused() {
+    let dir = scratch("same-file");
+    let legs = dir.join("legs.csv");
+    let rows = csv(&[HEADER, HOME, NEAR_HOME, FURTHER]);
+    std::fs::write(&legs, &rows).unwrap();
+    let link = dir.join("link.csv");
+    let _ = std::fs::remove_file(&link);
+    std::os::unix::fs::symlink(&legs, &link).unwrap();
+    let hard = dir.join("hard.csv");
+    let _ = std::fs::remove_file(&hard);
+    std::fs::hard_link(&legs, &hard).unwrap();
+    let geometry = dir.join("geometry.toml");
+    let table_iii = "base = [[200.764, 53.795, 0.0], [169.706, 0.0, 0.0], [0.0, 0.0, 0.0], \
+        [-31.058, 53.795, 0.0], [53.795, 200.764, 0.0], [115.911, 200.764, 0.0]]\n\
+        platform = [[122.475, 122.475, 0.0], [51.764, 0.0, 0.0], [0.0, 0.0, 0.0], \
+        [-70.711, 122.475, 0.0], [-44.829, 167.303, 0.0], [96.593, 167.303, 0.0]]\n\
+        [start]\nlegs = [170, 170, 170, 170, 170, 170]\n";
+    std::fs::write(&geometry, table_iii).unwrap();
+    let p = |p: &Path| p.to_str().unwrap().to_string();
+    let (legs_s, link_s, hard_s, geo_s) = (p(&legs), p(&link), p(&hard), p(&geometry));
+    let cases: [Vec<&str>; 6] = [
+        vec!["solve", "--input", &legs_s, "--output", &legs_s],
+        vec!["solve", "--input", &legs_s, "--output", &link_s],
+        vec!["solve", "--input", &link_s, "--output", &hard_s],
+        vec![
+            "solve", "--method", "nr", "--input", &legs_s, "--output", &hard_s,
+        ],
+        vec![
+            "solve",
+            "--input",
+            &legs_s,
+            "--geometry",
+            &geo_s,
+            "--output",
+            &geo_s,
+        ],
+        vec!["modes", "--input", &legs_s, "--png", &link_s],
+    ];
+    for args in &cases {
+        let out = capped(args, Stdio::null(), Stdio::piped());
+        assert_refused(&out, "would destroy the input");
+        assert_eq!(std::fs::read(&legs).unwrap(), rows, "{args:?}");
+        assert_eq!(
+            std::fs::read_to_string(&geometry).unwrap(),
+            table_iii,
+            "{args:?}"
+        );
+    }
+    // Standard input read from the file the output names.
+    let out = capped(
+        &["solve", "--input", "-", "--output", &legs_s],
+        std::fs::File::open(&legs).unwrap().into(),
+        Stdio::piped(),
+    );
+    assert_refused(&out, "is standard input");
+    assert_eq!(std::fs::read(&legs).unwrap(), rows);
+    // Standard output appended to the input file (`>> legs.csv`).
+    let append = std::fs::OpenOptions::new()
+        .append(true)
+        .open(&legs)
+        .unwrap();
+    let out = capped(&["solve", "--input", &legs_s], Stdio::null(), append.into());
+    assert_refused(&out, "standard output is the input file");
+    assert_eq!(std::fs::read(&legs).unwrap(), rows);
+    // Another file, or /dev/null, is fine.
+    let other = dir.join("out.csv");
+    let out = run(&["solve", "--input", &legs_s, "--output", &p(&other)], b"");
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(std::fs::read_to_string(&other).unwrap().lines().count(), 4);
+    let out = run(
+        &["solve", "--input", "/dev/null", "--output", "/dev/null"],
+        b"",
+    );
+    assert_refused(&out, "no column `L1`");
+}
+
+/// Runs `stewart args…` with at most 1 MB written to any file (`ulimit -f`): a run that would
+/// feed on its own output is stopped by SIGXFSZ instead of filling the disk.
+fn capped(args: &[&str], stdin: Stdio, stdout: Stdio) -> Output {
+    let child = Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -f 1024 && exec \"$0\" \"$@\"")
+        .arg(stewart())
+        .args(args)
+        .stdin(stdin)
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_with_limit(child, Duration::from_secs(120), args)
+}
+
 #[test]
 fn an_invalid_byte_costs_only_the_field_that_needs_it() {
     let mut input = b"note,L1,L2,L3,L4,L5,L6,more\n".to_vec();
