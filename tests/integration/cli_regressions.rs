@@ -769,6 +769,49 @@ fn bad_option_values_are_refused_while_parsing() {
 
 // ---- Defect 10: what a user needs to judge a row.
 
+/// `bench --method nr|nh` counted every `unverified` answer as a failure (all 200 Table V
+/// points "not ok per pass"), and so never certified one with `--certify` nor moved on from
+/// it with `--track`: those timings were of the solves alone, from home. An answer is what
+/// `solve` answers: `ok` from PH, `unverified` from NH and NR.
+#[test]
+fn bench_counts_unverified_answers_as_solve_does() {
+    let dir = scratch("bench");
+    let legs = dir.join("legs.csv");
+    let unreachable = "170,170,170,170,170,600";
+    std::fs::write(&legs, csv(&[HEADER, HOME, NEAR_HOME, FURTHER, unreachable])).unwrap();
+    let legs = legs.to_str().unwrap();
+    for method in ["ph", "nh", "nr"] {
+        let solved = statuses(&run(&["solve", "--method", method, "--input", legs], b""));
+        let unanswered = solved.iter().filter(|s| *s != answered(method)).count();
+        assert_eq!(unanswered, 1, "{method}: {solved:?}");
+        for extra in [
+            &[][..],
+            &["--track"],
+            &["--certify"],
+            &["--track", "--certify"],
+        ] {
+            let mut args = vec!["bench", "--method", method, "--input", legs, "--json"];
+            args.extend(extra);
+            let out = run(&args, b"");
+            assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+            let report = String::from_utf8(out.stdout).unwrap();
+            let count = |key: &str| {
+                let tail = report.split(&format!("\"{key}\":")).nth(1)?;
+                let digits: String = tail.chars().take_while(char::is_ascii_digit).collect();
+                digits.parse::<usize>().ok()
+            };
+            assert_eq!(
+                count("failures_per_pass"),
+                Some(unanswered),
+                "{args:?}: {report}"
+            );
+            if extra.contains(&"--certify") {
+                assert_eq!(count("unproven_per_pass"), Some(0), "{args:?}: {report}");
+            }
+        }
+    }
+}
+
 #[test]
 fn rows_report_min_det_ratio_and_how_they_were_reached() {
     use linkage::{arc_length, arc_length_detour, Options, Status, Tracker};
