@@ -549,6 +549,21 @@ fn an_output_over_an_input_file_is_refused() {
     let out = capped(&["solve", "--input", &legs_s], Stdio::null(), append.into());
     assert_refused(&out, "standard output is the input file");
     assert_eq!(std::fs::read(&legs).unwrap(), rows);
+    // One named pipe both read and written: it would feed on itself (and wait forever).
+    let fifo = dir.join("fifo");
+    let _ = std::fs::remove_file(&fifo);
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let fifo_s = p(&fifo);
+    let out = capped(
+        &["solve", "--input", &fifo_s, "--output", &fifo_s],
+        Stdio::null(),
+        Stdio::piped(),
+    );
+    assert_refused(&out, "would destroy the input");
     // Another file, or /dev/null, is fine.
     let other = dir.join("out.csv");
     let out = run(&["solve", "--input", &legs_s, "--output", &p(&other)], b"");

@@ -141,7 +141,8 @@ pub fn open_input(path: &Path) -> Result<Box<dyn Read>, String> {
 /// and the loop fills the disk. Also refused: an output over the `--geometry` file, which
 /// would be destroyed. `None` is standard output, `-` standard input; the files are compared
 /// by identity (device and inode: a symbolic or hard link is the same file). Only regular
-/// files are compared: `/dev/null`, pipes and terminals may be both.
+/// files and named pipes (one FIFO both read and written feeds on itself) are compared:
+/// `/dev/null`, anonymous pipes and terminals may be both.
 pub fn refuse_overwriting(output: Option<&Path>, inputs: &[&Path]) -> Result<(), String> {
     let out_path = output.unwrap_or(Path::new("/dev/stdout"));
     let Some(out) = file_identity(out_path) else {
@@ -171,13 +172,13 @@ pub fn refuse_overwriting(output: Option<&Path>, inputs: &[&Path]) -> Result<(),
     Ok(())
 }
 
-/// A regular file's device and inode, following links; `None` for anything else or a path
-/// that does not exist (yet).
+/// A regular file's or a FIFO's device and inode, following links; `None` for anything else
+/// or a path that does not exist (yet).
 #[cfg(unix)]
 fn file_identity(path: &Path) -> Option<(u64, u64)> {
-    use std::os::unix::fs::MetadataExt;
+    use std::os::unix::fs::{FileTypeExt, MetadataExt};
     let meta = std::fs::metadata(path).ok()?;
-    meta.is_file().then(|| (meta.dev(), meta.ino()))
+    (meta.is_file() || meta.file_type().is_fifo()).then(|| (meta.dev(), meta.ino()))
 }
 
 /// Elsewhere: the canonical path of a regular file.
