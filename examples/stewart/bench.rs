@@ -74,8 +74,10 @@ pub fn run(
                     Err(_) => (false, false, None),
                 }
             } else {
+                // An answer, as `solve` counts it: `ok` from PH, `unverified` from NH and NR
+                // (the tolerance met; these methods cannot establish the branch).
                 match solver.solve(&sys, &current, x, &options) {
-                    Ok(sol) if sol.is_ok() => {
+                    Ok(sol) if sol.status.meets_tolerance() => {
                         let proven = !certify
                             || if track {
                                 chain

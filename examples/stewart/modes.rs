@@ -4,7 +4,7 @@
 use linkage::modes::{AllModes, EndpointKind, ModesOptions, Roots};
 use linkage_examples::cli::geometry;
 use linkage_examples::cli::legs_csv;
-use linkage_examples::cli::stream::print;
+use linkage_examples::cli::stream::{print, refuse_overwriting};
 use linkage_examples::stewart::{platform_is_coplanar, SixSix, Stewart, StewartGeneral};
 use std::path::Path;
 
@@ -19,6 +19,11 @@ pub fn run(
     json: bool,
     png: Option<(&Path, usize)>,
 ) -> Result<(), String> {
+    if let Some((file, _)) = png {
+        let mut inputs = vec![input];
+        inputs.extend(geometry);
+        refuse_overwriting(Some(file), &inputs)?;
+    }
     let rows = legs_csv::read(input)?;
     if let Some((_, row)) = png {
         if row > rows.len() {

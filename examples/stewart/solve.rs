@@ -6,7 +6,7 @@ use linkage::{CertifiedSteps, Mechanism, Options, Pose, Start, StepProof, Tracke
 use linkage_examples::cli::geometry;
 use linkage_examples::cli::legs_csv::{LegRows, Row};
 use linkage_examples::cli::results_csv::{self, Record, Via};
-use linkage_examples::cli::stream::{open_input, FlushBeforeRead, SharedSink};
+use linkage_examples::cli::stream::{open_input, refuse_overwriting, FlushBeforeRead, SharedSink};
 use linkage_examples::stewart::{
     find_start, platform_is_coplanar, SixSix, Stewart, StewartGeneral, HOME_LEGS,
 };
@@ -25,6 +25,9 @@ const TOLERANCE_NOT_MET: &str = "tolerance_not_met";
 const UNPROVEN: &str = "unproven";
 
 pub fn run(args: &SolveArgs) -> Result<(), String> {
+    let mut inputs = vec![args.input.as_path()];
+    inputs.extend(args.geometry.as_deref());
+    refuse_overwriting(args.output.as_deref(), &inputs)?;
     match &args.geometry {
         None => {
             let check = match args.modes_within {

@@ -31,9 +31,32 @@ fn six<T: Copy>(v: &[T], what: &str) -> Result<[T; 6], String> {
         .map_err(|_| format!("`{what}` needs 6 entries, found {}", v.len()))
 }
 
+/// The longest geometry file read, bytes: a geometry takes well under 1 KB, and a path to
+/// something endless (`/dev/zero`) must not be read into memory until the allocator gives up.
+const MAX_FILE: u64 = 1 << 20;
+
+/// The file's text, at most [`MAX_FILE`] bytes.
+fn read_text(path: &Path) -> Result<String, String> {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| format!("cannot read {}: {e}", path.display());
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .map_err(cannot)?
+        .take(MAX_FILE + 1)
+        .read_to_string(&mut text)
+        .map_err(cannot)?;
+    if text.len() as u64 > MAX_FILE {
+        return Err(format!(
+            "{}: longer than {} MB: not a geometry file",
+            path.display(),
+            MAX_FILE >> 20
+        ));
+    }
+    Ok(text)
+}
+
 pub fn load(path: &Path) -> Result<Geometry, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = read_text(path)?;
     parse(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
@@ -81,8 +104,7 @@ pub type Joints = ([[f64; 3]; 6], [[f64; 3]; 6]);
 /// Only the joint centres, base and platform: for commands that need no start configuration
 /// (`stewart modes`), the `[start]` section is optional (and ignored).
 pub fn load_joints(path: &Path) -> Result<Joints, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = read_text(path)?;
     parse_joints(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 

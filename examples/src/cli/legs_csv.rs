@@ -9,11 +9,45 @@ use std::io::Read;
 /// One input row: its leg lengths, or why it cannot be solved.
 pub type Row = Result<[f64; 6], &'static str>;
 
+/// The longest line accepted, bytes. A row of six leg lengths takes well under 1 KB; without
+/// a bound, one line with no end (`--input /dev/zero`, a file with its line breaks lost) would
+/// be held in memory whole, until the allocator gave up and the program aborted.
+pub const MAX_LINE: usize = 1 << 20;
+
 /// A streaming reader of leg-length rows: constant memory whatever the input's length.
 pub struct LegRows<R: Read> {
-    reader: csv::Reader<R>,
+    reader: csv::Reader<LineLimit<R>>,
     columns: [usize; 6],
     record: csv::ByteRecord,
+    /// Rows read so far, for the message of a read error.
+    rows: u64,
+}
+
+/// Input whose lines may not exceed [`MAX_LINE`] bytes: a longer one is a read error.
+struct LineLimit<R> {
+    inner: R,
+    /// Bytes since the last line break (`\n` or `\r`).
+    run: usize,
+}
+
+impl<R: Read> Read for LineLimit<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        for &b in &buf[..n] {
+            if b == b'\n' || b == b'\r' {
+                self.run = 0;
+            } else {
+                self.run += 1;
+                if self.run > MAX_LINE {
+                    return Err(std::io::Error::other(format!(
+                        "a line longer than {} MB: not a CSV of leg lengths",
+                        MAX_LINE >> 20
+                    )));
+                }
+            }
+        }
+        Ok(n)
+    }
 }
 
 impl<R: Read> LegRows<R> {
@@ -23,7 +57,10 @@ impl<R: Read> LegRows<R> {
         let mut reader = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .flexible(true)
-            .from_reader(source);
+            .from_reader(LineLimit {
+                inner: source,
+                run: 0,
+            });
         let headers = reader.byte_headers().map_err(|e| e.to_string())?.clone();
         let mut columns = [0usize; 6];
         for (i, c) in columns.iter_mut().enumerate() {
@@ -48,6 +85,7 @@ impl<R: Read> LegRows<R> {
             reader,
             columns,
             record: csv::ByteRecord::new(),
+            rows: 0,
         })
     }
 
@@ -56,8 +94,14 @@ impl<R: Read> LegRows<R> {
     pub fn next_row(&mut self) -> Result<Option<Row>, String> {
         match self.reader.read_byte_record(&mut self.record) {
             Ok(false) => Ok(None),
-            Ok(true) => Ok(Some(parse_row(&self.record, &self.columns))),
-            Err(e) => Err(format!("cannot read the input: {e}")),
+            Ok(true) => {
+                self.rows += 1;
+                Ok(Some(parse_row(&self.record, &self.columns)))
+            }
+            Err(e) => Err(format!(
+                "cannot read the input after row {}: {e}",
+                self.rows
+            )),
         }
     }
 }

@@ -135,6 +135,61 @@ pub fn open_input(path: &Path) -> Result<Box<dyn Read>, String> {
     Ok(Box::new(file))
 }
 
+/// Refuses to write results over a file the command still reads: an `--output` (or standard
+/// output appended to a file, `>>`) that is the `--input` file would be truncated or grown
+/// under the reader, which then reads its own results as rows: the rows not yet read are lost,
+/// and the loop fills the disk. Also refused: an output over the `--geometry` file, which
+/// would be destroyed. `None` is standard output, `-` standard input; the files are compared
+/// by identity (device and inode: a symbolic or hard link is the same file). Only regular
+/// files and named pipes (one FIFO both read and written feeds on itself) are compared:
+/// `/dev/null`, anonymous pipes and terminals may be both.
+pub fn refuse_overwriting(output: Option<&Path>, inputs: &[&Path]) -> Result<(), String> {
+    let out_path = output.unwrap_or(Path::new("/dev/stdout"));
+    let Some(out) = file_identity(out_path) else {
+        return Ok(());
+    };
+    for input in inputs {
+        let path = if *input == Path::new("-") {
+            Path::new("/dev/stdin")
+        } else {
+            input
+        };
+        if file_identity(path) == Some(out) {
+            let what = match output {
+                Some(p) => format!("--output {}", p.display()),
+                None => "standard output".into(),
+            };
+            let name = if *input == Path::new("-") {
+                "standard input".into()
+            } else {
+                format!("the input file {}", input.display())
+            };
+            return Err(format!(
+                "{what} is {name}: writing the results there would destroy the input (write them to another file)"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A regular file's or a FIFO's device and inode, following links; `None` for anything else
+/// or a path that does not exist (yet).
+#[cfg(unix)]
+fn file_identity(path: &Path) -> Option<(u64, u64)> {
+    use std::os::unix::fs::{FileTypeExt, MetadataExt};
+    let meta = std::fs::metadata(path).ok()?;
+    (meta.is_file() || meta.file_type().is_fifo()).then(|| (meta.dev(), meta.ino()))
+}
+
+/// Elsewhere: the canonical path of a regular file.
+#[cfg(not(unix))]
+fn file_identity(path: &Path) -> Option<PathBuf> {
+    let meta = std::fs::metadata(path).ok()?;
+    meta.is_file()
+        .then(|| std::fs::canonicalize(path).ok())
+        .flatten()
+}
+
 /// Whether standard output was closed when the program started (`stewart … >&-`).
 ///
 /// The Rust runtime then puts /dev/null, opened read-write, in its place, so every result
