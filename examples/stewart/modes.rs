@@ -23,6 +23,17 @@ pub fn run(
         let mut inputs = vec![input];
         inputs.extend(geometry);
         refuse_overwriting(Some(file), &inputs)?;
+        // The picture is a PNG whatever the name; a name that says otherwise is a mistake
+        // (the drawing library would pick its format from the extension, or fail without one).
+        let png_named = file
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+        if !png_named {
+            return Err(format!(
+                "--png {}: the picture is written as PNG; name the file *.png",
+                file.display()
+            ));
+        }
     }
     let rows = legs_csv::read(input)?;
     if let Some((_, row)) = png {

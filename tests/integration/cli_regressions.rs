@@ -1128,4 +1128,22 @@ fn modes_png_draws_every_real_mode_of_the_row_asked_for() {
     assert_eq!((w, h), (1200, 630));
     let out = run(&["modes", "--input", l, "--png", p, "--row", "3"], b"");
     assert_refused(&out, "--row 3");
+    // A name that is not *.png is refused, not written in another format (or failed on).
+    for name in ["modes.jpg", "modes"] {
+        let other = dir.join(name);
+        let out = run(
+            &[
+                "modes",
+                "--input",
+                l,
+                "--png",
+                other.to_str().unwrap(),
+                "--row",
+                "2",
+            ],
+            b"",
+        );
+        assert_refused(&out, "name the file *.png");
+        assert!(!other.exists(), "{name}");
+    }
 }
