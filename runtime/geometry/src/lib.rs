@@ -9,7 +9,7 @@ pub mod math;
 
 use core::f64::consts::PI;
 use core::fmt;
-use math::{acos, atan2, cross3, dot3, norm3, sqrt, sub3};
+use math::{acos, atan2, cross3, dot3, norm3, scale3, sqrt, sub3};
 
 /// A geometry that cannot define the mechanism.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,15 +61,27 @@ pub fn rigid_coefficients(
     coplanar: bool,
 ) -> Result<[f64; 4], GeometryError> {
     let [p1, p2, p3] = frame;
-    let e1 = sub3(p2, p1);
-    let e2 = sub3(p3, p1);
+    // In a unit near the frame's size, so that no product of four coordinates overflows or
+    // underflows (a platform of 1e80 mm is not collinear). The unit is a power of two: the
+    // scaling is exact, and the results are those of the unscaled computation wherever that
+    // one neither overflows nor underflows; a, b and c do not depend on the unit, and d (a
+    // length⁻¹) is scaled back at the end.
+    let size = distance(p2, p1).max(distance(p3, p1));
+    if !(size > 0.0 && size.is_finite()) {
+        return Err(GeometryError::CollinearFrame);
+    }
+    let exponent = (((size.to_bits() >> 52) & 0x7ff) as i64 - 1023).clamp(-1022, 1022);
+    let inverse_unit = f64::from_bits(((1023 - exponent) as u64) << 52);
+    let unit = |v: [f64; 3]| scale3(inverse_unit, v);
+    let e1 = unit(sub3(p2, p1));
+    let e2 = unit(sub3(p3, p1));
     let n = cross3(e1, e2);
     let nn = dot3(n, n);
     let scale = norm3(e1).max(norm3(e2));
     if !(nn > 1e-18 * scale * scale * scale * scale) {
         return Err(GeometryError::CollinearFrame);
     }
-    let r = sub3(q, p1);
+    let r = unit(sub3(q, p1));
     let d = dot3(r, n) / nn;
     if coplanar && (d * sqrt(nn)).abs() > 1e-9 * scale.max(norm3(r)) {
         return Err(GeometryError::NotCoplanar);
@@ -79,7 +91,12 @@ pub fn rigid_coefficients(
     // The Gram determinant g11 g22 − g12² equals ‖n‖² (Lagrange's identity).
     let b = (g22 * r1 - g12 * r2) / nn;
     let c = (g11 * r2 - g12 * r1) / nn;
-    Ok([1.0 - b - c, b, c, if coplanar { 0.0 } else { d }])
+    Ok([
+        1.0 - b - c,
+        b,
+        c,
+        if coplanar { 0.0 } else { d * inverse_unit },
+    ])
 }
 
 /// Coefficients `[a, b]` with `q = a p1 + b p2` and `a + b = 1`: the collinear case of Eq. 3.
@@ -247,6 +264,28 @@ mod tests {
         let line = [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
         assert_eq!(
             rigid_coefficients(line, q, false),
+            Err(GeometryError::CollinearFrame)
+        );
+    }
+
+    #[test]
+    fn rigid_coefficients_do_not_depend_on_the_unit() {
+        // The same frame and point from 1e-100 to 1e100: a, b, c the same, d scaled by the
+        // unit's inverse (a frame of 1e80 mm was once called collinear: ‖n‖² overflowed).
+        let frame = [[1.0, -2.0, 0.5], [3.0, 0.0, 0.0], [0.0, 3.5, 1.0]];
+        let q = [0.5, 1.0, 2.0];
+        let base = rigid_coefficients(frame, q, false).unwrap();
+        for unit in [1e-100, 1e-60, 1e60, 1e80, 1e100] {
+            let f = frame.map(|p| scale3(unit, p));
+            let [a, b, c, d] = rigid_coefficients(f, scale3(unit, q), false).unwrap();
+            for (got, want) in [a, b, c].iter().zip(&base) {
+                assert!((got - want).abs() < 1e-12, "{unit:e}");
+            }
+            assert!((d * unit / base[3] - 1.0).abs() < 1e-12, "{unit:e}");
+        }
+        let coincident = [[1e80; 3]; 3];
+        assert_eq!(
+            rigid_coefficients(coincident, q, false),
             Err(GeometryError::CollinearFrame)
         );
     }
