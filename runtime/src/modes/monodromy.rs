@@ -138,7 +138,9 @@ pub(crate) fn contains<S, const N: usize>(
 /// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
 /// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
 /// component of the seed's solution; seeds land on every component (the 3-RPS example's
-/// solutions split into two components of eight over its leg lengths).
+/// solutions split into two components of eight over its leg lengths). With symmetries (`sym`,
+/// see `symmetry.rs`) every new root comes with its orbit, and a loop carries one member of each
+/// orbit (the next one where a member's path fails).
 pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     model: &Model<'_, S, N>,
     inputs: &Inputs<M>,
