@@ -160,4 +160,48 @@ pub trait Mechanism<const N: usize, const M: usize> {
         let _ = (v, x);
         0.0
     }
+    /// Number of candidate symmetries [`Self::symmetry`] knows (0 by default).
+    const SYMMETRIES: usize = 0;
+    /// Candidate symmetry `k` of the equations applied to `v` at inputs `x`, into `out`.
+    /// Generated per chain with passive universal joints: the chain's legs turned half a turn
+    /// about their own axes, every U's second-axis point `C_u` reflected through its centre,
+    /// `2C − C_u` — the same equations hold there wherever the leg's other points lie on its
+    /// axis (Tsai's 3-UPU), so its roots come in twins. Only a candidate: a leg with a point off
+    /// its axis breaks it, and [`crate::modes::AllModes`] uses one only after checking that it
+    /// maps a generic root to another root. The default (and `k ≥ SYMMETRIES`) copies `v`.
+    ///
+    /// ```
+    /// # linkage::mechanism! {
+    /// #     pub struct Upu;
+    /// #     base {
+    /// #         A1 = [150.0, 0.0, 0.0], A1a = [150.0, 1.0, 0.0],
+    /// #         A2 = [-75.0, 129.9038105676658, 0.0], A2a = [-75.86602540378444, 129.4038105676658, 0.0],
+    /// #         A3 = [-75.0, -129.9038105676658, 0.0], A3a = [-74.13397459621556, -130.4038105676658, 0.0],
+    /// #     }
+    /// #     platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 200.0]) {
+    /// #         G1 = [60.0, 0.0, 0.0], G1a = [60.0, 1.0, 0.0],
+    /// #         G2 = [-30.0, 51.96152422706632, 0.0], G2a = [-30.86602540378444, 51.46152422706632, 0.0],
+    /// #         G3 = [-30.0, -51.96152422706632, 0.0], G3a = [-29.13397459621556, -52.46152422706632, 0.0],
+    /// #     }
+    /// #     chain leg1 = base - U(A1, axis = A1 -> A1a) - P(active L1) - U(G1, axis = G1 -> G1a) - platform;
+    /// #     chain leg2 = base - U(A2, axis = A2 -> A2a) - P(active L2) - U(G2, axis = G2 -> G2a) - platform;
+    /// #     chain leg3 = base - U(A3, axis = A3 -> A3a) - P(active L3) - U(G3, axis = G3 -> G3a) - platform;
+    /// # }
+    /// use linkage::Mechanism;
+    /// // Tsai's 3-UPU: one candidate per leg; spinning leg 1 at home keeps every equation.
+    /// let upu = Upu::new();
+    /// assert_eq!(Upu::SYMMETRIES, 3);
+    /// let start = upu.home_start().unwrap();
+    /// let mut spun = [0.0; 45];
+    /// upu.symmetry(0, start.v(), start.x(), &mut spun);
+    /// assert_ne!(&spun, start.v());
+    /// let mut f = [0.0; 45];
+    /// upu.residual(&spun, start.x(), &mut f);
+    /// assert!(f.iter().all(|r| r.abs() < 1e-9), "{f:?}");
+    /// ```
+    #[inline]
+    fn symmetry<T: crate::Scalar>(&self, k: usize, v: &[T; N], x: &[T; M], out: &mut [T; N]) {
+        let _ = (k, x);
+        *out = *v;
+    }
 }

@@ -50,6 +50,7 @@ pub fn expand(
         .map(|(i, c)| recipe(model, i, &c.recipe));
 
     let dependent_offset = crate::emit_dependent::dependent_offset(model);
+    let symmetry = crate::emit_symmetry::symmetry(model);
     let residual = assignments(
         Arithmetic::F64,
         model
@@ -429,6 +430,8 @@ pub fn expand(
             }
 
             #dependent_offset
+
+            #symmetry
         }
     }
 }

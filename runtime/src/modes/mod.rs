@@ -54,6 +54,7 @@ mod roots;
 mod seed;
 mod sparse_lu;
 mod stored;
+mod symmetry;
 mod taylor;
 mod track;
 
@@ -207,6 +208,9 @@ pub struct StartReport {
     pub loops: usize,
     /// Paths that failed during monodromy (harmless: their solutions are found another way).
     pub failed_paths: usize,
+    /// Candidate symmetries ([`Mechanism::symmetry`]) kept: each maps a generic root to
+    /// another root (Tsai's 3-UPU: three, one leg spin each, so its roots come in eights).
+    pub symmetries: usize,
 }
 
 /// The solver for every assembly mode of a mechanism: its start solutions at a generic
@@ -262,7 +266,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             max_loops: options.max_loops.max(1),
             expected: options.expected,
         };
-        let found = monodromy::monodromy(&model, &me.inputs, &p0, &mut starts, &mut rng, &stop);
+        // Symmetries of the equations (leg spins), kept where they map this generic root to
+        // another root: monodromy then adds every root's orbit at once.
+        let sym = symmetry::Symmetries::detect(&model, &starts[0], &p0, &mut Workspace::new());
+        let found =
+            monodromy::monodromy(&model, &me.inputs, &p0, &mut starts, &sym, &mut rng, &stop);
         if found.overflow {
             return Err(ModesError::Capacity { capacity: K });
         }
@@ -270,6 +278,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             seeds: seeds + found.seeds,
             loops: found.loops,
             failed_paths: found.failed_paths,
+            symmetries: sym.count(),
         };
         me.report = report;
         me.starts = starts;

@@ -12,6 +12,7 @@ use super::complex::Complex;
 use super::inputs::Inputs;
 use super::path::ParameterPath;
 use super::rng::Rng;
+use super::symmetry::Symmetries;
 use super::track::{Model, Outcome, Settings, Workspace};
 use crate::Mechanism;
 
@@ -137,12 +138,15 @@ pub(crate) fn contains<S, const N: usize>(
 /// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
 /// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
 /// component of the seed's solution; seeds land on every component (the 3-RPS example's
-/// solutions split into two components of eight over its leg lengths).
+/// solutions split into two components of eight over its leg lengths). With symmetries (`sym`,
+/// see `symmetry.rs`) every new root comes with its orbit, and a loop carries one member of each
+/// orbit (the next one where a member's path fails).
 pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     model: &Model<'_, S, N>,
     inputs: &Inputs<M>,
     p0: &[Complex; M],
     out: &mut [[Complex; N]; K],
+    sym: &Symmetries,
     rng: &mut Rng,
     stop: &Stopping,
 ) -> Found {
@@ -154,6 +158,10 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         failed_paths: 0,
         overflow: false,
     };
+    // Each root's orbit under the symmetries, as the index of its first member: an orbit is
+    // added at once, so its members are consecutive.
+    let mut orbit = [0usize; K];
+    close(model, p0, sym, out, &mut orbit, &mut found, 0, &mut ws);
     let done = |found: &Found| {
         found.overflow
             || found.loops >= stop.max_loops
@@ -176,9 +184,16 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             ];
             let mut new = false;
             let mut i = 0;
+            // The orbit one of whose members has come round this loop: the images of the
+            // others are its images (a loop commutes with the symmetries), and are known.
+            let mut carried = usize::MAX;
             while i < found.count && !done(&found) {
                 let mut v = out[i];
+                let this = orbit[i];
                 i += 1;
+                if this == carried {
+                    continue;
+                }
                 let ok = legs.iter().all(|leg| {
                     model
                         .track(leg, &mut v, &mut ws, &Settings::DEFAULT)
@@ -189,7 +204,8 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                     found.failed_paths += 1;
                     continue;
                 }
-                new |= add(model, out, &mut found, v);
+                carried = this;
+                new |= add(model, p0, sym, out, &mut orbit, &mut found, v, &mut ws);
             }
             stale = if new { 0 } else { stale + 1 };
         }
@@ -211,7 +227,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                 found.failed_paths += 1;
                 continue;
             }
-            new = add(model, out, &mut found, v);
+            new = add(model, p0, sym, out, &mut orbit, &mut found, v, &mut ws);
         }
         if !new || done(&found) {
             return found;
@@ -219,13 +235,19 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
     }
 }
 
-/// Adds `v` (tracking coordinates) to the known solutions if it is new and finite; `true` if
-/// it was. Compared in tracking coordinates: far-out roots are accurate there, not in v.
-fn add<S, const N: usize, const K: usize>(
+/// Adds `v` (tracking coordinates) to the known solutions if it is new and finite, with its
+/// orbit under the symmetries; `true` if it was new. Compared in tracking coordinates: far-out
+/// roots are accurate there, not in v.
+#[allow(clippy::too_many_arguments)]
+fn add<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     model: &Model<'_, S, N>,
+    p0: &[Complex; M],
+    sym: &Symmetries,
     out: &mut [[Complex; N]; K],
+    orbit: &mut [usize; K],
     found: &mut Found,
     v: [Complex; N],
+    ws: &mut Workspace<N>,
 ) -> bool {
     if !(model.size(&v) <= 1e8) || contains(model, &out[..found.count], &v, SAME) {
         return false;
@@ -234,7 +256,45 @@ fn add<S, const N: usize, const K: usize>(
         found.overflow = true;
         return false;
     }
-    out[found.count] = v;
+    let first = found.count;
+    out[first] = v;
     found.count += 1;
+    close(model, p0, sym, out, orbit, found, first, ws);
     true
+}
+
+/// Completes the orbit of root `first` (the last one known) under the symmetries: the images of
+/// every member under every symmetry until nothing new comes (they commute, so at most 2^k
+/// members for k symmetries); each image a root itself (checked, see [`Symmetries::apply`]).
+#[allow(clippy::too_many_arguments)]
+fn close<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
+    model: &Model<'_, S, N>,
+    p0: &[Complex; M],
+    sym: &Symmetries,
+    out: &mut [[Complex; N]; K],
+    orbit: &mut [usize; K],
+    found: &mut Found,
+    first: usize,
+    ws: &mut Workspace<N>,
+) {
+    orbit[first] = first;
+    let mut j = first;
+    while j < found.count {
+        for s in 0..sym.count() {
+            let Some(w) = sym.apply(s, model, &out[j], p0, ws) else {
+                continue;
+            };
+            if !(model.size(&w) <= 1e8) || contains(model, &out[..found.count], &w, SAME) {
+                continue;
+            }
+            if found.count == K {
+                found.overflow = true;
+                return;
+            }
+            out[found.count] = w;
+            orbit[found.count] = first;
+            found.count += 1;
+        }
+        j += 1;
+    }
 }

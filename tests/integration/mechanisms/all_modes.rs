@@ -103,7 +103,7 @@ fn same<const N: usize>(a: &[Complex; N], b: &[Complex; N], tol: f64) -> bool {
 /// Newton's method in complex arithmetic from `starts` random points of size `reach` at the
 /// inputs `x`: every root it reaches must be among the endpoints of `roots`, or be one that
 /// `spurious` accepts. Returns the roots it reached that `spurious` does not accept.
-fn newton_among<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
+pub(super) fn newton_among<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     sys: &S,
     x: &[f64; M],
     roots: &Roots<N, K>,
@@ -191,7 +191,7 @@ fn offsets<const M: usize>(home: [f64; M], k: f64) -> [[f64; M]; 3] {
     d.map(|d| std::array::from_fn(|i| home[i] + k * d[i % 3]))
 }
 
-fn is_identity(r: &[[f64; 3]; 3], tol: f64) -> bool {
+pub(super) fn is_identity(r: &[[f64; 3]; 3], tol: f64) -> bool {
     (0..3).all(|i| (0..3).all(|j| (r[i][j] - if i == j { 1.0 } else { 0.0 }).abs() <= tol))
 }
 

@@ -22,6 +22,7 @@ mod slider_crank;
 mod spherical_wrist;
 mod translational_upu;
 mod triangle_platforms;
+mod upu_modes;
 
 use linkage::{Mechanism, Options};
 

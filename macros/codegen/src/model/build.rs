@@ -100,6 +100,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         links: Vec::new(),
         link_equations: 0..0,
         platform_placed: false,
+        spins: Vec::new(),
     };
     let mut foreign = Vec::new();
     if !general.is_empty() {
@@ -230,6 +231,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         mobility: None,
         counted: crate::model::mobility::of(d).describe(),
         links,
+        spins: added.spins,
     };
     let checked = if by_rank {
         crate::model::reference::rank_at_home(&mut model, d, &priority)

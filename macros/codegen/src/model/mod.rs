@@ -204,6 +204,9 @@ pub struct Model {
     /// The moving links whose pose `link_pose` reports: the platform (when located), then the
     /// named intermediate links of the general model.
     pub links: Vec<LinkFrame>,
+    /// Candidate symmetries of the equations, per chain: unknowns to reflect through an
+    /// expression (`v[i] → 2 e − v[i]`), see [`general::universal::spins`].
+    pub spins: Vec<Vec<(usize, Expr)>>,
 }
 
 impl Model {

@@ -106,6 +106,8 @@ pub struct Added {
     /// Whether an active pair places the platform relative to another link (see [`relative`]):
     /// its Eq. 3 is then implied.
     pub platform_placed: bool,
+    /// Candidate leg spins, per chain ([`universal::spins`]).
+    pub spins: Vec<Vec<(usize, Expr)>>,
 }
 
 /// Builds the equations of the general chains into `b`. `platform` gives the platform's points
@@ -308,6 +310,7 @@ pub fn model(
             ok = false;
         }
     }
+    added.spins = universal::spins(topo, &repr);
     // The platform's members declared elsewhere (a shared centre, an axis point on another link).
     let mut foreign = Vec::new();
     if let Some(pl) = topo.link(LinkId::PLATFORM) {

@@ -38,6 +38,8 @@ pub struct Joint<'a> {
     /// R's first axis point), for the directions of legs.
     pub previous_centre: Option<PointId>,
     pub next_centre: Option<PointId>,
+    /// The chain it belongs to.
+    pub chain: ChainId,
     /// The points the model adds for this pair (a slide's axis tip, a U's second axis).
     pub added: Vec<PointId>,
 }
@@ -141,6 +143,7 @@ pub fn topology<'a>(
                 after: ids[k + 1],
                 previous_centre: previous_centre.map(PointId::of),
                 next_centre: next_centre.map(PointId::of),
+                chain: c,
                 added: Vec::new(),
             });
         }

@@ -5,8 +5,9 @@
 //! `(Q − P)·(C_u − C) = 0`, the two axes stay perpendicular — degree 2 in the points.
 
 use super::points::Addition;
-use super::{err, named, PointId, Reprs, Topology};
-use crate::expr;
+use super::{err, named, PointId, Repr, Reprs, Topology};
+use crate::expr::{self, Expr};
+use crate::front::resolved::PairKind;
 use crate::model::{Auto, Builder};
 use syn::Error;
 
@@ -108,4 +109,44 @@ pub fn equation(b: &mut Builder, topo: &Topology, repr: &Reprs, k: usize) {
     if eq.degree() > 0 {
         b.equations.push(eq);
     }
+}
+
+/// Per chain, the candidate half-turn of its legs about their own axes: every second-axis point
+/// `C_u` of the chain's passive U pairs that is an unknown, each coordinate with the same
+/// coordinate of its centre C (an unknown, a constant, or an input's expression). Turning a
+/// leg half a turn about the line through its centres maps `C_u` to `2C − C_u` and leaves the
+/// U equation `(Q − P)·(C_u − C) = 0` and the leg's distances as they were wherever the leg's
+/// other points lie on that line: then every root has a twin. Whether that holds is not
+/// decided here (a leg with a point off its axis breaks it): the runtime keeps a candidate only
+/// where it maps a generic root to another root. Chains without such a point give none.
+pub fn spins(topo: &Topology, repr: &Reprs) -> Vec<Vec<(usize, Expr)>> {
+    let mut out: Vec<(crate::front::ids::ChainId, Vec<(usize, Expr)>)> = Vec::new();
+    for j in &topo.joints {
+        let p = j.pair;
+        let (PairKind::U, false, Some(centre), Some(&tip)) =
+            (p.kind, p.active, p.centre, j.added.first())
+        else {
+            continue;
+        };
+        let (Some(Repr::Unknown(t)), Some(c)) = (repr.get(tip), repr.get(PointId::of(centre.id)))
+        else {
+            continue;
+        };
+        let coords: Vec<(usize, Expr)> = t
+            .iter()
+            .zip(c.expr())
+            .filter_map(|(t, c)| match t {
+                Expr::Unknown(i) => Some((*i, c.clone())),
+                _ => None,
+            })
+            .collect();
+        match out.iter_mut().find(|(chain, _)| *chain == j.chain) {
+            Some((_, list)) => list.extend(coords),
+            None => out.push((j.chain, coords)),
+        }
+    }
+    out.into_iter()
+        .map(|(_, list)| list)
+        .filter(|list| !list.is_empty())
+        .collect()
 }
