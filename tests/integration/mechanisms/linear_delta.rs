@@ -51,7 +51,7 @@ const HC: f64 = 300.0;
 /// platform pivot in the platform frame.
 fn rod_ends(i: usize) -> ([f64; 3], [f64; 3]) {
     let a = 2.0 * std::f64::consts::PI * (i / 2) as f64 / 3.0;
-    let side = if i % 2 == 0 { HW } else { -HW };
+    let side = if i.is_multiple_of(2) { HW } else { -HW };
     let (s, c) = a.sin_cos();
     (
         [120.0 * c - side * s, 120.0 * s + side * c, HC],
