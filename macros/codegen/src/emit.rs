@@ -198,6 +198,14 @@ pub fn expand(
             }
         }
     });
+    // Where home is known, `AllModes` seeds from it as well (see the trait's documentation).
+    let home_configuration = home.map(|_| {
+        quote! {
+            fn home_configuration(&self) -> ::core::option::Option<([f64; #n], [f64; #m])> {
+                self.home_start().ok().map(|s| (*s.v(), *s.x()))
+            }
+        }
+    });
     let link_names = model.links.iter().map(|l| l.name.as_str());
     let nl = model.links.len();
     let link_arms = model.links.iter().enumerate().map(|(i, l)| match &l.frame {
@@ -401,6 +409,8 @@ pub fn expand(
                 let c = &self.constants;
                 #input_derivative
             }
+
+            #home_configuration
 
             fn point_local(&self, p: usize) -> [f64; 3] {
                 let g = &self.geometry;

@@ -138,7 +138,8 @@ pub(crate) fn contains<S, const N: usize>(
 /// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
 /// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
 /// component of the seed's solution; seeds land on every component (the 3-RPS example's
-/// solutions split into two components of eight over its leg lengths). With symmetries (`sym`,
+/// solutions split into two components of eight over its leg lengths), though seldom on a
+/// small one, so the mechanism's home configuration is tried first. With symmetries (`sym`,
 /// see `symmetry.rs`) every new root comes with its orbit, and a loop carries one member of each
 /// orbit (the next one where a member's path fails).
 pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
@@ -170,9 +171,12 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
     // Loop points as far from zero as p₀'s lengths, times LOOP_SIZES (angles: anywhere on
     // the turn, imaginary parts LOOP_SIZES / 6 in size).
     let size = inputs.length_size(p0);
+    let mut home_pending = true;
+    // Loops carry out[from..count], until `stable` in a row bring nothing new.
+    let (mut from, mut stable) = (0, stop.stable_loops);
     loop {
         let mut stale = 0;
-        while stale < stop.stable_loops && !done(&found) {
+        while stale < stable && !done(&found) {
             found.loops += 1;
             let ls = LOOP_SIZES[found.loops % LOOP_SIZES.len()];
             let a = inputs.random(rng, ls * size, ls / 6.0);
@@ -183,7 +187,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                 ParameterPath::new(b, *p0, Complex::ONE),
             ];
             let mut new = false;
-            let mut i = 0;
+            let mut i = from;
             // The orbit one of whose members has come round this loop: the images of the
             // others are its images (a loop commutes with the symmetries), and are known.
             let mut carried = usize::MAX;
@@ -209,30 +213,62 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             }
             stale = if new { 0 } else { stale + 1 };
         }
+        (from, stable) = (0, stop.stable_loops);
         let mut new = false;
+        // The mechanism's home first, once (where it has one): its component need not be
+        // the first seed's, and random seeds can miss a small one (a delta's two
+        // translations among its 40 roots: 26 of 30 seeds stopped at 38 without this).
+        if home_pending && !done(&found) {
+            home_pending = false;
+            if let Ok((v, p)) = super::seed::seed_from_home(model, inputs) {
+                found.seeds += 1;
+                let before = found.count;
+                new = carry(model, &mut ws, (v, p), p0, sym, out, &mut orbit, &mut found);
+                if new {
+                    // The loops carry the home's component alone, and four times as long: a
+                    // small component is cheap to carry, and needs many loops to show all of
+                    // itself (the delta's two translations swap in about one loop of four:
+                    // ten loops left one out for 1 to 3 seeds of 30).
+                    (from, stable) = (before, 4 * stop.stable_loops);
+                }
+            }
+        }
         let mut stale_seeds = 0;
         while !new && stale_seeds < stop.stable_seeds && !done(&found) {
             found.seeds += 1;
             stale_seeds += 1;
-            let Ok((v, p)) = super::seed::seed(model, inputs, rng) else {
+            let Ok(seed) = super::seed::seed(model, inputs, rng) else {
                 continue;
             };
-            let mut v = model.enter(&v);
-            let path = ParameterPath::new(p, *p0, Complex::ONE);
-            let reached = model
-                .track(&path, &mut v, &mut ws, &Settings::DEFAULT)
-                .outcome
-                == Outcome::Reached;
-            if !reached || !polish(model, &mut v, p0, &mut ws, true) {
-                found.failed_paths += 1;
-                continue;
-            }
-            new = add(model, p0, sym, out, &mut orbit, &mut found, v, &mut ws);
+            new = carry(model, &mut ws, seed, p0, sym, out, &mut orbit, &mut found);
         }
         if !new || done(&found) {
             return found;
         }
     }
+}
+
+/// Tracks a seed solution `(v, p)` to `p0` and adds it to the known solutions; `true` if it
+/// was new.
+#[allow(clippy::too_many_arguments)]
+fn carry<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
+    model: &Model<'_, S, N>,
+    ws: &mut Workspace<N>,
+    (v, p): ([Complex; N], [Complex; M]),
+    p0: &[Complex; M],
+    sym: &Symmetries,
+    out: &mut [[Complex; N]; K],
+    orbit: &mut [usize; K],
+    found: &mut Found,
+) -> bool {
+    let mut v = model.enter(&v);
+    let path = ParameterPath::new(p, *p0, Complex::ONE);
+    let reached = model.track(&path, &mut v, ws, &Settings::DEFAULT).outcome == Outcome::Reached;
+    if !reached || !polish(model, &mut v, p0, ws, true) {
+        found.failed_paths += 1;
+        return false;
+    }
+    add(model, p0, sym, out, orbit, found, v, ws)
 }
 
 /// Adds `v` (tracking coordinates) to the known solutions if it is new and finite, with its

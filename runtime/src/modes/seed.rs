@@ -86,7 +86,33 @@ pub(crate) fn seed<S: Mechanism<N, M>, const N: usize, const M: usize>(
             }
         }
     }
-    let mut x = inputs.random(rng, scale, 0.5);
+    let x = inputs.random(rng, scale, 0.5);
+    walk(model, inputs, v, x)
+}
+
+/// The mechanism's known real configuration (its home), moved onto F(v, x) = 0 for the
+/// current geometry if need be: a seed on the component of the assembly mode the machine is
+/// built in, which random rigid placements seldom reach where that component is small (a
+/// delta's translations, 2 of its 40 roots).
+pub(crate) fn seed_from_home<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    model: &Model<'_, S, N>,
+    inputs: &Inputs<M>,
+) -> Result<([Complex; N], [Complex; M]), Miss> {
+    let (v, x) = model.sys.home_configuration().ok_or(Miss::Walk)?;
+    if !v.iter().chain(&x).all(|c| c.is_finite()) {
+        return Err(Miss::Walk);
+    }
+    walk(model, inputs, v.map(Complex::real), x.map(Complex::real))
+}
+
+/// Gauss–Newton steps of least norm from (v, x) onto F(v, x) = 0; the point reached if B is
+/// regular there.
+fn walk<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    model: &Model<'_, S, N>,
+    inputs: &Inputs<M>,
+    mut v: [Complex; N],
+    mut x: [Complex; M],
+) -> Result<([Complex; N], [Complex; M]), Miss> {
     let mut converged = false;
     let mut previous = f64::INFINITY;
     for _ in 0..80 {

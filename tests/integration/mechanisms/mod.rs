@@ -10,6 +10,7 @@ mod delta_tools;
 mod five_bar;
 mod four_bar;
 mod home_by_inputs;
+mod linear_delta;
 mod motors;
 mod pan_tilt;
 mod pcs;
