@@ -17,6 +17,7 @@ pub fn run(
     json: bool,
     dense: bool,
     certify: bool,
+    seconds: f64,
 ) -> Result<(), String> {
     // The rows are replayed pass after pass, so the valid ones are held in memory (48 bytes
     // each); the others are counted and said.
@@ -52,8 +53,8 @@ pub fn run(
     let mut times: Vec<f64> = Vec::new();
     let (mut failures, mut unproven, mut repetitions) = (0usize, 0usize, 0usize);
     let began = Instant::now();
-    // At least 3 passes and 1 s of solving, so that the per-solve statistics are stable.
-    while repetitions < 3 || began.elapsed() < Duration::from_secs(1) {
+    // At least 3 passes and `seconds` of solving (1 s by default, for stable statistics).
+    while repetitions < 3 || began.elapsed() < Duration::from_secs_f64(seconds) {
         repetitions += 1;
         let tracker = Tracker::new(sys.clone(), start, options);
         let mut tracker = if certify {
@@ -138,22 +139,45 @@ pub fn run(
 
 /// `stewart bench --method all`: time per row to find every assembly mode (all complex roots,
 /// `linkage::modes`), after the start set is built once (its time reported apart).
-pub fn run_all(geometry: Option<&Path>, input: &Path, json: bool) -> Result<(), String> {
+pub fn run_all(
+    geometry: Option<&Path>,
+    input: &Path,
+    json: bool,
+    seconds: f64,
+) -> Result<(), String> {
     use linkage_examples::cli::geometry;
     use linkage_examples::stewart::{platform_is_coplanar, SixSix, StewartGeneral};
     let rows = legs_csv::read(input)?;
     match geometry {
-        None => time_all(|| crate::modes::table_iii(&rows), &rows, input, json),
+        None => time_all(
+            || crate::modes::table_iii(&rows),
+            &rows,
+            input,
+            json,
+            seconds,
+        ),
         Some(path) => {
             let (base, platform) = geometry::load_joints(path)?;
             if platform_is_coplanar(&platform) {
                 let sys = Stewart::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                time_all(|| crate::modes::solver(sys, &rows), &rows, input, json)
+                time_all(
+                    || crate::modes::solver(sys, &rows),
+                    &rows,
+                    input,
+                    json,
+                    seconds,
+                )
             } else {
                 let sys = StewartGeneral::with_joints(&base, &platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
-                time_all(|| crate::modes::solver(sys, &rows), &rows, input, json)
+                time_all(
+                    || crate::modes::solver(sys, &rows),
+                    &rows,
+                    input,
+                    json,
+                    seconds,
+                )
             }
         }
     }
@@ -164,6 +188,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
     rows: &[legs_csv::Row],
     input: &Path,
     json: bool,
+    seconds: f64,
 ) -> Result<(), String> {
     use linkage::modes::Roots;
     let points: Vec<[f64; 6]> = rows
@@ -183,7 +208,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
     let mut best = vec![f64::INFINITY; points.len()];
     let (mut incomplete, mut steps, mut real, mut repetitions) = (0usize, 0usize, 0usize, 0usize);
     let began = Instant::now();
-    while repetitions < 3 || began.elapsed() < Duration::from_secs(1) {
+    while repetitions < 3 || began.elapsed() < Duration::from_secs_f64(seconds) {
         repetitions += 1;
         for (r, x) in points.iter().enumerate() {
             let t0 = Instant::now();

@@ -120,6 +120,9 @@ enum Command {
         /// Time each solve with its certificate (with `--track`: each step proven).
         #[arg(long)]
         certify: bool,
+        /// Least time to spend timing, in seconds (at least 3 passes over the rows whatever it is).
+        #[arg(long, default_value_t = 1.0, value_parser = timing_seconds)]
+        seconds: f64,
     },
     /// Draw Fig. 7 (relative error per test point and method) as PNG.
     Errors {
@@ -191,6 +194,14 @@ impl Command {
     }
 }
 
+/// `--seconds`: a finite number from 0 to an hour.
+fn timing_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if (0.0..=3600.0).contains(&t) => Ok(t),
+        _ => Err(format!("`{s}` is not a number of seconds from 0 to 3600")),
+    }
+}
+
 /// The solvers `stewart bench` can time: one of [`Method`], or all modes.
 #[derive(Clone, Copy, ValueEnum)]
 pub enum BenchMethod {
@@ -238,14 +249,15 @@ fn main() -> ExitCode {
             json,
             dense,
             certify,
+            seconds,
         } => match method {
             BenchMethod::All if certify => {
                 Err("--certify is not available with --method all".into())
             }
-            BenchMethod::All => bench::run_all(geometry.as_deref(), &input, json),
-            BenchMethod::Ph => bench::run(Method::Ph, track, &input, json, dense, certify),
-            BenchMethod::Nh => bench::run(Method::Nh, track, &input, json, dense, certify),
-            BenchMethod::Nr => bench::run(Method::Nr, track, &input, json, dense, certify),
+            BenchMethod::All => bench::run_all(geometry.as_deref(), &input, json, seconds),
+            BenchMethod::Ph => bench::run(Method::Ph, track, &input, json, dense, certify, seconds),
+            BenchMethod::Nh => bench::run(Method::Nh, track, &input, json, dense, certify, seconds),
+            BenchMethod::Nr => bench::run(Method::Nr, track, &input, json, dense, certify, seconds),
         },
         Command::Errors { out, seed } => errors::run(&out, seed),
     };

@@ -805,7 +805,17 @@ fn bench_counts_unverified_answers_as_solve_does() {
             &["--certify"],
             &["--track", "--certify"],
         ] {
-            let mut args = vec!["bench", "--method", method, "--input", legs, "--json"];
+            // Three passes are enough to count: no second of timing each.
+            let mut args = vec![
+                "bench",
+                "--method",
+                method,
+                "--input",
+                legs,
+                "--json",
+                "--seconds",
+                "0",
+            ];
             args.extend(extra);
             let out = run(&args, b"");
             assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));

@@ -122,7 +122,9 @@ fn linear_delta_forward_kinematics_and_all_modes() {
         cases.push((s, sol.v));
     }
     let mut real = 0;
-    for seed in [2015, 1, 2, 3] {
+    // Seed 2015 and seed 1 both stopped at 38 before the home seed; all four with LINKAGE_STRESS.
+    let seeds = linkage_tests::sweep(2, 4);
+    for seed in [2015, 1, 2, 3].into_iter().take(seeds) {
         let options = ModesOptions {
             seed,
             ..ModesOptions::default()
@@ -149,6 +151,6 @@ fn linear_delta_forward_kinematics_and_all_modes() {
         }
     }
     println!(
-        "linear delta: 30 translations by continuation on the closed form's branch; 40 complex roots for 4 seeds, {real} real ones at 8 inputs each (2 translations each time)"
+        "linear delta: 30 translations by continuation on the closed form's branch; 40 complex roots for {seeds} seeds, {real} real ones at 8 inputs each (2 translations each time)"
     );
 }
