@@ -8,30 +8,42 @@ use linkage::{arc_length, det_b, pose_from_unknowns, Status};
 use linkage_tests::straight_path_truth as straight_segment;
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
-linkage::mechanism! {
-    /// A planar 3-RRR: base joints at radius rb, elbows at radius re turned by d from them,
-    /// platform joints at radius rp; every axis vertical. The middle joints are driven.
-    pub struct MiddleRrr;
-    params {
-        rb = 200.0, rp = 50.0, re = 130.0, d = 0.4,
-        p1 = pi / 2.0, p2 = pi / 2.0 + 2.0 * pi / 3.0, p3 = pi / 2.0 + 4.0 * pi / 3.0,
-    }
-    base {
-        A1 = [rb * cos(p1), rb * sin(p1), 0.0], A1z = [rb * cos(p1), rb * sin(p1), 1.0],
-        A2 = [rb * cos(p2), rb * sin(p2), 0.0], A2z = [rb * cos(p2), rb * sin(p2), 1.0],
-        A3 = [rb * cos(p3), rb * sin(p3), 0.0], A3z = [rb * cos(p3), rb * sin(p3), 1.0],
-    }
-    // Turned by 0.5 rad at home: with the platform joints radial, every leg's line A–W would
-    // pass through the centre, a singularity of the middle-driven 3-RRR.
-    platform(home = [0.5, 0.0, 0.0, 0.0, 0.0, 0.0]) {
-        W1 = [rp * cos(p1), rp * sin(p1), 0.0], W1z = [rp * cos(p1), rp * sin(p1), 1.0],
-        W2 = [rp * cos(p2), rp * sin(p2), 0.0], W2z = [rp * cos(p2), rp * sin(p2), 1.0],
-        W3 = [rp * cos(p3), rp * sin(p3), 0.0], W3z = [rp * cos(p3), rp * sin(p3), 1.0],
-    }
-    link proximal1 { C1 = [re * cos(p1 + d), re * sin(p1 + d), 0.0], C1z = [re * cos(p1 + d), re * sin(p1 + d), 1.0] }
-    link proximal2 { C2 = [re * cos(p2 + d), re * sin(p2 + d), 0.0], C2z = [re * cos(p2 + d), re * sin(p2 + d), 1.0] }
-    link proximal3 { C3 = [re * cos(p3 + d), re * sin(p3 + d), 0.0], C3z = [re * cos(p3 + d), re * sin(p3 + d), 1.0] }
-    link distal1 { } link distal2 { } link distal3 { }
+/// The planar 3-RRR's geometry, declared once for the two ways of driving it (the chains say
+/// which joints are active): base joints at radius rb, elbows at radius re turned by d from
+/// them, platform joints at radius rp; every axis vertical.
+macro_rules! planar_rrr {
+    ($(#[$doc:meta])* $name:ident; $($chains:tt)*) => {
+        linkage::mechanism! {
+            $(#[$doc])*
+            pub struct $name;
+            params {
+                rb = 200.0, rp = 50.0, re = 130.0, d = 0.4,
+                p1 = pi / 2.0, p2 = pi / 2.0 + 2.0 * pi / 3.0, p3 = pi / 2.0 + 4.0 * pi / 3.0,
+            }
+            base {
+                A1 = [rb * cos(p1), rb * sin(p1), 0.0], A1z = [rb * cos(p1), rb * sin(p1), 1.0],
+                A2 = [rb * cos(p2), rb * sin(p2), 0.0], A2z = [rb * cos(p2), rb * sin(p2), 1.0],
+                A3 = [rb * cos(p3), rb * sin(p3), 0.0], A3z = [rb * cos(p3), rb * sin(p3), 1.0],
+            }
+            // Turned by 0.5 rad at home: with the platform joints radial, every leg's line A–W would
+            // pass through the centre, a singularity of the middle-driven 3-RRR.
+            platform(home = [0.5, 0.0, 0.0, 0.0, 0.0, 0.0]) {
+                W1 = [rp * cos(p1), rp * sin(p1), 0.0], W1z = [rp * cos(p1), rp * sin(p1), 1.0],
+                W2 = [rp * cos(p2), rp * sin(p2), 0.0], W2z = [rp * cos(p2), rp * sin(p2), 1.0],
+                W3 = [rp * cos(p3), rp * sin(p3), 0.0], W3z = [rp * cos(p3), rp * sin(p3), 1.0],
+            }
+            link proximal1 { C1 = [re * cos(p1 + d), re * sin(p1 + d), 0.0], C1z = [re * cos(p1 + d), re * sin(p1 + d), 1.0] }
+            link proximal2 { C2 = [re * cos(p2 + d), re * sin(p2 + d), 0.0], C2z = [re * cos(p2 + d), re * sin(p2 + d), 1.0] }
+            link proximal3 { C3 = [re * cos(p3 + d), re * sin(p3 + d), 0.0], C3z = [re * cos(p3 + d), re * sin(p3 + d), 1.0] }
+            link distal1 { } link distal2 { } link distal3 { }
+            $($chains)*
+        }
+    };
+}
+
+planar_rrr! {
+    /// A planar 3-RRR driven at its middle joints.
+    MiddleRrr;
     chain leg1 = base - R(passive, axis = A1 -> A1z) - proximal1 - R(active q1, axis = C1 -> C1z) - distal1 - R(passive, axis = W1 -> W1z) - platform;
     chain leg2 = base - R(passive, axis = A2 -> A2z) - proximal2 - R(active q2, axis = C2 -> C2z) - distal2 - R(passive, axis = W2 -> W2z) - platform;
     chain leg3 = base - R(passive, axis = A3 -> A3z) - proximal3 - R(active q3, axis = C3 -> C3z) - distal3 - R(passive, axis = W3 -> W3z) - platform;
@@ -204,27 +216,9 @@ fn middle_rrr_input_is_the_distal_links_turn_relative_to_the_proximal() {
     }
 }
 
-linkage::mechanism! {
+planar_rrr! {
     /// The same planar 3-RRR driven at its base joints, as most are built.
-    pub struct BaseRrr;
-    params {
-        rb = 200.0, rp = 50.0, re = 130.0, d = 0.4,
-        p1 = pi / 2.0, p2 = pi / 2.0 + 2.0 * pi / 3.0, p3 = pi / 2.0 + 4.0 * pi / 3.0,
-    }
-    base {
-        A1 = [rb * cos(p1), rb * sin(p1), 0.0], A1z = [rb * cos(p1), rb * sin(p1), 1.0],
-        A2 = [rb * cos(p2), rb * sin(p2), 0.0], A2z = [rb * cos(p2), rb * sin(p2), 1.0],
-        A3 = [rb * cos(p3), rb * sin(p3), 0.0], A3z = [rb * cos(p3), rb * sin(p3), 1.0],
-    }
-    platform(home = [0.5, 0.0, 0.0, 0.0, 0.0, 0.0]) {
-        W1 = [rp * cos(p1), rp * sin(p1), 0.0], W1z = [rp * cos(p1), rp * sin(p1), 1.0],
-        W2 = [rp * cos(p2), rp * sin(p2), 0.0], W2z = [rp * cos(p2), rp * sin(p2), 1.0],
-        W3 = [rp * cos(p3), rp * sin(p3), 0.0], W3z = [rp * cos(p3), rp * sin(p3), 1.0],
-    }
-    link proximal1 { C1 = [re * cos(p1 + d), re * sin(p1 + d), 0.0], C1z = [re * cos(p1 + d), re * sin(p1 + d), 1.0] }
-    link proximal2 { C2 = [re * cos(p2 + d), re * sin(p2 + d), 0.0], C2z = [re * cos(p2 + d), re * sin(p2 + d), 1.0] }
-    link proximal3 { C3 = [re * cos(p3 + d), re * sin(p3 + d), 0.0], C3z = [re * cos(p3 + d), re * sin(p3 + d), 1.0] }
-    link distal1 { } link distal2 { } link distal3 { }
+    BaseRrr;
     chain leg1 = base - R(active q1, axis = A1 -> A1z) - proximal1 - R(passive, axis = C1 -> C1z) - distal1 - R(passive, axis = W1 -> W1z) - platform;
     chain leg2 = base - R(active q2, axis = A2 -> A2z) - proximal2 - R(passive, axis = C2 -> C2z) - distal2 - R(passive, axis = W2 -> W2z) - platform;
     chain leg3 = base - R(active q3, axis = A3 -> A3z) - proximal3 - R(passive, axis = C3 -> C3z) - distal3 - R(passive, axis = W3 -> W3z) - platform;
