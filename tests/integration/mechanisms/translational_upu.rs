@@ -23,22 +23,24 @@ linkage::mechanism! {
     chain leg3 = base - U(A3, axis = A3 -> A3a) - P(active L3) - U(G3, axis = G3 -> G3a) - platform;
 }
 
+/// Closed-form inverse kinematics at the translation `t`: base and platform pivots in one
+/// plane, each leg the distance from its base pivot to its platform pivot moved by `t`.
+pub(super) fn legs_at(t: [f64; 3]) -> [f64; 3] {
+    let s = 3f64.sqrt();
+    let a = [[150.0, 0.0], [-75.0, 75.0 * s], [-75.0, -75.0 * s]];
+    let g = [[60.0, 0.0], [-30.0, 30.0 * s], [-30.0, -30.0 * s]];
+    std::array::from_fn(|i| {
+        ((t[0] + g[i][0] - a[i][0]).powi(2) + (t[1] + g[i][1] - a[i][1]).powi(2) + t[2].powi(2))
+            .sqrt()
+    })
+}
+
 #[test]
 fn translational_upu_keeps_its_orientation() {
     let upu = TranslationalUpu::new();
     let start = upu.home_start().unwrap();
     check_jacobians(&upu, start.v(), start.x());
     check_factorization(&upu, start.v(), start.x());
-    let a = [
-        [150.0, 0.0],
-        [-75.0, 75.0 * 3f64.sqrt()],
-        [-75.0, -75.0 * 3f64.sqrt()],
-    ];
-    let g = [
-        [60.0, 0.0],
-        [-30.0, 30.0 * 3f64.sqrt()],
-        [-30.0, -30.0 * 3f64.sqrt()],
-    ];
     let mut rng = Rng::new(6);
     for _ in 0..60 {
         let t = [
@@ -46,10 +48,7 @@ fn translational_upu_keeps_its_orientation() {
             rng.uniform(-40.0, 40.0),
             200.0 + rng.uniform(-40.0, 40.0),
         ];
-        let legs: [f64; 3] = std::array::from_fn(|i| {
-            ((t[0] + g[i][0] - a[i][0]).powi(2) + (t[1] + g[i][1] - a[i][1]).powi(2) + t[2].powi(2))
-                .sqrt()
-        });
+        let legs = legs_at(t);
         let sol = arc_length(&upu, &start, &legs, &GENERAL_MODEL).unwrap();
         assert_eq!(sol.status, Status::Converged, "{t:?}");
         check_inverse(&upu, &sol.v, &legs, &TranslationalUpu::HOME_INPUTS, 1e-8);

@@ -2,7 +2,7 @@
 //! turned half a turn about its own axis), which the generated candidate symmetries
 //! (`Mechanism::symmetry`) let monodromy add as whole orbits.
 use super::all_modes::{is_identity, newton_among};
-use super::translational_upu::TranslationalUpu;
+use super::translational_upu::{legs_at, TranslationalUpu};
 use linkage::modes::{AllModes, ModesOptions, Roots};
 use linkage::{pose_from_unknowns, Mechanism};
 use linkage_tests::Rng;
@@ -59,17 +59,6 @@ fn upu_count() {
     let built = t0.elapsed().as_secs_f64();
     assert_eq!(modes.report().symmetries, 3, "{:?}", modes.report());
     assert_eq!(modes.start_count(), 624, "{:?}", modes.report());
-    // Base pivots less platform pivots: the centres of the spheres a translation lies on.
-    let a = [
-        [150.0, 0.0],
-        [-75.0, 75.0 * 3f64.sqrt()],
-        [-75.0, -75.0 * 3f64.sqrt()],
-    ];
-    let g = [
-        [60.0, 0.0],
-        [-30.0, 30.0 * 3f64.sqrt()],
-        [-30.0, -30.0 * 3f64.sqrt()],
-    ];
     let mut roots = Box::new(Roots::<45, 1024>::new());
     let mut rng = Rng::new(624);
     let (mut real, mut newton_total, mut solve_s) = (0, 0, 0.0);
@@ -79,10 +68,7 @@ fn upu_count() {
             rng.uniform(-40.0, 40.0),
             200.0 + rng.uniform(-40.0, 40.0),
         ];
-        let legs: [f64; 3] = std::array::from_fn(|i| {
-            ((t[0] + g[i][0] - a[i][0]).powi(2) + (t[1] + g[i][1] - a[i][1]).powi(2) + t[2].powi(2))
-                .sqrt()
-        });
+        let legs = legs_at(t);
         let t1 = Instant::now();
         modes.solve(&legs, &mut roots).unwrap();
         solve_s += t1.elapsed().as_secs_f64();
