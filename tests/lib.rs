@@ -116,7 +116,7 @@ pub fn residual_norm<S: Mechanism<N, M>, const N: usize, const M: usize>(
     f.iter().fold(0.0, |m, r| m.max(r.abs()))
 }
 
-pub use linkage_examples::case_study::straight_segment as straight_path_truth;
+pub use linkage::reference::straight_segment as straight_path_truth;
 
 /// A Stewart pose reached from home by a straight path in pose space along which det B keeps
 /// the start's sign (checked at `checks` points): the ground truth v and its leg lengths.

@@ -59,6 +59,7 @@ mod newton_homotopy;
 mod newton_raphson;
 mod outcome;
 mod pose;
+pub mod reference;
 mod scalar;
 mod solution;
 mod start;

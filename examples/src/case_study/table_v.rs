@@ -3,7 +3,7 @@
 
 use super::path_dependence::{self, PathDependence};
 use super::sampling::{Protocol, Sampler, SamplingError, TestPoint};
-use super::{straight_segment, straight_segment_from};
+use linkage::reference::{straight_segment, straight_segment_from};
 use linkage::{Method, Options, Status};
 use rayon::prelude::*;
 use std::time::Instant;
