@@ -16,6 +16,19 @@ pub use linkage_geometry::{
     prismatic_rod_inverse, revolute_rod_inverse, rigid_coefficients,
 };
 
+pub use linkage_geometry::recipe;
+
+/// The derived constants of a generated `from_geometry`: its recipe table evaluated on the slots
+/// `g` (one interpreter for every mechanism, rather than code emitted per constant).
+pub fn derive_constants(
+    recipes: &recipe::Recipes<'_>,
+    g: &[f64],
+    auto: &mut [[f64; 3]],
+    out: &mut [f64],
+) -> Result<(), GeometryError> {
+    recipes.derive(g, auto, out).map_err(|e| e.error)
+}
+
 pub fn set_named(
     names: &[&str],
     g: &mut [f64],

@@ -4,7 +4,7 @@
 use crate::emit_expr::{lit, tokens, Arithmetic, Emitter};
 use crate::expr::{Expr, Var};
 use crate::front::ast::Mechanism;
-use crate::model::{Auto, HomeOf, Inverse, Model, PointRef, Recipe};
+use crate::model::{HomeOf, Inverse, Model, PointRef};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
@@ -42,12 +42,8 @@ pub fn expand(
     );
     let point_names = model.points.iter().map(|p| p.name.as_str());
     let [f0, f1, f2] = model.frame;
-    let auto_points = auto_points(model);
-    let recipes = model
-        .constants
-        .iter()
-        .enumerate()
-        .map(|(i, c)| recipe(model, i, &c.recipe));
+    let recipes = crate::emit_recipes::table(model);
+    let na = model.auto_points.len();
 
     let dependent_offset = crate::emit_dependent::dependent_offset(model);
     let symmetry = crate::emit_symmetry::symmetry(model);
@@ -275,10 +271,11 @@ pub fn expand(
                     }
                     k += 1;
                 }
-                let g = &geometry;
-                #auto_points
+                use ::linkage::__private::recipe;
+                const RECIPES: recipe::Recipes<'static> = #recipes;
+                let mut auto = [[0.0f64; 3]; #na];
                 let mut c = [0.0f64; #nc];
-                #(#recipes)*
+                ::linkage::__private::derive_constants(&RECIPES, &geometry, &mut auto, &mut c)?;
                 Ok(Self { geometry, constants: c })
             }
 
@@ -493,91 +490,6 @@ fn point3(model: &Model, p: PointRef) -> TokenStream {
             quote!(::linkage::__private::place([#(#pose),*], #s))
         }
         PointRef::Auto(i) => quote!(auto[#i]),
-    }
-}
-
-/// The added points' home positions, computed in order in `from_geometry`.
-fn auto_points(model: &Model) -> TokenStream {
-    let na = model.auto_points.len();
-    let steps = model.auto_points.iter().enumerate().map(|(i, a)| {
-        let p = |q: PointRef| point3(model, q);
-        let value = match *a {
-            Auto::Along { origin, toward } => {
-                let (o, t) = (p(origin), p(toward));
-                quote!(::linkage::__private::along(#o, #t)?)
-            }
-            Auto::Normal { origin, a, b } => {
-                let o = p(origin);
-                let [a0, a1] = a.map(p);
-                let [b0, b1] = b.map(p);
-                quote!(::linkage::__private::normal_point(#o, [#a0, #a1], [#b0, #b1])?)
-            }
-            Auto::Foot { a, b, point } => {
-                let (a, b, q) = (p(a), p(b), p(point));
-                quote!({
-                    let f = ::linkage::__private::axis_frame(#a, #b, #q)?;
-                    [f[3], f[4], f[5]]
-                })
-            }
-            Auto::Quarter { a, b, point } => {
-                let (a, b, q) = (p(a), p(b), p(point));
-                quote!({
-                    let f = ::linkage::__private::axis_frame(#a, #b, #q)?;
-                    [f[3] + f[9], f[4] + f[10], f[5] + f[11]]
-                })
-            }
-            Auto::Shift { origin, by } => {
-                let o = p(origin);
-                let [b0, b1, b2] = by.map(lit);
-                quote!({
-                    let o = #o;
-                    [o[0] + #b0, o[1] + #b1, o[2] + #b2]
-                })
-            }
-        };
-        quote!(auto[#i] = #value;)
-    });
-    if na == 0 {
-        return quote!();
-    }
-    quote! {
-        let mut auto = [[0.0f64; 3]; #na];
-        #(#steps)*
-    }
-}
-
-fn recipe(model: &Model, i: usize, r: &Recipe) -> TokenStream {
-    let p = quote!(::linkage::__private);
-    let point3 = |q: PointRef| point3(model, q);
-    match r {
-        Recipe::Slot(s) => quote!(c[#i] = g[#s];),
-        Recipe::Rigid {
-            frame,
-            point,
-            index,
-            coplanar,
-        } => {
-            let [f0, f1, f2] = frame.map(point3);
-            let q = point3(*point);
-            quote!(c[#i] = #p::rigid_coefficients([#f0, #f1, #f2], #q, #coplanar)?[#index];)
-        }
-        Recipe::Coordinate { point, index } => {
-            let q = point3(*point);
-            quote!(c[#i] = #q[#index];)
-        }
-        Recipe::Collinear { line, point, index } => {
-            let [l0, l1] = line.map(point3);
-            let q = point3(*point);
-            quote!(c[#i] = #p::collinear_coefficients([#l0, #l1], #q)?[#index];)
-        }
-        Recipe::Distance { a, b } => {
-            let (a, b) = (point3(*a), point3(*b));
-            quote!(c[#i] = #p::distance(#a, #b);)
-        }
-        Recipe::Axis { a, b, point, index } => {
-            let (a, b, q) = (point3(*a), point3(*b), point3(*point));
-            quote!(c[#i] = #p::axis_frame(#a, #b, #q)?[#index];)
-        }
     }
 }
 

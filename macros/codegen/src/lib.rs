@@ -16,6 +16,7 @@ pub mod emit_expr;
 pub mod emit_factor;
 pub mod emit_inverse;
 pub mod emit_lu;
+pub mod emit_recipes;
 pub mod emit_symmetry;
 pub mod expr;
 pub mod factor;

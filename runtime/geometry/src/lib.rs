@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 
 pub mod math;
+pub mod recipe;
 
 use core::f64::consts::PI;
 use core::fmt;

@@ -4,7 +4,9 @@
 use crate::expr::{Expr, Vec3};
 use crate::front::ids::{LinkId, PairId, PivotId};
 use crate::front::resolved::{Decl, Value};
-use crate::model::{auto_point, Auto, Constant, Inverse, PlatformPoint, PointRef, Recipe, Slot};
+use crate::model::{
+    added_points, Auto, Constant, Inverse, PlatformPoint, PointRef, Recipe, Recipes, Slot,
+};
 use std::collections::HashMap;
 
 /// A length-like slot that is not a pivot coordinate: a link's `length`, a pair's `offset` or
@@ -160,15 +162,21 @@ impl<'d> Builder<'d> {
         self.constant(name, Recipe::Slot(slot))
     }
 
-    /// A point's home position (base frame; a platform pivot's own frame for `Slots`).
+    /// A point's home position (base frame; a platform pivot's own frame for `Slots`), by the
+    /// recipes the runtime evaluates too.
     pub fn home(&self, p: PointRef) -> [f64; 3] {
-        match p {
-            PointRef::Slots(s) => self.default_slot_point(s),
-            PointRef::PlatformHome(s) => {
-                linkage_geometry::place(self.home_pose, self.default_slot_point(s))
-            }
-            PointRef::Auto(i) => auto_point(&self.auto_points[i], &|p| self.home(p)),
-        }
+        let g: Vec<f64> = self.slots.iter().map(|s| s.default).collect();
+        let recipes = Recipes {
+            home_pose: self.home_pose,
+            auto: &self.auto_points,
+            constants: &[],
+        };
+        let needed = match p {
+            PointRef::Auto(i) => i + 1,
+            _ => 0,
+        };
+        let auto = added_points(self.home_pose, &self.auto_points[..needed], &g);
+        recipes.point(&g, &auto, p)
     }
 
     /// Adds a point to a link's home geometry.

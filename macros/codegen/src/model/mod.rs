@@ -22,22 +22,11 @@ use crate::expr::{Expr, Names, Vec3};
 use crate::front::resolved::{Pair, PairKind};
 use syn::Ident;
 
+pub use linkage_geometry::recipe::{Auto, PointRef, Recipe, Recipes};
+
 pub struct Slot {
     pub name: String,
     pub default: f64,
-}
-
-/// Where a point's position at the home configuration comes from, in the base frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PointRef {
-    /// Three geometry slots: a base pivot, an intermediate link's pivot (declared at home), or
-    /// a platform pivot in the platform's own frame (the closed-form shapes and Eq. 16 use the
-    /// platform's own frame: rigid-body coefficients do not depend on the frame).
-    Slots([usize; 3]),
-    /// A platform pivot's platform-frame slots, placed by the declared home pose.
-    PlatformHome([usize; 3]),
-    /// A point the model adds to a link (see [`Auto`]), by index.
-    Auto(usize),
 }
 
 /// Where a link's frame point was in the link's declared coordinates.
@@ -53,72 +42,6 @@ pub enum HomeOf {
 pub struct LinkFrame {
     pub name: String,
     pub frame: Option<[(Vec3, HomeOf); 3]>,
-}
-
-/// A point the general model adds to a link, derived from others at home.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Auto {
-    /// `origin + unit(toward − origin)`: the axis of a prismatic pair on its rail.
-    Along { origin: PointRef, toward: PointRef },
-    /// `origin + unit((a1 − a0) × (b1 − b0))`: a universal joint's second axis.
-    Normal {
-        origin: PointRef,
-        a: [PointRef; 2],
-        b: [PointRef; 2],
-    },
-    /// The foot of `point` on the axis `a → b` (o of [`Recipe::Axis`]): where an active pair
-    /// turns `point` about.
-    Foot {
-        a: PointRef,
-        b: PointRef,
-        point: PointRef,
-    },
-    /// `point` turned a quarter turn about the axis `a → b` (o + w of [`Recipe::Axis`]).
-    Quarter {
-        a: PointRef,
-        b: PointRef,
-        point: PointRef,
-    },
-    /// `origin + by`: a point one unit along a base axis from `origin`, for the directions of
-    /// a link at home.
-    Shift { origin: PointRef, by: [f64; 3] },
-}
-
-/// How a constant is computed from the geometry slots (in the emitted `from_geometry`).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Recipe {
-    Slot(usize),
-    /// Coefficient `index` of `point` in the frame: `[a, b, c, d]` with
-    /// `q = a p1 + b p2 + c p3 + d (p2 − p1) × (p3 − p1)` (d = 0 in the coplanar form).
-    Rigid {
-        frame: [PointRef; 3],
-        point: PointRef,
-        index: usize,
-        coplanar: bool,
-    },
-    /// Coefficient `index` of `point` on the line: `q = a p1 + b p2`, `a + b = 1`.
-    Collinear {
-        line: [PointRef; 2],
-        point: PointRef,
-        index: usize,
-    },
-    Distance {
-        a: PointRef,
-        b: PointRef,
-    },
-    /// Coordinate `index` of a point's home position.
-    Coordinate {
-        point: PointRef,
-        index: usize,
-    },
-    /// Component `index` of `[e, o, u, w]` for a rotation of `point` about the axis `a → b`:
-    /// e the unit axis, o the foot of `point` on it, u the radial arm, w = e × u.
-    Axis {
-        a: PointRef,
-        b: PointRef,
-        point: PointRef,
-        index: usize,
-    },
 }
 
 pub struct Constant {
@@ -253,29 +176,27 @@ impl Model {
     pub fn default_slots(&self) -> Vec<f64> {
         self.slots.iter().map(|s| s.default).collect()
     }
+
+    /// One recipe per constant, in order: the table `from_geometry` evaluates.
+    pub fn recipe_table(&self) -> Vec<Recipe> {
+        self.constants.iter().map(|c| c.recipe).collect()
+    }
 }
 
-/// An added point's home position from those it derives from (NaN when degenerate: the
-/// generator reports degenerate axes before it evaluates).
-pub fn auto_point(a: &Auto, home: &dyn Fn(PointRef) -> [f64; 3]) -> [f64; 3] {
-    let r = match *a {
-        Auto::Along { origin, toward } => linkage_geometry::along(home(origin), home(toward)),
-        Auto::Normal { origin, a, b } => {
-            linkage_geometry::normal_point(home(origin), a.map(home), b.map(home))
-        }
-        Auto::Foot { a, b, point } => {
-            linkage_geometry::axis_frame(home(a), home(b), home(point)).map(|f| [f[3], f[4], f[5]])
-        }
-        Auto::Quarter { a, b, point } => {
-            linkage_geometry::axis_frame(home(a), home(b), home(point))
-                .map(|f| [f[3] + f[9], f[4] + f[10], f[5] + f[11]])
-        }
-        Auto::Shift { origin, by } => {
-            let o = home(origin);
-            Ok([o[0] + by[0], o[1] + by[1], o[2] + by[2]])
-        }
+/// The added points' home positions on the slots `g`, in order; NaN for one that cannot be
+/// made (the generator reports degenerate axes before it evaluates).
+pub fn added_points(home_pose: [f64; 6], auto: &[Auto], g: &[f64]) -> Vec<[f64; 3]> {
+    let recipes = Recipes {
+        home_pose,
+        auto,
+        constants: &[],
     };
-    r.unwrap_or([f64::NAN; 3])
+    let mut out: Vec<[f64; 3]> = Vec::with_capacity(auto.len());
+    for a in auto {
+        let p = recipes.added_point(g, &out, a).unwrap_or([f64::NAN; 3]);
+        out.push(p);
+    }
+    out
 }
 
 /// A passive S or U: a point the two links share, which the closed-form shapes eliminate (an

@@ -5,7 +5,7 @@
 //! singularity at the reference configuration).
 
 use crate::expr::Var;
-use crate::model::{Inverse, Model, PointRef, Recipe};
+use crate::model::{Inverse, Model, PointRef, Recipes};
 use linkage_geometry as geo;
 use nalgebra::DMatrix;
 use proc_macro2::Span;
@@ -24,53 +24,37 @@ fn point(g: &[f64], s: [usize; 3]) -> [f64; 3] {
 /// A point's home position in the base frame (or, for `PointRef::Slots` on the platform, in
 /// the platform's frame: see [`PointRef`]).
 pub fn home_point(model: &Model, g: &[f64], p: PointRef) -> [f64; 3] {
-    match p {
-        PointRef::Slots(s) => point(g, s),
-        PointRef::PlatformHome(s) => geo::place(model.home_pose, point(g, s)),
-        PointRef::Auto(i) => {
-            crate::model::auto_point(&model.auto_points[i], &|p| home_point(model, g, p))
-        }
-    }
+    let auto = crate::model::added_points(model.home_pose, &model.auto_points, g);
+    let recipes = Recipes {
+        home_pose: model.home_pose,
+        auto: &model.auto_points,
+        constants: &[],
+    };
+    recipes.point(g, &auto, p)
 }
 
-/// The constants at the declared geometry.
+/// The constants at the declared geometry, by the interpreter every generated `from_geometry`
+/// runs.
 pub fn constants(model: &Model) -> Result<Vec<f64>, String> {
     let g = model.default_slots();
-    let at = |p: PointRef| home_point(model, &g, p);
-    model
-        .constants
-        .iter()
-        .map(|c| {
-            let value = match &c.recipe {
-                Recipe::Slot(s) => Ok(g[*s]),
-                Recipe::Distance { a, b } => Ok(geo::distance(at(*a), at(*b))),
-                Recipe::Coordinate { point: q, index } => Ok(at(*q)[*index]),
-                Recipe::Rigid {
-                    frame,
-                    point: q,
-                    index,
-                    coplanar,
-                } => geo::rigid_coefficients(frame.map(at), at(*q), *coplanar).map(|r| r[*index]),
-                Recipe::Collinear {
-                    line,
-                    point: q,
-                    index,
-                } => geo::collinear_coefficients(line.map(at), at(*q)).map(|r| r[*index]),
-                Recipe::Axis {
-                    a,
-                    b,
-                    point: q,
-                    index,
-                } => geo::axis_frame(at(*a), at(*b), at(*q)).map(|r| r[*index]),
-            };
-            value.map_err(|e| {
-                format!(
-                    "constant `{}` cannot be derived from the declared geometry: {e}",
-                    c.name
-                )
-            })
-        })
-        .collect()
+    let table = model.recipe_table();
+    let recipes = Recipes {
+        home_pose: model.home_pose,
+        auto: &model.auto_points,
+        constants: &table,
+    };
+    let mut auto = vec![[0.0; 3]; recipes.auto.len()];
+    let mut c = vec![0.0; recipes.constants.len()];
+    recipes
+        .derive(&g, &mut auto, &mut c)
+        .map_err(|e| match e.constant {
+            Some(i) => format!(
+                "constant `{}` cannot be derived from the declared geometry: {}",
+                model.constants[i].name, e.error
+            ),
+            None => format!("a point added to a link cannot be made: {}", e.error),
+        })?;
+    Ok(c)
 }
 
 /// Rz(yaw)·Ry(pitch)·Rx(roll), as `linkage::Pose::from_euler`.
