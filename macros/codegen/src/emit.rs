@@ -362,14 +362,18 @@ pub fn expand(
                 #jacobian_sparse
             }
 
-            #[inline]
+            // No `#[inline]` on the scalar-generic kernels and the dense Jacobian: an inline
+            // function is compiled again in every codegen unit that calls it, and these are the
+            // largest functions emitted, called from every solver. Without it a crate declaring
+            // many mechanisms builds faster (the integration tests' binary rebuilt alone: 112 s →
+            // 83 s), for 1 % more instructions in PH from home (`count ph-all`), 0.2 % in an
+            // all-modes query and none in NR or the tracker (BENCHMARKS.md).
             #allow
             fn residual_in<T: ::linkage::Scalar>(&self, v: &[T; #n], x: &[T; #m], f: &mut [T; #n]) {
                 let c = &self.constants;
                 #residual_in
             }
 
-            #[inline]
             #[allow(unused_variables)]
             fn jacobian_in<T: ::linkage::Scalar>(&self, v: &[T; #n], x: &[T; #m], values: &mut [T]) {
                 let c = &self.constants;
@@ -380,7 +384,6 @@ pub fn expand(
                 #jacobian_in
             }
 
-            #[inline]
             #[allow(unused_variables)]
             fn jacobian_dense(&self, v: &[f64; #n], x: &[f64; #m], b: &mut [[f64; #n]; #n]) {
                 let c = &self.constants;

@@ -1,7 +1,9 @@
 //! How a stress test is sized, seeded and replayed, and how it counts and reports.
 //!
-//! - `LINKAGE_STRESS=k` multiplies every test's case count by k (default 1: about 30 s for the
-//!   whole suite in the dev profile on a 2-core machine).
+//! - `LINKAGE_STRESS=k` multiplies every test's case count by k (`LINKAGE_STRESS=1`, as
+//!   `.ci/run` sets it: about 30 s for the whole suite in the dev profile on a 2-core machine).
+//!   Unset, as on a plain `cargo test`, each test runs the first quarter of its ×1 cases: the
+//!   same cases, every check, a quarter of the random machines.
 //! - `LINKAGE_STRESS_SEED=s` changes the base seed (default: one fixed seed per test).
 //! - `LINKAGE_STRESS_CASE=i` runs case i alone: every failure prints the line that replays it.
 //! - `LINKAGE_STRESS_SHOW=n` prints the first n failures of each kind (default 12; all are
@@ -25,7 +27,8 @@ fn env_number(name: &str) -> Option<u64> {
 pub struct Run {
     test: &'static str,
     pub seed: u64,
-    scale: u64,
+    /// `None`: a plain `cargo test` (a quarter of the ×1 cases).
+    scale: Option<u64>,
     only: Option<Vec<u64>>,
 }
 
@@ -34,7 +37,7 @@ impl Run {
         Run {
             test,
             seed: env_number("LINKAGE_STRESS_SEED").unwrap_or(default_seed),
-            scale: env_number("LINKAGE_STRESS").unwrap_or(1).max(1),
+            scale: env_number("LINKAGE_STRESS").map(|k| k.max(1)),
             only: env_number("LINKAGE_STRESS_CASE").map(|i| vec![i]),
         }
     }
@@ -45,16 +48,18 @@ impl Run {
         Run {
             test,
             seed,
-            scale: 1,
+            scale: Some(1),
             only: Some(cases.to_vec()),
         }
     }
 
-    /// The case indices to run: `default` times the scale, or the one asked for.
+    /// The case indices to run: `default` times the scale (a quarter of `default` without
+    /// one), or the ones asked for.
     pub fn cases(&self, default: u64) -> Vec<u64> {
-        match &self.only {
-            Some(list) => list.clone(),
-            None => (0..default * self.scale).collect(),
+        match (&self.only, self.scale) {
+            (Some(list), _) => list.clone(),
+            (None, Some(k)) => (0..default * k).collect(),
+            (None, None) => (0..(default / 4).max(1)).collect(),
         }
     }
 
@@ -127,9 +132,10 @@ impl<'a> Tally<'a> {
 
     /// Prints the counts, then fails the test if anything failed.
     pub fn finish(self) {
+        let scale = self.run.scale.map_or("¼".to_string(), |k| k.to_string());
         let mut out = format!(
-            "stress::{} (seed {}, ×{}): {} cases",
-            self.run.test, self.run.seed, self.run.scale, self.cases
+            "stress::{} (seed {}, ×{scale}): {} cases",
+            self.run.test, self.run.seed, self.cases
         );
         for (key, n) in &self.counts {
             out += &format!("\n    {key}: {n}");
