@@ -1,7 +1,7 @@
 //! From a tracked path to a classified endpoint, and from a real endpoint to an assembly mode.
 
 use super::complex::Complex;
-use super::monodromy::polish;
+use super::polish::polish;
 use super::roots::{Endpoint, EndpointKind};
 use super::track::{Model, Outcome, Tracked, Workspace};
 use crate::Mechanism;

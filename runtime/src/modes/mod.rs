@@ -48,6 +48,7 @@ mod endpoint;
 mod inputs;
 mod monodromy;
 mod path;
+mod polish;
 mod refill;
 mod rng;
 mod roots;
@@ -64,8 +65,9 @@ pub use taylor::Series;
 
 use crate::Mechanism;
 use inputs::Inputs;
-use monodromy::{SAME, Stopping, contains};
+use monodromy::Stopping;
 use path::ParameterPath;
+use polish::{SAME, contains};
 use rng::Rng;
 use sparse_lu::Plan;
 use track::{Chart, Model, Settings, Workspace};
@@ -332,7 +334,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
                 *v = from;
                 model.track(&path, v, &mut ws, set).outcome == track::Outcome::Reached
-                    && monodromy::polish(&model, v, p1, &mut ws, true)
+                    && polish::polish(&model, v, p1, &mut ws, true)
                     && model.size(v) <= 1e8
             });
             if !reached {
@@ -380,7 +382,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             {
                 return Err(ModesError::BadStart { index });
             }
-            if !monodromy::polish(&model, &mut z, &p0, &mut ws, true)
+            if !polish::polish(&model, &mut z, &p0, &mut ws, true)
                 || !(model.size(&z) <= 1e8)
                 || contains(&model, &me.starts[..me.count], &z, SAME)
             {

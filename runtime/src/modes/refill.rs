@@ -17,8 +17,8 @@
 
 use super::AllModes;
 use super::complex::Complex;
-use super::monodromy::{SAME, contains};
 use super::path::ParameterPath;
+use super::polish::{SAME, contains};
 use super::roots::Roots;
 use super::track::Workspace;
 use crate::Mechanism;

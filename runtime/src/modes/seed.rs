@@ -10,7 +10,7 @@
 use super::complex::Complex;
 use super::dense;
 use super::inputs::Inputs;
-use super::monodromy::POLISHED;
+use super::polish::POLISHED;
 use super::rng::Rng;
 use super::sparse_lu::Lu;
 use super::taylor::Series;

@@ -7,7 +7,7 @@
 //! a symmetry of the family, so the images of the others follow from it.
 
 use super::complex::Complex;
-use super::monodromy::{SAME, contains, polish};
+use super::polish::{SAME, contains, polish};
 use super::track::{Model, Workspace};
 use crate::Mechanism;
 
@@ -21,7 +21,7 @@ const SEED_ROOT: f64 = 1e-8;
 /// The largest first Newton correction (weighted) at which the image of a root found later
 /// counts as a root (not a point in another root's basin): the accuracy [`polish`] accepts for
 /// roots far out.
-const IMAGE_ROOT: f64 = super::monodromy::FLOOR;
+const IMAGE_ROOT: f64 = super::polish::FLOOR;
 
 /// The candidates kept: indices into [`Mechanism::symmetry`].
 #[derive(Clone, Copy, Debug)]
