@@ -4,9 +4,7 @@
 use crate::expr::{Expr, Vec3};
 use crate::front::ids::{LinkId, PairId, PivotId};
 use crate::front::resolved::{Decl, Value};
-use crate::model::{
-    added_points, Auto, Constant, Inverse, PlatformPoint, PointRef, Recipe, Recipes, Slot,
-};
+use crate::model::{home_of, Auto, Constant, Inverse, PlatformPoint, PointRef, Recipe, Slot};
 use std::collections::HashMap;
 
 /// A length-like slot that is not a pivot coordinate: a link's `length`, a pair's `offset` or
@@ -166,17 +164,7 @@ impl<'d> Builder<'d> {
     /// recipes the runtime evaluates too.
     pub fn home(&self, p: PointRef) -> [f64; 3] {
         let g: Vec<f64> = self.slots.iter().map(|s| s.default).collect();
-        let recipes = Recipes {
-            home_pose: self.home_pose,
-            auto: &self.auto_points,
-            constants: &[],
-        };
-        let needed = match p {
-            PointRef::Auto(i) => i + 1,
-            _ => 0,
-        };
-        let auto = added_points(self.home_pose, &self.auto_points[..needed], &g);
-        recipes.point(&g, &auto, p)
+        home_of(self.home_pose, &self.auto_points, &g, p)
     }
 
     /// Adds a point to a link's home geometry.

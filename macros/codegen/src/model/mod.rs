@@ -183,20 +183,26 @@ impl Model {
     }
 }
 
-/// The added points' home positions on the slots `g`, in order; NaN for one that cannot be
-/// made (the generator reports degenerate axes before it evaluates).
-pub fn added_points(home_pose: [f64; 6], auto: &[Auto], g: &[f64]) -> Vec<[f64; 3]> {
+/// A point's home position on the slots `g` (base frame; a platform pivot's own frame for
+/// `PointRef::Slots`), by the recipes the runtime evaluates: the added points it needs are made
+/// in order, NaN for one that cannot be (the generator reports degenerate axes before it
+/// evaluates).
+pub fn home_of(home_pose: [f64; 6], auto: &[Auto], g: &[f64], p: PointRef) -> [f64; 3] {
+    let needed = match p {
+        PointRef::Auto(i) => (i + 1).min(auto.len()),
+        _ => 0,
+    };
     let recipes = Recipes {
         home_pose,
-        auto,
+        auto: &auto[..needed],
         constants: &[],
     };
-    let mut out: Vec<[f64; 3]> = Vec::with_capacity(auto.len());
-    for a in auto {
-        let p = recipes.added_point(g, &out, a).unwrap_or([f64::NAN; 3]);
-        out.push(p);
+    let mut made: Vec<[f64; 3]> = Vec::with_capacity(needed);
+    for a in recipes.auto {
+        let q = recipes.added_point(g, &made, a).unwrap_or([f64::NAN; 3]);
+        made.push(q);
     }
-    out
+    recipes.point(g, &made, p)
 }
 
 /// A passive S or U: a point the two links share, which the closed-form shapes eliminate (an

@@ -24,13 +24,7 @@ fn point(g: &[f64], s: [usize; 3]) -> [f64; 3] {
 /// A point's home position in the base frame (or, for `PointRef::Slots` on the platform, in
 /// the platform's frame: see [`PointRef`]).
 pub fn home_point(model: &Model, g: &[f64], p: PointRef) -> [f64; 3] {
-    let auto = crate::model::added_points(model.home_pose, &model.auto_points, g);
-    let recipes = Recipes {
-        home_pose: model.home_pose,
-        auto: &model.auto_points,
-        constants: &[],
-    };
-    recipes.point(g, &auto, p)
+    crate::model::home_of(model.home_pose, &model.auto_points, g, p)
 }
 
 /// The constants at the declared geometry, by the interpreter every generated `from_geometry`
