@@ -60,6 +60,71 @@ impl Convergence {
     }
 }
 
+/// When a Newton run under the final rule may reuse its last factorisation for one correction
+/// (a chord, or simplified Newton, step) instead of factoring B again.
+///
+/// F has degree two in v, so Newton's corrections shrink as ‖Δₖ₊₁‖ ≈ q‖Δₖ‖²; q is estimated
+/// from the last pair of corrections. A chord step from the point after Δₖ, with B factored
+/// before Δₖ, shrinks the error by about 2q‖Δₖ‖ (B changed by that much, relatively) instead
+/// of squaring it. Where the next Newton correction is predicted above the tolerance but a
+/// chord step predicted to bring the error within it, the run takes the chord step and then
+/// the one Newton correction that measures the returned point: one factorisation instead of
+/// two. The answer is still judged by a correction with B factored at the returned point
+/// itself; a chord step only moves the point, and only when it contracts strongly
+/// ([`Chords::admits`]). Wrong predictions cost a correction, never the answer.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Chords {
+    /// The estimate of q (NaN until two corrections are known).
+    q: f64,
+    /// The size of the last Newton correction, if the step after it was a Newton step.
+    newton: f64,
+}
+
+impl Chords {
+    /// Largest predicted contraction q‖Δ‖ at which a chord step is tried.
+    const REGIME: f64 = 0.01;
+    /// Largest ratio of a chord correction to the Newton correction before it.
+    const RATIO: f64 = 0.25;
+
+    pub(crate) const fn new() -> Self {
+        Chords {
+            q: f64::NAN,
+            newton: f64::NAN,
+        }
+    }
+
+    /// Records a Newton correction of `size` (the step after it to be taken).
+    pub(crate) fn newton(&mut self, size: f64) {
+        if self.newton.is_finite() {
+            self.q = size / (self.newton * self.newton);
+        }
+        self.newton = size;
+    }
+
+    /// Whether, after the Newton correction of `size` just recorded, a chord step is predicted
+    /// to save a factorisation.
+    pub(crate) fn worthwhile(&self, size: f64, tolerance: f64) -> bool {
+        let contraction = self.q * size;
+        let next = contraction * size;
+        // False while q is unknown (NaN).
+        next > tolerance && contraction <= Self::REGIME && 2.0 * contraction * next <= tolerance
+    }
+
+    /// Whether a chord correction of `size` may be applied: it must contract strongly against
+    /// the Newton correction before it. If it may, it is recorded (it measures the same error
+    /// as a Newton correction would, to first order, so it updates q).
+    pub(crate) fn admits(&mut self, size: f64) -> bool {
+        if size <= Self::RATIO * self.newton {
+            self.q = size / (self.newton * self.newton);
+            // The correction after a chord step does not follow a Newton step.
+            self.newton = f64::NAN;
+            true
+        } else {
+            false
+        }
+    }
+}
+
 /// The test a corrector must pass to be trusted: its first correction at most half the
 /// predictor step it corrects (plus the tolerance), each next at most a quarter of the one
 /// before. A corrector that would slide onto a neighbouring branch converges slowly or not at
@@ -99,7 +164,7 @@ impl Contraction {
 
 #[cfg(test)]
 mod tests {
-    use super::{Contraction, Convergence};
+    use super::{Chords, Contraction, Convergence};
 
     #[test]
     fn a_first_large_correction_never_converges() {
@@ -138,6 +203,51 @@ mod tests {
             assert!(!c.reached(size), "ratio ½ must not count as converged");
             assert!(!c.stalled(size, 2.0 * size), "nor as stalled");
         }
+    }
+
+    #[test]
+    fn a_chord_step_is_taken_where_it_saves_a_factorisation() {
+        let tol = 1e-9;
+        let mut c = Chords::new();
+        c.newton(1.7);
+        assert!(
+            !c.worthwhile(1.7, tol),
+            "q is not known after one correction"
+        );
+        c.newton(1.2e-2);
+        // q ≈ 4.2e-3: the next Newton correction is predicted at 6e-7 (above the tolerance),
+        // the error after a chord step at 6e-11 (within it).
+        assert!(c.worthwhile(1.2e-2, tol));
+        assert!(!c.admits(0.5e-2), "a chord correction must contract by 4");
+        assert!(c.admits(6.3e-7));
+        assert!(!c.worthwhile(6.3e-7, tol), "no two chord steps in a row");
+        c.newton(2e-11);
+        assert!(
+            !c.worthwhile(2e-11, tol),
+            "the next correction is predicted within it"
+        );
+    }
+
+    #[test]
+    fn no_chord_step_outside_the_quadratic_regime() {
+        let tol = 1e-9;
+        // Linear convergence (ratio ½, a double root): q‖Δ‖ = ½.
+        let mut c = Chords::new();
+        c.newton(2e-3);
+        c.newton(1e-3);
+        assert!(!c.worthwhile(1e-3, tol));
+        // Quadratic, but a chord step would leave the error above the tolerance.
+        // (q ≈ 1.9e-3: the next Newton correction predicted at 8e-6, the error after a
+        // chord step at 2e-9.)
+        let mut c = Chords::new();
+        c.newton(6.0);
+        c.newton(6.7e-2);
+        assert!(!c.worthwhile(6.7e-2, tol));
+        let mut c = Chords::new();
+        c.newton(1.0);
+        c.newton(1e-2);
+        assert!(!c.admits(f64::NAN));
+        assert!(!Chords::new().worthwhile(f64::NAN, tol));
     }
 
     #[test]

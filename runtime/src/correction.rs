@@ -62,6 +62,29 @@ impl<const N: usize> Correction<N> {
     }
 }
 
+impl<const N: usize> Correction<N> {
+    /// The simplified (chord) correction at `(v, x)`: `B₀⁻¹ F(v)` with B₀ the factorisation
+    /// already in `fac` (of a point one correction away). It costs a residual and a solve, no
+    /// factorisation; `det` is left as it was (B₀'s). On failure the fields are unspecified.
+    #[inline(never)]
+    pub(crate) fn chord<S: Mechanism<N, M>, const M: usize>(
+        &mut self,
+        sys: &S,
+        v: &[f64; N],
+        x: &[f64; M],
+        fac: &S::Factor,
+    ) -> Result<(), Failure> {
+        sys.residual(v, x, &mut self.delta);
+        sys.solve(fac, &mut self.delta);
+        self.size = size(&self.delta);
+        if self.size.is_finite() {
+            Ok(())
+        } else {
+            Err(failure(sys, v, x))
+        }
+    }
+}
+
 /// [`Mechanism::newton_step`] with dense LU on the assembled B (the baseline).
 #[inline(never)]
 fn dense_step<S: Mechanism<N, M>, const N: usize, const M: usize>(

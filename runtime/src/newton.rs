@@ -2,10 +2,10 @@
 //! corrector of continuation, the tracker's and Newton homotopy's steps, and all of
 //! Newton–Raphson (`newton_raphson.rs`).
 
-use crate::convergence::Convergence;
+use crate::convergence::{Chords, Convergence};
 use crate::correction::{Correction, Failure};
 use crate::math::size;
-use crate::{Mechanism, Options};
+use crate::{Linear, Mechanism, Options};
 
 /// Corrections that did not shrink at the rounding floor before a final run ends `Stalled`.
 const MAX_STALLS: u32 = 3;
@@ -67,10 +67,14 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
     rule: Rule,
 ) -> Newton<N> {
-    newton_scaled(sys, &v, size(&v), x, options, rule)
+    newton_scaled(sys, &v, size(&v), x, options, rule, false)
 }
 
-/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::Start)'s, computed once).
+/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::Start)'s, computed once), and, if
+/// `chords`, chord steps where they save a factorisation ([`Chords`]; final rule and generated
+/// factorisation only). They pay in a long run from a distant start (Newton–Raphson); a final
+/// correction after continuation starts next to the root, where they would save nothing and,
+/// near a singularity, would only move the answer to another point of the rounding floor.
 pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
@@ -78,6 +82,7 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
     rule: Rule,
+    chords: bool,
 ) -> Newton<N> {
     let tolerance = options.tolerance;
     let mut convergence = Convergence::with_scale(tolerance, scale);
@@ -92,6 +97,10 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut iterations = 0;
     let mut previous = f64::INFINITY;
     let mut stalls = 0;
+    // Under the final rule only (intermediate points stop early anyway), and only with the
+    // generated factorisation (the dense baseline stays plain Newton).
+    let use_chords = chords && rule == Rule::Final && options.linear == Linear::Generated;
+    let mut chords = Chords::new();
     let ending = loop {
         if iterations >= options.max_iterations {
             break Ending::Exhausted;
@@ -110,6 +119,7 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
             Err(Failure::NonFinite) => break Ending::NonFinite,
         }
         iterations += 1;
+        chords.newton(c.size);
         if rule == Rule::Final {
             if c.size <= tolerance {
                 return Newton {
@@ -149,6 +159,28 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
             for i in 0..N {
                 current[i] -= c.delta[i];
             }
+        }
+        if use_chords && chords.worthwhile(c.size, tolerance) {
+            let newton_size = c.size;
+            if iterations >= options.max_iterations {
+                break Ending::Exhausted;
+            }
+            iterations += 1;
+            // A chord correction that fails or does not contract is dropped: B is factored
+            // at the same point next. So is one already within the tolerance: the prediction
+            // was pessimistic, and this point may be the answer, which only a Newton
+            // correction here can tell (near a singularity the next point may sit at the
+            // rounding floor, above the tolerance).
+            if c.chord(sys, &current, x, &fac).is_ok()
+                && c.size > tolerance
+                && chords.admits(c.size)
+            {
+                for i in 0..N {
+                    current[i] -= c.delta[i];
+                }
+            }
+            previous = newton_size;
+            continue;
         }
         if rule == Rule::Intermediate {
             let stalled = convergence.stalled(c.size, previous);

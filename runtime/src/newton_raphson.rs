@@ -47,7 +47,9 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Result<Solution<N>, SolveError> {
     // F at the start is Newton's first residual: its overflow shows there, not in a check.
     crate::start::check_sample(sys, start, x, options)?;
-    let run = newton_scaled(sys, start.v(), start.scale(), x, options, Rule::Final);
+    // With chord steps: from a distant start, they save a factorisation in about half the
+    // solves (BENCHMARKS.md, Instruction counts).
+    let run = newton_scaled(sys, start.v(), start.scale(), x, options, Rule::Final, true);
     if run.ending == Ending::NonFinite && run.iterations == 0 {
         return Err(SolveError::NonFinite);
     }
