@@ -105,6 +105,8 @@ pub struct Solution<const N: usize> {
     pub lambda: f64,
     pub steps_accepted: u32,
     pub steps_rejected: u32,
+    /// Newton corrections computed, chord (simplified Newton) corrections included: those
+    /// reuse the last factorisation (NR takes one where it saves a factorisation).
     pub newton_iterations: u32,
     /// Estimated distance to the exact solution: the Newton correction ‖B⁻¹F‖ measured at the
     /// returned v, with B factored there (the practical form of Eq. 13); infinite where B is
