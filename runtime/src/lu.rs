@@ -114,7 +114,7 @@ impl<const N: usize> Lu<N> {
             }
             last = j;
             let mut e = [0.0; N];
-            e[j] = 1.0;
+            e.set(j, 1.0);
             self.solve(&mut e);
             let next = l1(&e);
             x = e;
@@ -195,34 +195,49 @@ trait Column {
     fn swap(&mut self, a: usize, b: usize);
 }
 
+// The accessors are total: an index out of range (which the kernels never form) reads NaN and
+// writes nothing, instead of panicking. In the kernels' loops the compiler proves the indices
+// in range and removes the tests; what is left is for the row swaps, whose indices are data,
+// and it is what lets `tests/no_panic` prove at link time that the solvers cannot panic.
 impl<const N: usize> Square for [[f64; N]; N] {
     const SIZE: usize = N;
     #[inline(always)]
     fn at(&self, i: usize, j: usize) -> f64 {
-        self[i][j]
+        self.get(i)
+            .and_then(|row| row.get(j))
+            .copied()
+            .unwrap_or(f64::NAN)
     }
     #[inline(always)]
     fn set(&mut self, i: usize, j: usize, x: f64) {
-        self[i][j] = x;
+        if let Some(e) = self.get_mut(i).and_then(|row| row.get_mut(j)) {
+            *e = x;
+        }
     }
     #[inline(always)]
     fn swap_rows(&mut self, a: usize, b: usize) {
-        self.swap(a, b);
+        if a < N && b < N {
+            self.swap(a, b);
+        }
     }
 }
 
 impl<const N: usize> Column for [f64; N] {
     #[inline(always)]
     fn at(&self, i: usize) -> f64 {
-        self[i]
+        self.get(i).copied().unwrap_or(f64::NAN)
     }
     #[inline(always)]
     fn set(&mut self, i: usize, x: f64) {
-        self[i] = x;
+        if let Some(e) = self.get_mut(i) {
+            *e = x;
+        }
     }
     #[inline(always)]
     fn swap(&mut self, a: usize, b: usize) {
-        <[f64]>::swap(self, a, b);
+        if a < N && b < N {
+            <[f64]>::swap(self, a, b);
+        }
     }
 }
 
@@ -231,24 +246,27 @@ impl<const N: usize> Square for Bordered<N> {
     #[inline(always)]
     fn at(&self, i: usize, j: usize) -> f64 {
         match (i < N, j < N) {
-            (true, true) => self.block[i][j],
-            (true, false) => self.column[i],
-            (false, true) => self.row[j],
+            (true, true) => self.block.at(i, j),
+            (true, false) => self.column.at(i),
+            (false, true) => self.row.at(j),
             (false, false) => self.corner,
         }
     }
     #[inline(always)]
     fn set(&mut self, i: usize, j: usize, x: f64) {
         match (i < N, j < N) {
-            (true, true) => self.block[i][j] = x,
-            (true, false) => self.column[i] = x,
-            (false, true) => self.row[j] = x,
+            (true, true) => self.block.set(i, j, x),
+            (true, false) => self.column.set(i, x),
+            (false, true) => self.row.set(j, x),
             (false, false) => self.corner = x,
         }
     }
     fn swap_rows(&mut self, a: usize, b: usize) {
+        if a >= N {
+            return;
+        }
         if b < N {
-            self.block.swap(a, b);
+            self.block.swap_rows(a, b);
             self.column.swap(a, b);
         } else {
             core::mem::swap(&mut self.block[a], &mut self.row);
@@ -290,12 +308,17 @@ pub fn fallback_factor<const K: usize>(
     mut z: [[f64; K]; K],
     stored: &mut [f64],
 ) -> Option<(f64, f64)> {
-    let piv: Pivots<K> = eliminate(&mut z)?;
-    for (i, row) in z.iter().enumerate() {
-        stored[i * K..(i + 1) * K].copy_from_slice(row);
+    // The generated storage always has room; a shorter one is a failure, not a panic.
+    if stored.len() < K * K + K {
+        return None;
     }
-    for (k, &p) in piv.swaps.iter().enumerate() {
-        stored[K * K + k] = p as f64;
+    let piv: Pivots<K> = eliminate(&mut z)?;
+    let (factors, swaps) = stored.split_at_mut(K * K);
+    for (to, &from) in factors.iter_mut().zip(z.as_flattened()) {
+        *to = from;
+    }
+    for (to, &p) in swaps.iter_mut().zip(&piv.swaps) {
+        *to = p as f64;
     }
     Some((piv.info.det, piv.info.pivot_ratio))
 }
@@ -303,15 +326,17 @@ pub fn fallback_factor<const K: usize>(
 /// Solves `Z y = b` in place with what [`fallback_factor`] stored.
 #[doc(hidden)]
 pub fn fallback_solve<const K: usize>(stored: &[f64], y: &mut [f64; K]) {
-    let mut z = [[0.0; K]; K];
-    for (i, row) in z.iter_mut().enumerate() {
-        row.copy_from_slice(&stored[i * K..(i + 1) * K]);
+    // What `fallback_factor` stored; a storage too short for it (never generated) leaves
+    // missing entries NaN, so that the solution shows it, rather than panic.
+    let mut z = [[f64::NAN; K]; K];
+    for (to, &from) in z.as_flattened_mut().iter_mut().zip(stored) {
+        *to = from;
     }
     let mut swaps = [0usize; K];
-    for (k, p) in swaps.iter_mut().enumerate() {
+    for (p, &from) in swaps.iter_mut().zip(stored.get(K * K..).unwrap_or(&[])) {
         // Written by `fallback_factor` from an index below K; clamped all the same, so that a
         // storage that did not come from it cannot make the solve index out of bounds.
-        *p = (stored[K * K + k] as usize).min(K.saturating_sub(1));
+        *p = (from as usize).min(K.saturating_sub(1));
     }
     substitute(&z, &swaps, y);
 }

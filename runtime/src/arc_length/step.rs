@@ -132,7 +132,8 @@ impl StepControl {
         } else {
             2.0 * step
         };
-        self.h = ideal.clamp(0.5 * step, 2.0 * step).min(self.max);
+        // max and min rather than clamp, which panics on a NaN bound.
+        self.h = ideal.max(0.5 * step).min(2.0 * step).min(self.max);
         // Right after a rejection, do not grow again: growing straight back into the step that
         // failed makes the step size oscillate.
         if iterations >= 4 || self.just_rejected {
