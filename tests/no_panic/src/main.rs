@@ -3,7 +3,7 @@
 
 use core::hint::black_box;
 use linkage::{Mechanism, Options, Pose, Tracker};
-use no_panic_proof::{rps, stewart, Rps, Stewart};
+use no_panic_proof::{hexapod, rps, stewart, Rps, RssHexapod, Stewart};
 
 fn main() {
     let o = black_box(Options::TIGHT);
@@ -44,5 +44,14 @@ fn main() {
     assert!(stewart::track(&mut t, &x).is_ok());
     let bad = black_box([f64::INFINITY; 6]);
     assert!(stewart::nr(&sys, &s, &bad, &o).is_err() && stewart::track(&mut t, &bad).is_err());
+    let sys = RssHexapod::new();
+    let s = sys.home_start().expect("the hexapod's start");
+    let x = black_box(s.x().map(|q| q + 0.05));
+    let sol = hexapod::ph(&sys, &s, &x, &o).expect("a solve");
+    assert!(sol.is_ok(), "{:?}", sol.status);
+    assert!(hexapod::nr(&sys, &s, &x, &o).is_ok() && hexapod::proof(&sys, &sol.v, &x).is_ok());
+    let mut t = Tracker::new(sys.clone(), s, o);
+    assert!(hexapod::track(&mut t, &x).is_ok());
+    assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
     println!("no-panic proof: linked; every entry point ran on good and bad input");
 }
