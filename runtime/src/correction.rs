@@ -60,12 +60,12 @@ impl<const N: usize> Correction<N> {
             _ => Err(failure(sys, v, x)),
         }
     }
-}
 
-impl<const N: usize> Correction<N> {
     /// The simplified (chord) correction at `(v, x)`: `B₀⁻¹ F(v)` with B₀ the factorisation
     /// already in `fac` (of a point one correction away). It costs a residual and a solve, no
     /// factorisation; `det` is left as it was (B₀'s). On failure the fields are unspecified.
+    // Out of line: inlined into the Newton loop beside the Newton correction's kernels, it made
+    // the loop's code worse than the call costs (`count nr-normal` 785 539 against 746 200).
     #[inline(never)]
     pub(crate) fn chord<S: Mechanism<N, M>, const M: usize>(
         &mut self,
