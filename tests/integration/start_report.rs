@@ -1,7 +1,7 @@
 //! What `AllModes::new` says about its start set (`StartReport`): how monodromy ended and how
 //! late its last new root came, checked where the root count is known.
 
-use linkage::modes::{AllModes, Complex, Ended, ModesOptions, StartReport};
+use linkage::modes::{AllModes, Complex, Ended, ModesError, ModesOptions, StartReport};
 use linkage_examples::rps::Rps3;
 use linkage_examples::stewart::{SixSix, StewartGeneral};
 use linkage_tests::Rng;
@@ -85,6 +85,7 @@ fn start_report_of_capped_and_given_runs() {
     let report = six.report();
     assert_eq!(report.ended, Ended::LoopCap, "{report:?}");
     assert_eq!(report.loops, 2, "{report:?}");
+    assert_eq!(report.seeds_needed, 0, "{report:?}");
     // Short of the 40 (14 measured: a loop also carries the roots it finds).
     assert!(six.start_count() < 40, "{report:?}");
 
@@ -102,4 +103,14 @@ fn start_report_of_capped_and_given_runs() {
         AllModes::<_, 9, 3, 32>::from_starts(Rps3::new(), *p0, gamma, &starts, &expected).unwrap();
     assert_eq!(given.report().ended, Ended::Given);
     assert_eq!(given.report().loops, 0);
+
+    // A confidence that is not a finite non-negative number is an error, not a panic.
+    for confidence in [f64::NAN, -1.0, f64::INFINITY] {
+        let bad = ModesOptions {
+            confidence,
+            ..ModesOptions::default()
+        };
+        let err = AllModes::<_, 9, 3, 32>::new(Rps3::new(), &bad).err();
+        assert_eq!(err, Some(ModesError::NonFinite), "{confidence}");
+    }
 }

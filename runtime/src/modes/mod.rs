@@ -265,8 +265,9 @@ pub struct StartReport {
     /// The fewest solutions one seed (the first, the home or a later one) brought with the
     /// loops that followed it: the smallest component seen.
     pub smallest_find: usize,
-    /// The run of fruitless fresh seeds the last stop required (see
-    /// [`ModesOptions::confidence`]).
+    /// The run of fruitless fresh seeds the last round of seeds required (see
+    /// [`ModesOptions::confidence`]); 0 if the loop cap or the expected count ended monodromy
+    /// before any.
     pub seeds_needed: usize,
 }
 

@@ -203,7 +203,9 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         let needed = stop.stable_seeds.max(libm::ceil(
             stop.confidence * found.count as f64 / found.smallest.max(1) as f64,
         ) as usize);
-        found.seeds_needed = needed;
+        if !done(&found) {
+            found.seeds_needed = needed;
+        }
         while !new && stale_seeds < needed && !done(&found) {
             found.seeds += 1;
             found.seeds_since_new += 1;
