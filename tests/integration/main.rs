@@ -16,6 +16,7 @@ mod other_mechanisms;
 mod properties;
 mod regressions;
 mod solvers;
+mod start_report;
 mod stewart_cli;
 mod stress;
 mod tracking;

@@ -14,8 +14,15 @@ const NEAR_TARGET: f64 = 1e-6;
 /// Coordinates whose imaginary parts are all below this (weighted) are real.
 const REAL_TOL: f64 = 1e-7;
 
-/// Beyond this size (in units of the scale) a root counts as at infinity.
+/// Beyond this size (in units of the scale) an endpoint that is not a regular root (a path
+/// that stalled, or ended where Newton converges only slowly) counts as at infinity.
 const AT_INFINITY: f64 = 1e8;
+
+/// Beyond this size a root that Newton polished as regular (in f64 or, far out, double-double)
+/// counts as at infinity. A regular point at infinity polishes to |w| near 10⁻¹⁶ (sizes of
+/// 10¹⁶), so roots at 10⁸–10¹² are told apart from it; a delta robot with two crank angles a
+/// few thousandths of a radian apart has roots there.
+const REGULAR_AT_INFINITY: f64 = 1e12;
 
 /// Classifies the end of a path tracked to the target `p` (a finite or singular root, a
 /// diverging path, a failure), polishing finite roots to full precision. `z` is the endpoint in
@@ -42,7 +49,7 @@ pub(crate) fn classify<S: Mechanism<N, M>, const N: usize, const M: usize>(
             if polish(model, &mut polished, p, ws, true) {
                 e.v = model.leave(&polished);
                 e.z = polished;
-                e.kind = if !(model.size(&polished) <= AT_INFINITY) {
+                e.kind = if !(model.size(&polished) <= REGULAR_AT_INFINITY) {
                     EndpointKind::Diverging
                 } else if is_real(model, &e.v) {
                     EndpointKind::Real

@@ -17,7 +17,7 @@
 //! results in a caller's [`Roots`] of fixed capacity `K`.
 //!
 //! ```
-//! use linkage::modes::{AllModes, ModesOptions, EndpointKind};
+//! use linkage::modes::{AllModes, Ended, ModesOptions, EndpointKind};
 //! # linkage::mechanism! {
 //! #     pub struct Rps;
 //! #     base {
@@ -33,6 +33,10 @@
 //! // A 3-RPS: 16 complex assembly modes for generic leg lengths.
 //! let modes = AllModes::<Rps, 9, 3, 32>::new(Rps::new(), &ModesOptions::default()).unwrap();
 //! assert_eq!(modes.start_count(), 16);
+//! // Count stability ended monodromy, after a run of fruitless seeds as long as the rule asks.
+//! let report = modes.report();
+//! assert_eq!(report.ended, Ended::Stable);
+//! assert!(report.seeds_since_new >= report.seeds_needed);
 //! let mut roots = linkage::modes::Roots::new();
 //! modes.solve(&[150.0, 160.0, 155.0], &mut roots).unwrap();
 //! assert!(roots.is_complete());
@@ -45,6 +49,7 @@
 mod complex;
 mod dense;
 mod endpoint;
+mod extended;
 mod inputs;
 mod monodromy;
 mod path;
@@ -113,6 +118,28 @@ fn degrees<S: Mechanism<N, M>, const N: usize, const M: usize>(
 }
 
 /// How the start solutions are computed.
+///
+/// Monodromy ends by count stability, which is evidence, not proof, that every root was found.
+/// Judge a start set by its [`StartReport`] (`AllModes::report`):
+///
+/// - [`Ended::LoopCap`]: the loops never settled; the count is likely short. Raise
+///   `max_loops`.
+/// - `seed_finds > 0`, and above all `last_after_seed`: random seeds found solutions the loops
+///   from the others could not reach, and the final count came only with such a late find —
+///   components are being found by chance. The default rule then asks for a run of fruitless
+///   seeds long enough to find a component as small as the smallest seen
+///   ([`ModesOptions::confidence`], [`StartReport::seeds_needed`]); for more certainty raise
+///   `confidence` (each unit divides the chance of missing such a component by about e) or
+///   run other `seed`s and compare counts. Tsai's 3-UPU is such a mechanism: with
+///   `confidence` 0 (the rule before it existed) seeds 2015 and 7 stopped at 608 of its 624
+///   roots, 8 fruitless seeds after a late find; with the default, 117 were required
+///   and seeds 2015, 7 and 99 all reached 624.
+/// - `smallest_find` much below the count (a delta's two translations among its 40 roots):
+///   small components exist, which random seeds seldom hit; the mechanism's home seeds one.
+/// - `first_settled` equal to the count, `seed_finds` 0: the loops from the first seed found
+///   everything (a general 6-6 platform), the usual case for one irreducible family.
+///
+/// A known generic count (`expected`) ends monodromy as soon as it is reached.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModesOptions {
     /// Seed of every random choice (seed point, loops, γ): the same seed gives the same starts.
@@ -122,6 +149,12 @@ pub struct ModesOptions {
     /// After the loops settle, fresh random solutions are tracked to the base point until this
     /// many in a row bring nothing new (they reach components that loops cannot).
     pub stable_seeds: usize,
+    /// The run of fruitless fresh seeds that ends monodromy is at least this many times the
+    /// number of solutions over the fewest that one seed brought (with the loops that followed
+    /// it): seeds land on a component of the solutions about in proportion to its size, so a
+    /// further component as small as the smallest found is missed with probability about
+    /// e^(−confidence). 0: `stable_seeds` alone. Fruitless seeds are cheap (one path each).
+    pub confidence: f64,
     /// Monodromy stops after this many loops in any case.
     pub max_loops: usize,
     /// A generic root count known in advance (40 for a general 6-6 platform): monodromy stops
@@ -142,6 +175,7 @@ impl Default for ModesOptions {
             seed: 2015,
             stable_loops: 10,
             stable_seeds: 8,
+            confidence: 3.0,
             max_loops: 200,
             expected: None,
             scale: 0.0,
@@ -213,6 +247,43 @@ pub struct StartReport {
     /// Candidate symmetries ([`Mechanism::symmetry`]) kept: each maps a generic root to
     /// another root (Tsai's 3-UPU: three, one leg spin each, so its roots come in eights).
     pub symmetries: usize,
+    /// How monodromy ended.
+    pub ended: Ended,
+    /// Loops run after the last new solution (0 if it came from a seed with no loop after it).
+    pub loops_since_new: usize,
+    /// Fresh seeds tried after the last new solution.
+    pub seeds_since_new: usize,
+    /// Random seeds (after the first; the mechanism's home not counted) that brought solutions
+    /// the loops had not reached. Each is a component of the solutions that the loops from
+    /// the others do not join, found by chance.
+    pub seed_finds: usize,
+    /// Whether the last new solution came from such a random seed or from the loops that
+    /// followed one: the final count was reached only by a late random find.
+    pub last_after_seed: bool,
+    /// Solutions known when the first loops settled (before any further seed).
+    pub first_settled: usize,
+    /// The fewest solutions one seed (the first, the home or a later one) brought with the
+    /// loops that followed it: the smallest component seen.
+    pub smallest_find: usize,
+    /// The run of fruitless fresh seeds the last round of seeds required (see
+    /// [`ModesOptions::confidence`]); 0 if the loop cap or the expected count ended monodromy
+    /// before any.
+    pub seeds_needed: usize,
+}
+
+/// How monodromy ended ([`StartReport::ended`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Ended {
+    /// Count stability: [`ModesOptions::stable_loops`] loops and then the required run of fresh
+    /// seeds in a row brought nothing new.
+    Stable,
+    /// [`ModesOptions::max_loops`] was reached first: the count may be short.
+    LoopCap,
+    /// [`ModesOptions::expected`] solutions were found.
+    Expected,
+    /// No monodromy: the start solutions were given ([`AllModes::from_starts`]).
+    #[default]
+    Given,
 }
 
 /// The solver for every assembly mode of a mechanism: its start solutions at a generic
@@ -265,6 +336,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         let stop = Stopping {
             stable_loops: options.stable_loops.max(1),
             stable_seeds: options.stable_seeds,
+            confidence: options.confidence,
             max_loops: options.max_loops.max(1),
             expected: options.expected,
         };
@@ -281,6 +353,18 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             loops: found.loops,
             failed_paths: found.failed_paths,
             symmetries: sym.count(),
+            ended: found.ending,
+            loops_since_new: found.loops_since_new,
+            seeds_since_new: found.seeds_since_new,
+            seed_finds: found.seed_finds,
+            last_after_seed: found.last_after_seed,
+            first_settled: found.first_settled,
+            smallest_find: if found.smallest == usize::MAX {
+                0
+            } else {
+                found.smallest
+            },
+            seeds_needed: found.seeds_needed,
         };
         me.report = report;
         me.starts = starts;
@@ -395,7 +479,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     }
 
     fn prepare(sys: S, options: &ModesOptions) -> Result<Self, ModesError> {
-        if !options.scale.is_finite() || options.scale < 0.0 {
+        if !options.scale.is_finite()
+            || options.scale < 0.0
+            || !options.confidence.is_finite()
+            || options.confidence < 0.0
+        {
             return Err(ModesError::NonFinite);
         }
         let scale = if options.scale > 0.0 {
@@ -483,9 +571,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     /// Every root at inputs `x`, into `out`. No heap, no panic; NaN, infinite or out-of-range
     /// inputs are errors. Each of the [`AllModes::start_count`] paths gets an endpoint; a
     /// target with fewer isolated roots than generic shows diverging or singular endpoints.
-    /// Where some paths end short of a regular root, every start is tracked again along up to
-    /// three other γ-bent paths, and the new roots they reach take the failed paths' places
-    /// (so an endpoint's index is its start's only where no such refill happened).
+    /// Where some paths end short of a regular root, the conjugates of the complex roots
+    /// found (the target is real), every start tracked again along up to three other γ-bent
+    /// paths, and the failed paths retracked with double-double residuals far out fill their
+    /// places (so an endpoint's index is its start's only where no such refill happened).
     pub fn solve(&self, x: &[f64; M], out: &mut Roots<N, K>) -> Result<(), ModesError> {
         if !x.iter().all(|c| c.is_finite()) {
             return Err(ModesError::NonFinite);
@@ -502,9 +591,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             out.endpoints[i] = self.retried_endpoint(&path, i, &target, &mut ws);
         }
         self.separate_duplicates(&path, &target, out, &mut ws);
-        // Paths that still end short of a regular root: every start again along other
-        // γ-bent paths, which pass the degenerate parameters elsewhere, their new roots filling
-        // the places of the failed paths (see `refill.rs`).
+        // Paths that still end short of a regular root: conjugates, every start again along
+        // other γ-bent paths (which pass the degenerate parameters elsewhere), the failed ones
+        // in double-double far out; their new roots fill the failed paths' places
+        // (see `refill.rs`).
         self.refill_failed(&target, out, &mut ws);
         self.finish(x, out);
         Ok(())
@@ -573,7 +663,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
 
     /// Tracks start `i` along `path` with `model` and classifies where it ends; the endpoint's
     /// `z` is in the solver's own tracking coordinates whichever model tracked it.
-    fn endpoint(
+    pub(super) fn endpoint(
         &self,
         model: &Model<'_, S, N>,
         path: &ParameterPath<M>,

@@ -8,6 +8,7 @@
 //! stability (a number of consecutive loops that bring nothing new), or a count known in
 //! advance.
 
+use super::Ended;
 use super::complex::Complex;
 use super::inputs::Inputs;
 use super::path::ParameterPath;
@@ -28,6 +29,7 @@ const LOOP_SIZES: [f64; 2] = [3.0, 10.0];
 pub(crate) struct Stopping {
     pub(crate) stable_loops: usize,
     pub(crate) stable_seeds: usize,
+    pub(crate) confidence: f64,
     pub(crate) max_loops: usize,
     pub(crate) expected: Option<usize>,
 }
@@ -43,6 +45,22 @@ pub(crate) struct Found {
     pub(crate) failed_paths: usize,
     /// A solution would not fit the capacity.
     pub(crate) overflow: bool,
+    /// Loops run since the last one that brought a new solution (or since the seed that did).
+    pub(crate) loops_since_new: usize,
+    /// Seeds tried since the last new solution.
+    pub(crate) seeds_since_new: usize,
+    /// Random seeds (not the home) that brought solutions the loops had not reached.
+    pub(crate) seed_finds: usize,
+    /// The last new solution came from a random seed or from the loops that followed one.
+    pub(crate) last_after_seed: bool,
+    /// Solutions known when the first loops settled.
+    pub(crate) first_settled: usize,
+    /// How the run ended.
+    pub(crate) ending: Ended,
+    /// The fewest solutions one seed brought with the loops that followed it.
+    pub(crate) smallest: usize,
+    /// The run of fruitless fresh seeds the last stop required.
+    pub(crate) seeds_needed: usize,
 }
 
 /// Fills `out` with the solutions at `p0` in tracking coordinates, starting from `out[0]`
@@ -71,7 +89,20 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         seeds: 0,
         failed_paths: 0,
         overflow: false,
+        loops_since_new: 0,
+        seeds_since_new: 0,
+        seed_finds: 0,
+        last_after_seed: false,
+        first_settled: 0,
+        ending: Ended::Stable,
+        smallest: usize::MAX,
+        seeds_needed: 0,
     };
+    // Whether the loops now running follow a random seed that found something.
+    let mut after_seed = false;
+    let mut settled_once = false;
+    // Solutions known before the seed whose loops run now.
+    let mut round_from = 0;
     // Each root's orbit under the symmetries, as the index of its first member: an orbit is
     // added at once, so its members are consecutive.
     let mut orbit = [0usize; K];
@@ -125,6 +156,20 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                 new |= add(model, p0, sym, out, &mut orbit, &mut found, v, &mut ws);
             }
             stale = if new { 0 } else { stale + 1 };
+            if new {
+                found.loops_since_new = 0;
+                found.seeds_since_new = 0;
+                found.last_after_seed = after_seed;
+            } else {
+                found.loops_since_new += 1;
+            }
+        }
+        if !settled_once {
+            settled_once = true;
+            found.first_settled = found.count;
+        }
+        if found.count > round_from {
+            found.smallest = found.smallest.min(found.count - round_from);
         }
         (from, stable) = (0, stop.stable_loops);
         let mut new = false;
@@ -135,9 +180,14 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             home_pending = false;
             if let Ok((v, p)) = super::seed::seed_from_home(model, inputs) {
                 found.seeds += 1;
+                found.seeds_since_new += 1;
                 let before = found.count;
                 new = carry(model, &mut ws, (v, p), p0, sym, out, &mut orbit, &mut found);
                 if new {
+                    round_from = before;
+                    (found.loops_since_new, found.seeds_since_new) = (0, 0);
+                    found.last_after_seed = false;
+                    after_seed = false;
                     // The loops carry the home's component alone, and four times as long: a
                     // small component is cheap to carry, and needs many loops to show all of
                     // itself (the delta's two translations swap in about one loop of four:
@@ -147,15 +197,40 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             }
         }
         let mut stale_seeds = 0;
-        while !new && stale_seeds < stop.stable_seeds && !done(&found) {
+        // Fresh seeds land on a component about in proportion to its number of solutions;
+        // one as small as the smallest found so far (m of n) is missed by k seeds in a row
+        // with probability (1 − m/n)^k ≈ e^(−k m / n).
+        let needed = stop.stable_seeds.max(libm::ceil(
+            stop.confidence * found.count as f64 / found.smallest.max(1) as f64,
+        ) as usize);
+        if !done(&found) {
+            found.seeds_needed = needed;
+        }
+        while !new && stale_seeds < needed && !done(&found) {
             found.seeds += 1;
+            found.seeds_since_new += 1;
             stale_seeds += 1;
             let Ok(seed) = super::seed::seed(model, inputs, rng) else {
                 continue;
             };
+            let before = found.count;
             new = carry(model, &mut ws, seed, p0, sym, out, &mut orbit, &mut found);
+            if new {
+                round_from = before;
+                found.seed_finds += 1;
+                (found.loops_since_new, found.seeds_since_new) = (0, 0);
+                found.last_after_seed = true;
+                after_seed = true;
+            }
         }
         if !new || done(&found) {
+            found.ending = if stop.expected.is_some_and(|e| found.count >= e) {
+                Ended::Expected
+            } else if found.loops >= stop.max_loops {
+                Ended::LoopCap
+            } else {
+                Ended::Stable
+            };
             return found;
         }
     }

@@ -17,12 +17,40 @@ use crate::Mechanism;
 /// `factored`: `ws` already holds a factorisation of the Jacobian near `v` at `p` (the
 /// tracker's last step leaves one at its predicted point), used until the corrections stop
 /// contracting fast.
+///
+/// Far out (beyond [`WIDE_BEYOND`] times the scale), where the floor of f64 can lie above
+/// [`FLOOR`],
+/// a failure is tried again with the residual in double-double (`extended.rs`).
 pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     model: &Model<'_, S, N>,
     v: &mut [Complex; N],
     p: &[Complex; M],
     ws: &mut Workspace<N>,
     factored: bool,
+) -> bool {
+    let from = *v;
+    if newton(model, v, p, ws, factored, false) {
+        return true;
+    }
+    if !(model.size(&from) > WIDE_BEYOND) {
+        return false;
+    }
+    *v = from;
+    newton(model, v, p, ws, false, true)
+}
+
+/// Beyond this size (in units of the scale) a root that f64 cannot polish is tried in
+/// double-double, and so are the corrections of `Settings::FAR` paths: roots 10⁴ times the
+/// mechanism's size away still polish in f64.
+pub(crate) const WIDE_BEYOND: f64 = 1e4;
+
+fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    model: &Model<'_, S, N>,
+    v: &mut [Complex; N],
+    p: &[Complex; M],
+    ws: &mut Workspace<N>,
+    factored: bool,
+    wide: bool,
 ) -> bool {
     let (values, lu) = ws.scratch();
     let mut previous = f64::INFINITY;
@@ -34,7 +62,11 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if refactor && !model.factor(v, p, values, lu) {
             return false;
         }
-        let d = model.newton(lu, v, p);
+        let d = if wide {
+            model.newton_wide(lu, v, p)
+        } else {
+            model.newton(lu, v, p)
+        };
         let n = model.norm(&d, v);
         if !n.is_finite() {
             return false;

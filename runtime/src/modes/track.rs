@@ -48,6 +48,8 @@ pub(crate) struct Settings {
     pub(crate) max_steps: usize,
     /// A path whose weighted size exceeds this diverges.
     pub(crate) max_norm: f64,
+    /// Newton's corrections far out from the residual in double-double (see `extended.rs`).
+    pub(crate) extended: bool,
 }
 
 impl Settings {
@@ -59,6 +61,19 @@ impl Settings {
         max_error: 1e-1,
         max_steps: 2000,
         max_norm: 1e8,
+        extended: false,
+    };
+
+    /// For the starts of places still empty after every γ's refill (see `refill.rs`): the
+    /// corrections beyond `polish::WIDE_BEYOND` times the scale from the residual in
+    /// double-double, whose rounding floor lies far below f64's; the steps between those of
+    /// the default and the careful settings.
+    pub(crate) const FAR: Settings = Settings {
+        extended: true,
+        tau: 1e-3,
+        max_error: 1e-2,
+        max_steps: 3000,
+        ..Settings::CAREFUL
     };
 
     /// Smaller predictions: for paths retracked after they ended on another path's root.
@@ -70,6 +85,7 @@ impl Settings {
         max_error: 1e-4,
         max_steps: 20000,
         max_norm: 1e8,
+        extended: false,
     };
 }
 
@@ -307,6 +323,25 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         f
     }
 
+    /// The Newton correction with the residual evaluated in double-double.
+    pub(crate) fn newton_wide<const M: usize>(
+        &self,
+        lu: &Lu<N>,
+        z: &[Complex; N],
+        p: &[Complex; M],
+    ) -> [Complex; N]
+    where
+        S: Mechanism<N, M>,
+    {
+        let chart = self.chart.map(|ch| (&ch.c, &ch.degree));
+        let mut f = super::extended::residual(self.sys, chart, z, p);
+        for x in f.iter_mut() {
+            *x = -*x;
+        }
+        lu.solve(self.plan, &mut f);
+        f
+    }
+
     /// Taylor coefficients z₁, z₂, z₃ of the path through `z` at `s` (J at z factored in `lu`).
     fn taylor<const M: usize>(
         &self,
@@ -470,7 +505,11 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         let mut second = f64::NAN;
         let mut previous = f64::INFINITY;
         for it in 0..4 {
-            let d = self.newton(&ws.lu, w, p);
+            let d = if set.extended && self.size(w) > super::polish::WIDE_BEYOND {
+                self.newton_wide(&ws.lu, w, p)
+            } else {
+                self.newton(&ws.lu, w, p)
+            };
             let n = self.norm(&d, w);
             if !n.is_finite() || (it == 0 && n > set.max_error) {
                 return None;

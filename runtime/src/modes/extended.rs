@@ -1,0 +1,249 @@
+//! The residual in double-double complex arithmetic (about 32 significant digits), for roots
+//! far out.
+//!
+//! A delta robot at crank angles close to one another has complex roots 10⁷ times its size
+//! away, near points at infinity where the projective Jacobian is nearly singular: Newton's
+//! corrections there stall at a rounding floor above what the tracker and `polish` accept,
+//! because the residual, a sum of terms |v|² in size that cancel, is evaluated to only 16
+//! digits. Evaluated in double-double (Dekker's exact sums and products), with the
+//! factorisation and the iterate still in f64 (mixed-precision iterative refinement), the
+//! corrections go on contracting far below that floor. Only paths that failed in f64 are
+//! tracked or polished so; the angles' sines and cosines are taken in f64 (a fixed function
+//! of the parameters, so the equations stay one smooth system).
+
+use super::complex::Complex;
+use core::ops::{Add, Mul, Neg, Sub};
+
+/// `hi + lo` with `|lo| ≤ ulp(hi) / 2`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Dd {
+    hi: f64,
+    lo: f64,
+}
+
+/// `a + b` exactly, as a sum and its rounding error.
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// `a + b` exactly where `|a| ≥ |b|`.
+#[inline(always)]
+fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+/// Dekker's split of a double into two halves of 26 bits.
+#[inline(always)]
+fn split(a: f64) -> (f64, f64) {
+    let t = 134_217_729.0 * a; // 2^27 + 1
+    let hi = t - (t - a);
+    (hi, a - hi)
+}
+
+/// `a · b` exactly, as a product and its rounding error (no fused multiply–add needed).
+#[inline(always)]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+impl Dd {
+    const fn new(x: f64) -> Dd {
+        Dd { hi: x, lo: 0.0 }
+    }
+
+    /// `1 / self`: one Newton correction of the f64 quotient.
+    fn recip(self) -> Dd {
+        let q1 = 1.0 / self.hi;
+        let r = Dd::new(1.0) - self * Dd::new(q1);
+        let q2 = r.hi / self.hi;
+        let (hi, lo) = quick_two_sum(q1, q2);
+        Dd { hi, lo }
+    }
+}
+
+impl Add for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn add(self, b: Dd) -> Dd {
+        let (s, e) = two_sum(self.hi, b.hi);
+        let (t, f) = two_sum(self.lo, b.lo);
+        let (s, e) = quick_two_sum(s, e + t);
+        let (hi, lo) = quick_two_sum(s, e + f);
+        Dd { hi, lo }
+    }
+}
+
+impl Neg for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn neg(self) -> Dd {
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl Sub for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn sub(self, b: Dd) -> Dd {
+        self + -b
+    }
+}
+
+impl Mul for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn mul(self, b: Dd) -> Dd {
+        let (p, e) = two_prod(self.hi, b.hi);
+        let (hi, lo) = quick_two_sum(p, e + (self.hi * b.lo + self.lo * b.hi));
+        Dd { hi, lo }
+    }
+}
+
+/// A complex number in double-double parts: the scalar of [`residual`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Wide {
+    re: Dd,
+    im: Dd,
+}
+
+impl Wide {
+    fn from(c: Complex) -> Wide {
+        Wide {
+            re: Dd::new(c.re),
+            im: Dd::new(c.im),
+        }
+    }
+
+    fn round(self) -> Complex {
+        Complex::new(self.re.hi + self.re.lo, self.im.hi + self.im.lo)
+    }
+
+    fn recip(self) -> Wide {
+        let inv = (self.re * self.re + self.im * self.im).recip();
+        Wide {
+            re: self.re * inv,
+            im: -(self.im * inv),
+        }
+    }
+}
+
+impl Add for Wide {
+    type Output = Wide;
+    #[inline(always)]
+    fn add(self, b: Wide) -> Wide {
+        Wide {
+            re: self.re + b.re,
+            im: self.im + b.im,
+        }
+    }
+}
+
+impl Sub for Wide {
+    type Output = Wide;
+    #[inline(always)]
+    fn sub(self, b: Wide) -> Wide {
+        Wide {
+            re: self.re - b.re,
+            im: self.im - b.im,
+        }
+    }
+}
+
+impl Neg for Wide {
+    type Output = Wide;
+    #[inline(always)]
+    fn neg(self) -> Wide {
+        Wide {
+            re: -self.re,
+            im: -self.im,
+        }
+    }
+}
+
+impl Mul for Wide {
+    type Output = Wide;
+    #[inline(always)]
+    fn mul(self, b: Wide) -> Wide {
+        Wide {
+            re: self.re * b.re - self.im * b.im,
+            im: self.re * b.im + self.im * b.re,
+        }
+    }
+}
+
+impl crate::Scalar for Wide {
+    fn from_f64(x: f64) -> Self {
+        Wide::from(Complex::real(x))
+    }
+    fn sq(self) -> Self {
+        self * self
+    }
+    // The inputs' sines and cosines in f64 (see the module docs).
+    fn sin(self) -> Self {
+        Wide::from(<Complex as crate::Scalar>::sin(self.round()))
+    }
+    fn cos(self) -> Self {
+        Wide::from(<Complex as crate::Scalar>::cos(self.round()))
+    }
+}
+
+/// The equations in tracking coordinates at (z, p), evaluated in double-double and rounded:
+/// F(z, p), or with a projective chart `w^d F(z / w)` with `w = 1 − c·z` (whose cancellation
+/// near infinity is exactly what needs the extra digits).
+pub(crate) fn residual<S: crate::Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    chart: Option<(&[Complex; N], &[u8; N])>,
+    z: &[Complex; N],
+    p: &[Complex; M],
+) -> [Complex; N] {
+    let zw = z.map(Wide::from);
+    let pw = p.map(Wide::from);
+    let mut f = [Wide::default(); N];
+    match chart {
+        None => sys.residual_in(&zw, &pw, &mut f),
+        Some((c, degree)) => {
+            let mut w = Wide::from(Complex::ONE);
+            for i in 0..N {
+                w = w - Wide::from(c[i]) * zw[i];
+            }
+            let inv = w.recip();
+            let v = zw.map(|x| x * inv);
+            sys.residual_in(&v, &pw, &mut f);
+            for i in 0..N {
+                for _ in 0..degree[i] {
+                    f[i] = f[i] * w;
+                }
+            }
+        }
+    }
+    f.map(Wide::round)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn double_double_keeps_what_f64_rounds_away() {
+        // (1 + 2⁻⁶⁰)² − 1 = 2⁻⁵⁹ + 2⁻¹²⁰: zero in f64.
+        let e = libm::ldexp(1.0, -60);
+        let a = Dd { hi: 1.0, lo: e };
+        let d = a * a - Dd::new(1.0);
+        assert!(((d.hi + d.lo) - 2.0 * e).abs() <= 1e-30);
+        let x = Dd::new(3.0).recip() * Dd::new(3.0) - Dd::new(1.0);
+        assert!((x.hi + x.lo).abs() <= 1e-31);
+        let z = Wide::from(Complex::new(3.0, -4.0));
+        let one = (z * z.recip()).round();
+        assert!((one.re - 1.0).abs() < 1e-15 && one.im.abs() < 1e-15);
+    }
+}
