@@ -315,12 +315,7 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
     where
         S: Mechanism<N, M>,
     {
-        let mut f = self.residual(z, p);
-        for x in f.iter_mut() {
-            *x = -*x;
-        }
-        lu.solve(self.plan, &mut f);
-        f
+        self.correction(lu, self.residual(z, p))
     }
 
     /// The Newton correction with the residual evaluated in double-double.
@@ -334,7 +329,11 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         S: Mechanism<N, M>,
     {
         let chart = self.chart.map(|ch| (&ch.c, &ch.degree));
-        let mut f = super::extended::residual(self.sys, chart, z, p);
+        self.correction(lu, super::extended::residual(self.sys, chart, z, p))
+    }
+
+    /// −J⁻¹ G for the residual `f` = G(z, p), with a factorisation of J.
+    fn correction(&self, lu: &Lu<N>, mut f: [Complex; N]) -> [Complex; N] {
         for x in f.iter_mut() {
             *x = -*x;
         }
