@@ -72,10 +72,11 @@ pub fn fixed_factor(
     }
     let at = fixed_offsets(lu, region.fixed);
     // Row by row (Doolittle's order): row i takes the multipliers of the rows above it, then
-    // yields its part of U. Only the current row is live in registers; finished rows of U are
-    // read back from the storage (see the reborrow at the end of a row).
+    // yields its part of U. Only the current row and the finished rows of U that are still
+    // needed are live, which keeps the registers from spilling much.
     let mut body = Vec::new();
     let mut sinks = Vec::new();
+    let mut pivots = Vec::new();
     let mut assigned = lu.initial.clone();
     for i in 0..k {
         for j in 0..k {
@@ -90,6 +91,7 @@ pub fn fixed_factor(
             }
         }
         for p in (0..i).filter(|&p| lu.filled[i][p]) {
+            let recip = format_ident!("r{}", p);
             let m = format_ident!("m{}_{}", i, p);
             let source = z(i, p);
             let o = at[i][p].unwrap_or(0);
@@ -98,9 +100,8 @@ pub fn fixed_factor(
             // so that the accumulator is their destination. A NaN multiplier is not caught
             // here (the next one replaces a NaN accumulator): it comes from a NaN entry or
             // pivot, which reaches det Z or the sink (see the module documentation).
-            let ro = at[p][p].unwrap_or(0);
             body.push(quote! {
-                let #m = #source * f[#ro];
+                let #m = #source * #recip;
                 f[#o] = #m;
                 high = if high > #m { high } else { #m };
                 low = if low < #m { low } else { #m };
@@ -111,8 +112,7 @@ pub fn fixed_factor(
             }
             for j in right {
                 let target = z(i, j);
-                let uo = at[p][j].unwrap_or(0);
-                let u = quote!(f[#uo]);
+                let u = z(p, j);
                 if assigned[i][j] {
                     body.push(quote!(#target -= #m * #u;));
                 } else {
@@ -125,18 +125,7 @@ pub fn fixed_factor(
         let recip = format_ident!("r{}", i);
         let ri = at[i][i].unwrap_or(0);
         body.push(quote!(let #recip = 1.0 / #pivot; f[#ri] = #recip;));
-        // The determinant and the pivots' extremes accumulate row by row (the same products
-        // in the same order as one expression), so no pivot stays live to the end.
-        if i == 0 {
-            body.push(quote!(let mut det = #pivot;));
-        } else {
-            body.push(quote!(det *= #pivot;));
-        }
-        body.push(quote! {
-            let pivot_abs = #pivot.abs();
-            pmin = if pivot_abs < pmin { pivot_abs } else { pmin };
-            pmax = if pivot_abs > pmax { pivot_abs } else { pmax };
-        });
+        pivots.push(pivot);
         let below_empty = lu.below(i).next().is_none();
         for j in lu.right(i) {
             let u = z(i, j);
@@ -146,13 +135,6 @@ pub fn fixed_factor(
                 sinks.push(quote!(#u));
             }
         }
-        // Row i of U is final and stored: the rows below read it (and the reciprocal pivots)
-        // back from the storage rather than keep it in registers. An opaque reborrow of the
-        // storage makes the compiler load the stored values instead of keeping them live:
-        // with 16 SSE registers it spilled them to the stack anyway, a second store and load
-        // of values already stored. Callgrind (`count`, Stewart platform): NR from home
-        // −1.1 %, the tracker −1.2 %, PH −0.5 %. Performance only: the values are the same.
-        body.push(quote!(let f = ::core::hint::black_box(&mut *f);));
     }
     let max = MAX_MULTIPLIER;
     let sink = if sinks.is_empty() {
@@ -160,12 +142,23 @@ pub fn fixed_factor(
     } else {
         quote!(#(#sinks)+*)
     };
+    let abs_pivots = pivots.iter().map(|p| quote!(#p.abs()));
+    let det = pivots
+        .iter()
+        .map(|p| quote!(#p))
+        .reduce(|a, b| quote!(#a * #b))
+        .unwrap_or_else(|| quote!(1.0f64));
     quote! {{
         let (mut high, mut low) = (0.0f64, 0.0f64);
-        let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
         #(#body)*
+        let det = #det;
         let sink: f64 = #sink;
         if high <= #max && low >= -#max && det.is_finite() && det != 0.0 && sink.is_finite() {
+            let (mut pmin, mut pmax) = (f64::INFINITY, 0.0f64);
+            for a in [#(#abs_pivots),*] {
+                pmin = if a < pmin { a } else { pmin };
+                pmax = if a > pmax { a } else { pmax };
+            }
             ::core::option::Option::Some((det, pmin / pmax))
         } else {
             ::core::option::Option::None
