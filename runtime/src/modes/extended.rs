@@ -14,6 +14,11 @@
 use super::complex::Complex;
 use core::ops::{Add, Mul, Neg, Sub};
 
+/// Beyond this size (in units of the scale) a root that f64 cannot polish is tried in
+/// double-double, and so are the corrections of `Settings::FAR` paths: roots 10⁴ times the
+/// mechanism's size away still polish in f64.
+pub(crate) const WIDE_BEYOND: f64 = 1e4;
+
 /// `hi + lo` with `|lo| ≤ ulp(hi) / 2`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Dd {

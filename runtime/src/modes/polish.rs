@@ -4,6 +4,7 @@
 //! queries' endpoints.
 
 use super::complex::Complex;
+use super::extended::WIDE_BEYOND;
 use super::track::{Model, Workspace};
 use crate::Mechanism;
 
@@ -38,11 +39,6 @@ pub(crate) fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
     *v = from;
     newton(model, v, p, ws, false, true)
 }
-
-/// Beyond this size (in units of the scale) a root that f64 cannot polish is tried in
-/// double-double, and so are the corrections of `Settings::FAR` paths: roots 10⁴ times the
-/// mechanism's size away still polish in f64.
-pub(crate) const WIDE_BEYOND: f64 = 1e4;
 
 fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     model: &Model<'_, S, N>,

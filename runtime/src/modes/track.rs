@@ -65,7 +65,7 @@ impl Settings {
     };
 
     /// For the starts of places still empty after every γ's refill (see `refill.rs`): the
-    /// corrections beyond `polish::WIDE_BEYOND` times the scale from the residual in
+    /// corrections beyond `extended::WIDE_BEYOND` times the scale from the residual in
     /// double-double, whose rounding floor lies far below f64's; the steps between those of
     /// the default and the careful settings.
     pub(crate) const FAR: Settings = Settings {
@@ -504,7 +504,7 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         let mut second = f64::NAN;
         let mut previous = f64::INFINITY;
         for it in 0..4 {
-            let d = if set.extended && self.size(w) > super::polish::WIDE_BEYOND {
+            let d = if set.extended && self.size(w) > super::extended::WIDE_BEYOND {
                 self.newton_wide(&ws.lu, w, p)
             } else {
                 self.newton(&ws.lu, w, p)
