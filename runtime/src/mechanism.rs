@@ -22,6 +22,11 @@ pub trait Mechanism<const N: usize, const M: usize> {
     const PATTERN: &'static [(usize, usize)];
     /// Each nonzero's expression, in [`Self::PATTERN`] order.
     const JACOBIAN: &'static [&'static str];
+    /// Whether any entry of ∂F/∂v mentions an input. Where none does (a Stewart platform: the
+    /// legs' lengths enter F only as constants), B and its factorisation at a point are the
+    /// same for every target, so [`NewtonRaphson`](crate::NewtonRaphson) factors B at its start
+    /// once for all its solves. `true` unless generated (always safe).
+    const JACOBIAN_USES_INPUTS: bool = true;
     /// The platform pivots whose coordinates make up `v`.
     const POINTS: &'static [&'static str];
     /// Indices into [`Self::POINTS`] of the three non-collinear pivots that locate the platform.

@@ -59,6 +59,34 @@ struct Best {
     det: f64,
 }
 
+/// B factored at the point a Newton run starts from, ahead of the run (the run's first
+/// correction is then a residual and a solve).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Prefactored<F> {
+    pub factor: F,
+    /// det B there.
+    pub det: f64,
+}
+
+/// Work a Newton–Raphson run can skip that a plain run cannot.
+#[derive(Clone, Copy)]
+pub(crate) struct Shortcuts<'a, F> {
+    /// Chord steps where they save a factorisation ([`Chords`]; final rule and generated
+    /// factorisation only).
+    pub chords: bool,
+    /// B factored at the start with the generated factorisation, valid for every target (the
+    /// caller's promise: B does not depend on the inputs); ignored for the dense baseline.
+    pub at_start: Option<&'a Prefactored<F>>,
+}
+
+impl<F> Shortcuts<'_, F> {
+    /// A plain Newton run.
+    pub(crate) const NONE: Self = Shortcuts {
+        chords: false,
+        at_start: None,
+    };
+}
+
 #[inline]
 pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
@@ -67,14 +95,13 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
     rule: Rule,
 ) -> Newton<N> {
-    newton_scaled(sys, &v, size(&v), x, options, rule, false)
+    newton_scaled(sys, &v, size(&v), x, options, rule, Shortcuts::NONE)
 }
 
-/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::Start)'s, computed once), and, if
-/// `chords`, chord steps where they save a factorisation ([`Chords`]; final rule and generated
-/// factorisation only). They pay in a long run from a distant start (Newton–Raphson); a final
-/// correction after continuation starts next to the root, where they would save nothing and,
-/// near a singularity, would only move the answer to another point of the rounding floor.
+/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::Start)'s, computed once), and the
+/// `shortcuts` Newton–Raphson takes. Chord steps pay in a long run from a distant start; a
+/// final correction after continuation starts next to the root, where they would save nothing
+/// and, near a singularity, would only move the answer to another point of the rounding floor.
 pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
@@ -82,7 +109,7 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
     rule: Rule,
-    chords: bool,
+    shortcuts: Shortcuts<'_, S::Factor>,
 ) -> Newton<N> {
     let tolerance = options.tolerance;
     let mut convergence = Convergence::with_scale(tolerance, scale);
@@ -99,13 +126,27 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut stalls = 0;
     // Under the final rule only (intermediate points stop early anyway), and only with the
     // generated factorisation (the dense baseline stays plain Newton).
-    let use_chords = chords && rule == Rule::Final && options.linear == Linear::Generated;
+    let generated = options.linear == Linear::Generated;
+    let use_chords = shortcuts.chords && rule == Rule::Final && generated;
     let mut chords = Chords::new();
+    // The first correction with B factored ahead: bit for bit the one `update` would compute,
+    // B being the same at the start for every target. No chord step can follow it (`fac` is
+    // still empty): `Chords` knows no contraction after a single correction.
+    // Checked again here, at compile time: where B depends on the inputs the branch is gone.
+    let mut at_start = shortcuts
+        .at_start
+        .filter(|_| generated && !S::JACOBIAN_USES_INPUTS);
     let ending = loop {
         if iterations >= options.max_iterations {
             break Ending::Exhausted;
         }
-        match c.update(sys, &current, x, options.linear, &mut fac) {
+        let corrected = match at_start.take() {
+            Some(pre) => c
+                .chord(sys, &current, x, &pre.factor)
+                .map(|()| c.det = pre.det),
+            None => c.update(sys, &current, x, options.linear, &mut fac),
+        };
+        match corrected {
             Ok(()) => {}
             Err(Failure::Singular) => {
                 return Newton {

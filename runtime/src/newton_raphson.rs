@@ -3,7 +3,7 @@
 //! assembly mode. The det B sign check catches some of those, not all, so a converged result is
 //! [`Status::Unverified`](crate::Status::Unverified), never `Converged`.
 
-use crate::newton::{Ending, Rule, newton_scaled};
+use crate::newton::{Ending, Prefactored, Rule, Shortcuts, newton_scaled};
 use crate::outcome::{Account, conclude, unverified};
 use crate::{Mechanism, Options, Solution, SolveError, Start};
 
@@ -48,11 +48,108 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
+    solve(sys, start, None, x, options)
+}
+
+/// [`newton_raphson`] for many targets from one start: where B does not depend on the inputs
+/// ([`Mechanism::JACOBIAN_USES_INPUTS`] is `false`, as for a Stewart platform), B is factored
+/// at the start once, here, and every solve's first Newton correction reuses it — the same
+/// iterates, the same answer, one factorisation fewer per solve. Otherwise it is
+/// [`newton_raphson`] with the start kept.
+///
+/// ```
+/// use linkage::{newton_raphson, Mechanism, NewtonRaphson, Options, Pose, Start};
+/// # linkage::mechanism! {
+/// #     pub struct Rps;
+/// #     base {
+/// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+/// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+/// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+/// #     }
+/// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+/// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+/// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+/// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+/// # }
+/// let rps = Rps::new();
+/// let v0 = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+/// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+/// let start = Start::new(&rps, v0, x0).unwrap();
+/// // The legs' lengths enter F as constants: B at the start serves every target.
+/// assert!(!Rps::JACOBIAN_USES_INPUTS);
+/// let nr = NewtonRaphson::new(&rps, start);
+/// for x in [[160.0, 155.0, 158.0], [150.0, 151.0, 149.0]] {
+///     let once = newton_raphson(&rps, &start, &x, &Options::TIGHT).unwrap();
+///     assert_eq!(nr.solve(&x, &Options::TIGHT).unwrap(), once);
+/// }
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct NewtonRaphson<'a, S: Mechanism<N, M>, const N: usize, const M: usize> {
+    sys: &'a S,
+    start: Start<N, M>,
+    /// B factored at the start, where it is the same for every target.
+    at_start: Option<Prefactored<S::Factor>>,
+}
+
+impl<'a, S: Mechanism<N, M>, const N: usize, const M: usize> NewtonRaphson<'a, S, N, M> {
+    /// Newton–Raphson from `start`, with B factored there if it serves every target.
+    pub fn new(sys: &'a S, start: Start<N, M>) -> Self {
+        let at_start = if S::JACOBIAN_USES_INPUTS {
+            None
+        } else {
+            let mut factor = sys.new_factor();
+            // `None` cannot happen for a checked start (B regular there); the solves then
+            // factor B themselves.
+            sys.factor(start.v(), start.x(), &mut factor)
+                .map(|info| Prefactored {
+                    factor,
+                    det: info.det,
+                })
+        };
+        NewtonRaphson {
+            sys,
+            start,
+            at_start,
+        }
+    }
+
+    /// The start every solve begins at.
+    pub fn start(&self) -> &Start<N, M> {
+        &self.start
+    }
+
+    /// [`newton_raphson`] from the start to `x`.
+    #[inline]
+    pub fn solve(&self, x: &[f64; M], options: &Options) -> Result<Solution<N>, SolveError> {
+        solve(self.sys, &self.start, self.at_start.as_ref(), x, options)
+    }
+}
+
+#[inline(always)]
+fn solve<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    at_start: Option<&Prefactored<S::Factor>>,
+    x: &[f64; M],
+    options: &Options,
+) -> Result<Solution<N>, SolveError> {
     // F at the start is Newton's first residual: its overflow shows there, not in a check.
     crate::start::check_sample(sys, start, x, options)?;
     // With chord steps: from a distant start, they save a factorisation in about half the
     // solves (BENCHMARKS.md, Instruction counts).
-    let run = newton_scaled(sys, start.v(), start.scale(), x, options, Rule::Final, true);
+    let shortcuts = Shortcuts {
+        chords: true,
+        at_start,
+    };
+    let run = newton_scaled(
+        sys,
+        start.v(),
+        start.scale(),
+        x,
+        options,
+        Rule::Final,
+        shortcuts,
+    );
     if run.ending == Ending::NonFinite && run.iterations == 0 {
         return Err(SolveError::NonFinite);
     }

@@ -301,3 +301,70 @@ fn detours_around_folds_stay_on_the_branch() {
         "the sample should contain folds that a detour passes"
     );
 }
+
+/// `NewtonRaphson` factors B at its start once where B does not depend on the inputs: its
+/// solves must be `newton_raphson`'s, bit for bit (the same iterates, statuses and
+/// estimates), over every Table V point (near-singular ones included), with both options
+/// sets, for the Stewart platform, the 3-RPS (both reuse the factorisation) and the 6-RSS
+/// hexapod (B moves with its cranks: nothing is reused).
+#[test]
+fn prepared_newton_raphson_is_newton_raphson() {
+    use linkage::NewtonRaphson;
+    fn same<S: Mechanism<N, M>, const N: usize, const M: usize>(
+        sys: &S,
+        start: &linkage::Start<N, M>,
+        targets: &[[f64; M]],
+    ) {
+        let nr = NewtonRaphson::new(sys, *start);
+        for x in targets {
+            for options in [Options::TIGHT, Options::PAPER] {
+                let once = newton_raphson(sys, start, x, &options);
+                assert_eq!(nr.solve(x, &options), once, "{} at {x:?}", S::NAME);
+            }
+        }
+    }
+    const {
+        assert!(!stewart::Stewart::JACOBIAN_USES_INPUTS && !rps::Rps3::JACOBIAN_USES_INPUTS);
+        assert!(rss_hexapod::RssHexapod::JACOBIAN_USES_INPUTS);
+    }
+
+    let s = stewart::Stewart::new();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/data/table_v_points.csv"
+    ))
+    .unwrap();
+    let mut legs: Vec<[f64; 6]> = text
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let f: Vec<f64> = line
+                .split(',')
+                .skip(1)
+                .take(6)
+                .map(|t| t.parse().unwrap())
+                .collect();
+            std::array::from_fn(|j| f[j])
+        })
+        .collect();
+    assert_eq!(legs.len(), 200);
+    // Home itself (the first correction is the answer) and a target no leg can reach.
+    let home = stewart::home_start(&s).unwrap();
+    legs.extend([*home.x(), [1e4; 6]]);
+    same(&s, &home, &legs);
+
+    let mut rng = Rng::new(11);
+    let r = rps::Rps3::new();
+    let st = rps::home_start(&r).unwrap();
+    let targets: Vec<[f64; 3]> = (0..50)
+        .map(|_| std::array::from_fn(|i| st.x()[i] + rng.uniform(-40.0, 40.0)))
+        .collect();
+    same(&r, &st, &targets);
+
+    let h = rss_hexapod::RssHexapod::new();
+    let st = rss_hexapod::home_start(&h).unwrap();
+    let targets: Vec<[f64; 6]> = (0..20)
+        .map(|_| std::array::from_fn(|i| st.x()[i] + rng.uniform(-0.3, 0.3)))
+        .collect();
+    same(&h, &st, &targets);
+}

@@ -22,6 +22,9 @@ pub fn expand(
     let nc = model.constants.len();
     let jac = model.jacobian();
     let nnz = jac.len();
+    let jacobian_uses_inputs = jac
+        .iter()
+        .any(|(_, _, e)| (0..m).any(|j| e.depends_on(Var::Input(j))));
 
     let geometry_names = model.slots.iter().map(|s| s.name.as_str());
     let defaults = model.slots.iter().map(|s| lit(s.default));
@@ -341,6 +344,7 @@ pub fn expand(
             const NNZ: usize = #nnz;
             const PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
             const JACOBIAN: &'static [&'static str] = &[#(#jacobian_text),*];
+            const JACOBIAN_USES_INPUTS: bool = #jacobian_uses_inputs;
             const POINTS: &'static [&'static str] = &[#(#point_names),*];
             const FRAME: [usize; 3] = [#f0, #f1, #f2];
 
