@@ -187,7 +187,7 @@ fn points(path: &str) -> Result<(Legs, Legs), String> {
 }
 
 #[inline(never)]
-fn measure_nr<S: Mechanism<N, M>, const N: usize, const M: usize>(
+fn measure_nr<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     rows: &[[f64; M]],
@@ -196,7 +196,7 @@ fn measure_nr<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let (mut ok, mut iterations) = (0, 0);
     // Prepared once, as a caller solving from one start would (B factored at the start where
     // it serves every target); counted with the solves.
-    let nr = NewtonRaphson::new(sys, *start);
+    let nr = NewtonRaphson::new(sys.clone(), *start);
     for x in rows {
         if let Ok(sol) = nr.solve(black_box(x), options) {
             // NR's converged results are `unverified`: it cannot establish the branch.

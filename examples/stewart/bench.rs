@@ -52,7 +52,7 @@ pub fn run(
     };
     // Newton–Raphson from home, prepared once as a caller solving from a fixed start would:
     // B factored at home serves every row (B does not depend on the leg lengths).
-    let from_home = linkage::NewtonRaphson::new(&sys, start);
+    let from_home = linkage::NewtonRaphson::new(sys.clone(), start);
     let mut times: Vec<f64> = Vec::new();
     let (mut failures, mut unproven, mut repetitions) = (0usize, 0usize, 0usize);
     let began = Instant::now();

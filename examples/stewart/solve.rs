@@ -136,6 +136,8 @@ struct RowSolver<S: SixSix> {
     /// tolerance (`unverified`: these methods never establish the branch).
     current: Start<18, 6>,
     tracker: Tracker<S, 18, 6>,
+    /// NR from the start, prepared once (B factored there serves every row).
+    from_start: linkage::NewtonRaphson<S, 18, 6>,
     options: Options,
     method: Method,
     track: bool,
@@ -158,6 +160,7 @@ impl<S: SixSix> RowSolver<S> {
         let size = mechanism_size(&sys);
         let tracker = Tracker::new(sys.clone(), start, options);
         RowSolver {
+            from_start: linkage::NewtonRaphson::new(sys.clone(), start),
             tracker: if args.certify {
                 tracker.certified()
             } else {
@@ -206,6 +209,9 @@ impl<S: SixSix> RowSolver<S> {
                 linkage::newton_homotopy(&self.sys, &self.current, &x, &self.options),
                 Via::Direct,
             ),
+            Method::Nr if self.current == self.start => {
+                (self.from_start.solve(&x, &self.options), Via::Direct)
+            }
             Method::Nr => (
                 linkage::newton_raphson(&self.sys, &self.current, &x, &self.options),
                 Via::Direct,

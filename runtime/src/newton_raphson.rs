@@ -77,23 +77,24 @@ pub fn newton_raphson<S: Mechanism<N, M>, const N: usize, const M: usize>(
 /// let start = Start::new(&rps, v0, x0).unwrap();
 /// // The legs' lengths enter F as constants: B at the start serves every target.
 /// assert!(!Rps::JACOBIAN_USES_INPUTS);
-/// let nr = NewtonRaphson::new(&rps, start);
+/// let nr = NewtonRaphson::new(rps.clone(), start);
 /// for x in [[160.0, 155.0, 158.0], [150.0, 151.0, 149.0]] {
 ///     let once = newton_raphson(&rps, &start, &x, &Options::TIGHT).unwrap();
 ///     assert_eq!(nr.solve(&x, &Options::TIGHT).unwrap(), once);
 /// }
 /// ```
-#[derive(Clone, Copy, Debug)]
-pub struct NewtonRaphson<'a, S: Mechanism<N, M>, const N: usize, const M: usize> {
-    sys: &'a S,
+#[derive(Clone, Debug)]
+pub struct NewtonRaphson<S: Mechanism<N, M>, const N: usize, const M: usize> {
+    sys: S,
     start: Start<N, M>,
     /// B factored at the start, where it is the same for every target.
     at_start: Option<Prefactored<S::Factor>>,
 }
 
-impl<'a, S: Mechanism<N, M>, const N: usize, const M: usize> NewtonRaphson<'a, S, N, M> {
-    /// Newton–Raphson from `start`, with B factored there if it serves every target.
-    pub fn new(sys: &'a S, start: Start<N, M>) -> Self {
+impl<S: Mechanism<N, M>, const N: usize, const M: usize> NewtonRaphson<S, N, M> {
+    /// Newton–Raphson for `sys` (owned, like a [`Tracker`](crate::Tracker)'s) from `start`,
+    /// with B factored there if it serves every target.
+    pub fn new(sys: S, start: Start<N, M>) -> Self {
         let at_start = if S::JACOBIAN_USES_INPUTS {
             None
         } else {
@@ -113,6 +114,11 @@ impl<'a, S: Mechanism<N, M>, const N: usize, const M: usize> NewtonRaphson<'a, S
         }
     }
 
+    /// The mechanism.
+    pub fn sys(&self) -> &S {
+        &self.sys
+    }
+
     /// The start every solve begins at.
     pub fn start(&self) -> &Start<N, M> {
         &self.start
@@ -121,7 +127,7 @@ impl<'a, S: Mechanism<N, M>, const N: usize, const M: usize> NewtonRaphson<'a, S
     /// [`newton_raphson`] from the start to `x`.
     #[inline]
     pub fn solve(&self, x: &[f64; M], options: &Options) -> Result<Solution<N>, SolveError> {
-        solve(self.sys, &self.start, self.at_start.as_ref(), x, options)
+        solve(&self.sys, &self.start, self.at_start.as_ref(), x, options)
     }
 }
 

@@ -310,12 +310,12 @@ fn detours_around_folds_stay_on_the_branch() {
 #[test]
 fn prepared_newton_raphson_is_newton_raphson() {
     use linkage::NewtonRaphson;
-    fn same<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    fn same<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
         sys: &S,
         start: &linkage::Start<N, M>,
         targets: &[[f64; M]],
     ) {
-        let nr = NewtonRaphson::new(sys, *start);
+        let nr = NewtonRaphson::new(sys.clone(), *start);
         for x in targets {
             for options in [Options::TIGHT, Options::PAPER] {
                 let once = newton_raphson(sys, start, x, &options);
