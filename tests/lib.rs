@@ -53,6 +53,36 @@ pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(
             );
         }
     }
+    // The kernels of a run at fixed inputs read the inputs' sines and cosines from `turns`:
+    // the same F and the same factorisation as evaluated afresh, bit for bit (the generic
+    // kernels evaluate them through `Scalar`, without `turns`).
+    let t = sys.turns(x);
+    let (mut plain, mut turned, mut generic) = ([0.0; N], [0.0; N], [0.0; N]);
+    sys.residual(v, x, &mut plain);
+    sys.residual_turned(v, x, &t, &mut turned);
+    sys.residual_in(v, x, &mut generic);
+    assert_eq!(plain, turned, "{}: residual_turned", S::NAME);
+    assert_eq!(plain, generic, "{}: residual_in", S::NAME);
+    let mut generic_values = vec![f64::NAN; S::NNZ];
+    sys.jacobian_in(v, x, &mut generic_values);
+    assert_eq!(values, generic_values, "{}: jacobian_in", S::NAME);
+    let (mut f1, mut f2) = (sys.new_factor(), sys.new_factor());
+    let (a1, a2) = (
+        sys.factor(v, x, &mut f1),
+        sys.factor_turned(v, x, &t, &mut f2),
+    );
+    assert_eq!(a1, a2, "{}: factor_turned", S::NAME);
+    let (mut y1, mut y2) = (plain, plain);
+    sys.solve(&f1, &mut y1);
+    sys.solve(&f2, &mut y2);
+    assert!(
+        a1.is_none() || y1 == y2,
+        "{}: solve after factor_turned",
+        S::NAME
+    );
+    if !S::TURNS {
+        assert_eq!(t, linkage::Turns::NONE, "{}", S::NAME);
+    }
     // Where the generator says ∂F/∂v does not mention the inputs, B is the same at other
     // inputs, bit for bit (Newton–Raphson reuses its factorisation at the start on that word).
     if !S::JACOBIAN_USES_INPUTS {

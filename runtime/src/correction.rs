@@ -2,7 +2,7 @@
 
 use crate::lu::Lu;
 use crate::math::{norm, size};
-use crate::{Linear, Mechanism};
+use crate::{Linear, Mechanism, Turns};
 
 /// A Newton correction at a point, with what factoring B there told.
 #[derive(Clone, Copy, Debug)]
@@ -35,18 +35,22 @@ impl<const N: usize> Correction<N> {
     }
 
     /// The correction at `(v, x)`, computed in place with the chosen linear solver and the
-    /// factorisation storage of a loop. On failure the fields are unspecified.
+    /// factorisation storage of a loop; `t` = `sys.turns(x)`. On failure the fields are
+    /// unspecified.
     #[inline(always)]
     pub(crate) fn update<S: Mechanism<N, M>, const M: usize>(
         &mut self,
         sys: &S,
         v: &[f64; N],
         x: &[f64; M],
+        t: &Turns<M>,
         linear: Linear,
         fac: &mut S::Factor,
     ) -> Result<(), Failure> {
         let det = match linear {
-            Linear::Generated => sys.newton_step(v, x, fac, &mut self.delta).map(|i| i.det),
+            Linear::Generated => sys
+                .newton_step(v, x, t, fac, &mut self.delta)
+                .map(|i| i.det),
             Linear::Dense => dense_step(sys, v, x, &mut self.delta),
         };
         // One pass gives the size callers need and rejects NaN or infinite corrections.
@@ -72,9 +76,10 @@ impl<const N: usize> Correction<N> {
         sys: &S,
         v: &[f64; N],
         x: &[f64; M],
+        t: &Turns<M>,
         fac: &S::Factor,
     ) -> Result<(), Failure> {
-        sys.residual(v, x, &mut self.delta);
+        sys.residual_turned(v, x, t, &mut self.delta);
         sys.solve(fac, &mut self.delta);
         self.size = size(&self.delta);
         if self.size.is_finite() {
@@ -119,7 +124,8 @@ pub(crate) fn correction_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
     fac: &mut S::Factor,
 ) -> Result<Correction<N>, Failure> {
     let mut c = Correction::new();
-    c.update(sys, v, x, linear, fac)?;
+    let mut turned = Turns::NONE;
+    c.update(sys, v, x, Turns::of(sys, x, &mut turned), linear, fac)?;
     Ok(c)
 }
 

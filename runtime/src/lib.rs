@@ -64,6 +64,7 @@ mod scalar;
 mod solution;
 mod start;
 mod tracker;
+mod turns;
 
 #[doc(hidden)]
 pub mod __private;
@@ -84,6 +85,7 @@ pub use scalar::Scalar;
 pub use solution::{Linear, Options, Solution, SolveError, Status};
 pub use start::Start;
 pub use tracker::{Sample, TrackError, Tracker};
+pub use turns::Turns;
 
 /// The three solvers of Table V.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -60,10 +60,41 @@ pub trait Mechanism<const N: usize, const M: usize> {
     ) -> Option<crate::lu::Factored>;
     /// Solves `B y = b` in place with a factorisation from [`Self::factor`].
     fn solve(&self, f: &Self::Factor, b: &mut [f64; N]);
-    /// One Newton step's work at (v, x): B factored into `f` and `delta = B⁻¹ F(v, x)`,
-    /// written in place. `None` if B is singular or not finite (`delta` is then unspecified).
-    /// The default calls [`Self::residual`], [`Self::factor`] and [`Self::solve`]; an
-    /// implementation may fuse them (F and B share subexpressions).
+    /// Whether the generated kernels turn by any input (read sines and cosines of inputs
+    /// from [`crate::Turns`]); `false` unless generated.
+    const TURNS: bool = false;
+    /// `[sin xⱼ, cos xⱼ]` of the inputs the kernels turn by ([`crate::Turns`]), for
+    /// [`Self::residual_turned`] and [`Self::factor_turned`]: evaluated once for many
+    /// evaluations at the same inputs. The default (no angle inputs) is [`crate::Turns::NONE`].
+    #[inline]
+    fn turns(&self, x: &[f64; M]) -> crate::Turns<M> {
+        let _ = x;
+        crate::Turns::NONE
+    }
+    /// [`Self::residual`] with `t` = [`Self::turns`]`(x)` given: the same values bit for bit.
+    #[inline]
+    fn residual_turned(&self, v: &[f64; N], x: &[f64; M], t: &crate::Turns<M>, f: &mut [f64; N]) {
+        let _ = t;
+        self.residual(v, x, f);
+    }
+    /// [`Self::factor`] with `t` = [`Self::turns`]`(x)` given: the same factorisation bit for
+    /// bit.
+    #[inline]
+    fn factor_turned(
+        &self,
+        v: &[f64; N],
+        x: &[f64; M],
+        t: &crate::Turns<M>,
+        f: &mut Self::Factor,
+    ) -> Option<crate::lu::Factored> {
+        let _ = t;
+        self.factor(v, x, f)
+    }
+    /// One Newton step's work at (v, x), with `t` = [`Self::turns`]`(x)`: B factored into `f`
+    /// and `delta = B⁻¹ F(v, x)`, written in place. `None` if B is singular or not finite
+    /// (`delta` is then unspecified). The default calls [`Self::residual_turned`],
+    /// [`Self::factor_turned`] and [`Self::solve`]; an implementation may fuse them (F and B
+    /// share subexpressions).
     ///
     /// ```
     /// # linkage::mechanism! {
@@ -85,7 +116,8 @@ pub trait Mechanism<const N: usize, const M: usize> {
     /// // Legs 1 mm longer: the Newton step from the old pose moves it up.
     /// let mut f = rps.new_factor();
     /// let mut delta = [0.0; 9];
-    /// let info = rps.newton_step(&v, &x.map(|l| l + 1.0), &mut f, &mut delta).unwrap();
+    /// let x = x.map(|l| l + 1.0);
+    /// let info = rps.newton_step(&v, &x, &rps.turns(&x), &mut f, &mut delta).unwrap();
     /// assert!(info.det != 0.0);
     /// let z: Vec<f64> = (6..9).map(|i| v[i] - delta[i]).collect();
     /// assert!(z.iter().all(|&z| z > 150.0 && z < 152.0), "{z:?}");
@@ -95,11 +127,12 @@ pub trait Mechanism<const N: usize, const M: usize> {
         &self,
         v: &[f64; N],
         x: &[f64; M],
+        t: &crate::Turns<M>,
         f: &mut Self::Factor,
         delta: &mut [f64; N],
     ) -> Option<crate::lu::Factored> {
-        self.residual(v, x, delta);
-        let info = self.factor(v, x, f)?;
+        self.residual_turned(v, x, t, delta);
+        let info = self.factor_turned(v, x, t, f)?;
         self.solve(f, delta);
         Some(info)
     }

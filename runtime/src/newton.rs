@@ -5,7 +5,7 @@
 use crate::convergence::{Chords, Convergence};
 use crate::correction::{Correction, Failure};
 use crate::math::size;
-use crate::{Linear, Mechanism, Options};
+use crate::{Linear, Mechanism, Options, Turns};
 
 /// Corrections that did not shrink at the rounding floor before a final run ends `Stalled`.
 const MAX_STALLS: u32 = 3;
@@ -129,6 +129,10 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let generated = options.linear == Linear::Generated;
     let use_chords = shortcuts.chords && rule == Rule::Final && generated;
     let mut chords = Chords::new();
+    // The inputs stay fixed: their sines and cosines are evaluated once, not in every
+    // residual and factorisation.
+    let mut turned = Turns::NONE;
+    let t = Turns::of(sys, x, &mut turned);
     // The first correction with B factored ahead: bit for bit the one `update` would compute,
     // B being the same at the start for every target. No chord step can follow it (`fac` is
     // still empty): `Chords` knows no contraction after a single correction.
@@ -142,9 +146,9 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         let corrected = match at_start.take() {
             Some(pre) => c
-                .chord(sys, &current, x, &pre.factor)
+                .chord(sys, &current, x, t, &pre.factor)
                 .map(|()| c.det = pre.det),
-            None => c.update(sys, &current, x, options.linear, &mut fac),
+            None => c.update(sys, &current, x, t, options.linear, &mut fac),
         };
         match corrected {
             Ok(()) => {}
@@ -212,7 +216,7 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
             // was pessimistic, and this point may be the answer, which only a Newton
             // correction here can tell (near a singularity the next point may sit at the
             // rounding floor, above the tolerance).
-            if c.chord(sys, &current, x, &fac).is_ok()
+            if c.chord(sys, &current, x, t, &fac).is_ok()
                 && c.size > tolerance
                 && chords.admits(c.size)
             {

@@ -5,7 +5,7 @@ use crate::arc_length::arc_length;
 use crate::convergence::Contraction;
 use crate::correction::{Correction, det_b};
 use crate::math::size;
-use crate::{Mechanism, Options, SolveError, Start, Status, StepProof};
+use crate::{Mechanism, Options, SolveError, Start, Status, StepProof, Turns};
 
 /// Corrections the fast path may take before it gives the sample to continuation.
 const MAX_CORRECTIONS: u32 = 8;
@@ -352,11 +352,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         let mut previous = f64::INFINITY;
         let mut chord = true;
         let mut c = Correction::new();
+        // The sample's inputs stay fixed through its corrections.
+        let mut turned = Turns::NONE;
+        let t = Turns::of(&self.sys, x, &mut turned);
         while *iterations < MAX_CORRECTIONS {
             *iterations += 1;
             if chord {
                 let mut d = [0.0; N];
-                self.sys.residual(v, x, &mut d);
+                self.sys.residual_turned(v, x, t, &mut d);
                 self.sys.solve(fac, &mut d);
                 let size = size(&d);
                 let admitted = contraction.admits(size);
@@ -376,7 +379,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                 chord = rate <= CHORD_RATIO && rate * size > tol;
                 previous = size;
             } else {
-                c.update(&self.sys, v, x, self.options.linear, fac).ok()?;
+                c.update(&self.sys, v, x, t, self.options.linear, fac)
+                    .ok()?;
                 if c.size <= tol {
                     self.bend = Some(Bend {
                         dv: core::array::from_fn(|i| v[i] - linear[i]),

@@ -50,8 +50,19 @@ pub fn expand(
 
     let dependent_offset = crate::emit_dependent::dependent_offset(model);
     let symmetry = crate::emit_symmetry::symmetry(model);
-    let residual = assignments(
-        Arithmetic::F64,
+    // Sines and cosines of inputs, where the kernels have any, evaluated once per fixed
+    // inputs by `turns` and read from `t` by the residual and the factorisation.
+    let turned = crate::emit_turns::turned_inputs(
+        m,
+        model.equations.iter().chain(jac.iter().map(|(_, _, e)| e)),
+    );
+    let turns = turned.iter().any(|t| t[0] || t[1]);
+    let residual_body = assignments(
+        if turns {
+            Arithmetic::Turned
+        } else {
+            Arithmetic::F64
+        },
         model
             .equations
             .iter()
@@ -159,6 +170,36 @@ pub fn expand(
     } else {
         quote!(#[allow(unused_variables)])
     };
+    let residual_fns = if turns {
+        let turns_body = crate::emit_turns::turns_body(&turned);
+        quote! {
+            #[inline]
+            fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
+                self.residual_turned(v, x, &self.turns(x), f);
+            }
+
+            #[inline]
+            #allow
+            fn residual_turned(&self, v: &[f64; #n], x: &[f64; #m], t: &::linkage::Turns<#m>, f: &mut [f64; #n]) {
+                let c = &self.constants;
+                #residual_body
+            }
+
+            #[inline]
+            fn turns(&self, x: &[f64; #m]) -> ::linkage::Turns<#m> {
+                #turns_body
+            }
+        }
+    } else {
+        quote! {
+            #[inline]
+            #allow
+            fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
+                let c = &self.constants;
+                #residual_body
+            }
+        }
+    };
     let priv_ = quote!(::linkage::__private);
     let home_items = home.map(|r| {
         let pose = r.pose.map(lit);
@@ -227,7 +268,7 @@ pub fn expand(
         Some(jac.iter().map(|(_, _, e)| e.eval(&r.v, &r.x, &c)).collect())
     });
     let plan = crate::factor::plan(n, &jac, sample.as_deref());
-    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, m, nc);
+    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, m, nc, turns);
     let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
     let new_doc =
         format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");
@@ -345,15 +386,11 @@ pub fn expand(
             const PATTERN: &'static [(usize, usize)] = &[#(#pattern),*];
             const JACOBIAN: &'static [&'static str] = &[#(#jacobian_text),*];
             const JACOBIAN_USES_INPUTS: bool = #jacobian_uses_inputs;
+            const TURNS: bool = #turns;
             const POINTS: &'static [&'static str] = &[#(#point_names),*];
             const FRAME: [usize; 3] = [#f0, #f1, #f2];
 
-            #[inline]
-            #allow
-            fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
-                let c = &self.constants;
-                #residual
-            }
+            #residual_fns
 
             #[inline]
             #[allow(unused_variables)]

@@ -45,6 +45,10 @@ pub fn tokens(e: &Expr) -> TokenStream {
 #[derive(Clone, Copy, PartialEq)]
 pub enum Arithmetic {
     F64,
+    /// `f64`, with the sine and cosine of an input read from the caller's `t: &Turns<M>`
+    /// (`t.0[j] = [sin xⱼ, cos xⱼ]`) instead of evaluated: the kernels of a Newton run at
+    /// fixed inputs.
+    Turned,
     /// The generic scalar `T` of `residual_in` and `jacobian_in`: numbers and constants enter
     /// through `T::from_f64`.
     Generic,
@@ -150,6 +154,7 @@ impl Emitter {
                     }
                     Node::Neg(a) => self.cost[*a],
                     Node::Square(a) => 1 + self.cost[*a],
+                    Node::Sin(a) | Node::Cos(a) if self.turned(*a).is_some() => 0,
                     Node::Sin(a) | Node::Cos(a) => CALL_COST + self.cost[*a],
                 };
                 self.nodes.push(node.clone());
@@ -164,6 +169,15 @@ impl Emitter {
             self.uses[id] += 1;
         }
         id
+    }
+
+    /// The input `j` whose sine or cosine node `argument` is the argument of, where those are
+    /// read from `t` rather than evaluated.
+    fn turned(&self, argument: usize) -> Option<usize> {
+        match (&self.nodes[argument], self.arithmetic) {
+            (Node::Input(j), Arithmetic::Turned) => Some(*j),
+            _ => None,
+        }
     }
 
     fn emit(&mut self, id: usize) -> TokenStream {
@@ -215,8 +229,14 @@ impl Emitter {
                 quote!((-#m))
             }
             Node::Square(a) => call("sq", self.emit(a)),
-            Node::Sin(a) => call("sin", self.emit(a)),
-            Node::Cos(a) => call("cos", self.emit(a)),
+            Node::Sin(a) => match self.turned(a) {
+                Some(j) => quote!(t.0[#j][0]),
+                None => call("sin", self.emit(a)),
+            },
+            Node::Cos(a) => match self.turned(a) {
+                Some(j) => quote!(t.0[#j][1]),
+                None => call("cos", self.emit(a)),
+            },
         };
         if self.uses[id] < 2 || self.cost[id] < SHARED_COST {
             return code;

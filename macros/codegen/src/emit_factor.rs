@@ -292,8 +292,15 @@ fn entry(jac: &[(usize, usize, Expr)], r: usize, c: usize) -> Option<usize> {
     jac.iter().position(|(a, b, _)| *a == r && *b == c)
 }
 
-/// `(type, trait functions, (additions, multiplications))`.
-pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (usize, usize)) {
+/// `(type, trait functions, (additions, multiplications))`. With `turns`, the fast path reads
+/// the inputs' sines and cosines from `t` (`factor_turned`; `factor` evaluates them and calls
+/// it); the cold fallback evaluates its own.
+pub fn factor(
+    plan: &Plan,
+    m: usize,
+    nc: usize,
+    turns: bool,
+) -> (TokenStream, TokenStream, (usize, usize)) {
     let n = plan.n;
     let k = plan.complement();
     let jac = &plan.jac[..];
@@ -326,8 +333,8 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
     };
     // Each path names its entries through one emitter, which binds what they share (the
     // rotation of an active wrist in every entry of the pivots it carries).
-    let define_all = |entries: &[usize]| {
-        let mut emitter = Emitter::new(Arithmetic::F64);
+    let define_all = |entries: &[usize], arithmetic: Arithmetic| {
+        let mut emitter = Emitter::new(arithmetic);
         for &i in entries.iter().filter(|&&i| negation_of[i].is_none()) {
             emitter.count(&jac[i].2);
         }
@@ -349,11 +356,16 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
         };
         quote!((#e))
     };
-    let evals = define_all(&(0..jac.len()).collect::<Vec<_>>());
+    let evals = define_all(&(0..jac.len()).collect::<Vec<_>>(), Arithmetic::F64);
     let call_evals = define_all(
         &(0..jac.len())
             .filter(|&i| has_call(&jac[i].2))
             .collect::<Vec<_>>(),
+        if turns {
+            Arithmetic::Turned
+        } else {
+            Arithmetic::F64
+        },
     );
     let (named_stores, named_sinks) = statics.stores(&named);
     let (stores, sinks) = statics.stores(&inline);
@@ -485,14 +497,30 @@ pub fn factor(plan: &Plan, m: usize, nc: usize) -> (TokenStream, TokenStream, (u
     let dense_solve = emit_lu::dense_solve(k, &region, &plan.rows);
     let ws: Vec<TokenStream> = (0..n).map(w).collect();
     let ty = quote!([f64; #size]);
+    let (factor_name, turns_param, factor_wrapper) = if turns {
+        (
+            format_ident!("factor_turned"),
+            quote!(t: &::linkage::Turns<#m>,),
+            quote! {
+                #[inline]
+                fn factor(&self, v: &[f64; #n], x: &[f64; #m], f: &mut Self::Factor) -> ::core::option::Option<::linkage::lu::Factored> {
+                    self.factor_turned(v, x, &self.turns(x), f)
+                }
+            },
+        )
+    } else {
+        (format_ident!("factor"), quote!(), quote!())
+    };
     let fns = quote! {
         fn new_factor(&self) -> Self::Factor {
             [0.0; #size]
         }
 
+        #factor_wrapper
+
         #[inline]
         #[allow(unused_variables, unused_mut)]
-        fn factor(&self, v: &[f64; #n], x: &[f64; #m], f: &mut Self::Factor) -> ::core::option::Option<::linkage::lu::Factored> {
+        fn #factor_name(&self, v: &[f64; #n], x: &[f64; #m], #turns_param f: &mut Self::Factor) -> ::core::option::Option<::linkage::lu::Factored> {
             /// The fallback: B again, its complement factored with partial pivoting.
             #[cold]
             #[inline(never)]

@@ -18,6 +18,7 @@ pub mod emit_inverse;
 pub mod emit_lu;
 pub mod emit_recipes;
 pub mod emit_symmetry;
+pub mod emit_turns;
 pub mod expr;
 pub mod factor;
 pub mod front;
