@@ -94,6 +94,31 @@ fn leg_csv_rows_carry_their_own_status() {
     assert!(legs_csv::read(&dir.join("missing.csv")).is_err());
 }
 
+/// A row with a field more or fewer than the header was read by position: `0,170,1,170,…`
+/// with one value too many under `t,L1…L6` gave L2 = 1 and was solved, its answer `ok` for leg
+/// lengths no one wrote; a row one field short but with every `L` column present was solved
+/// too. Either is now the row's own status, and an empty field past the header's (a trailing
+/// comma) is still harmless.
+#[test]
+fn a_row_with_a_field_more_or_fewer_than_the_header_is_refused() {
+    let text = b"t,L1,L2,L3,L4,L5,L6,note\n\
+        0,170,170,170,170,170,170,a\n\
+        1,170,1,170,170,170,170,170,a\n\
+        2,170,170,170,170,170,170\n\
+        3,170,170,170,170,170,170,a,\n\
+        4,170,170,170,170,170,170,a, ,\n";
+    assert_eq!(
+        legs_csv::read_from(&text[..]).unwrap(),
+        [
+            Ok([170.0; 6]),
+            Err("extra_value"),
+            Err("missing_value"),
+            Ok([170.0; 6]),
+            Ok([170.0; 6]),
+        ]
+    );
+}
+
 /// A random 6-6 geometry around Table III's, optionally lifting pivots off their planes.
 fn random_geometry(
     rng: &mut Rng,
