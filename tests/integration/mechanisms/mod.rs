@@ -7,6 +7,7 @@
 mod all_modes;
 mod delta;
 mod delta_tools;
+mod delta_tracking;
 mod five_bar;
 mod four_bar;
 mod home_by_inputs;
