@@ -18,6 +18,7 @@ mod pcs;
 mod planar_rpr;
 mod planar_rrr;
 mod prs;
+mod rps_tracking;
 mod rrs;
 mod scara;
 mod slider_crank;
