@@ -166,10 +166,12 @@ pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
     if area == 0.0 {
         return false;
     }
+    // The platform's own size, not floored at 1 mm: a platform a micrometre across and 1e-9 mm
+    // out of plane is not coplanar.
     let size = platform
         .iter()
         .flatten()
-        .fold(1.0f64, |m, x| m.max(x.abs()));
+        .fold(0.0f64, |m, x| m.max(x.abs()));
     platform
         .iter()
         .all(|p| (dot(n, sub(*p, platform[i])) / area).abs() <= 1e-9 * size)
@@ -200,7 +202,9 @@ impl std::fmt::Display for StartError {
 /// `Start::new` then checks).
 fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f64; 18]> {
     let mut v = v;
-    let scale = v.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+    // Relative to the configuration's own size (1 only where it is 0).
+    let scale = v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    let scale = if scale > 0.0 { scale } else { 1.0 };
     let mut fac = sys.new_factor();
     for _ in 0..60 {
         let mut f = [0.0; 18];
@@ -232,7 +236,7 @@ pub fn find_start<S: SixSix>(
         .map_err(|input| StartError::Solve(SolveError::InvalidInput { input }))?;
     let scale = (0..6)
         .flat_map(|p| sys.point_local(p))
-        .fold(1.0f64, |m, c| m.max(c.abs()));
+        .fold(0.0f64, |m, c| m.max(c.abs()));
     if let Some(pose) = pose {
         let guess = linkage::unknowns_from_pose(sys, &pose);
         // The pose as given, if it is (nearly) exact: a singular start is reported as such.

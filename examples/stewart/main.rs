@@ -62,8 +62,9 @@ enum Command {
         /// Also draw every real mode of row --row side by side, as PNG.
         #[arg(long)]
         png: Option<PathBuf>,
-        /// The row --png draws (1-based).
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        /// The row --png draws (1-based). Only with --png: alone it would be ignored, and
+        /// every row printed as if it had not been given.
+        #[arg(long, requires = "png", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
         row: u64,
     },
     /// Reproduce Table V: 100 normal and 100 near-singular points solved by PH, NH and NR.

@@ -85,6 +85,15 @@ fn solve_stream<S: SixSix>(
 ) -> Result<(), String> {
     let start = find_start(&sys, legs, pose).map_err(|e| format!("start configuration: {e}"))?;
     let mut solver = RowSolver::new(sys, start, args);
+    // Said once, before any row: a tolerance the mechanism is too small for (every solve would
+    // refuse it).
+    solver.options.check_for(&start).map_err(|e| {
+        format!(
+            "--tolerance {:e}: {e} (‖v0‖ = {:e} mm)",
+            args.tolerance,
+            start_size(start.v())
+        )
+    })?;
     let sink = SharedSink::new(args.output.as_deref());
     let input = FlushBeforeRead::new(open_input(&args.input)?, sink.clone());
     let name = args.input.display();
@@ -358,9 +367,15 @@ fn with_pose<'a, S: Mechanism<18, 6>>(
     }
 }
 
-/// The largest joint coordinate (base or platform), at least 1: the scale of the mechanism.
+/// ‖v‖: the size the solvers measure their tolerance against.
+fn start_size(v: &[f64; 18]) -> f64 {
+    v.iter().map(|c| c * c).sum::<f64>().sqrt()
+}
+
+/// The largest joint coordinate (base or platform): the scale of the mechanism (not floored at
+/// 1 mm: a machine a micrometre across is that size).
 fn mechanism_size<S: SixSix>(sys: &S) -> f64 {
     let base = sys.base_joints().into_iter().flatten();
     let platform = (0..6).flat_map(|p| sys.point_local(p));
-    base.chain(platform).fold(1.0f64, |m, c| m.max(c.abs()))
+    base.chain(platform).fold(0.0f64, |m, c| m.max(c.abs()))
 }

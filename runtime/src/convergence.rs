@@ -33,7 +33,7 @@ impl Convergence {
     pub(crate) fn with_scale(tolerance: f64, scale: f64) -> Self {
         Convergence {
             tolerance,
-            floor: 1e-6 * scale.max(1.0),
+            floor: 1e-6 * crate::math::scale_or_one(scale),
             previous: f64::INFINITY,
             estimate: f64::INFINITY,
         }

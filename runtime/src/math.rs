@@ -30,6 +30,15 @@ pub(crate) fn size<const N: usize>(v: &[f64; N]) -> f64 {
     }
 }
 
+/// The size that the solvers' relative rules measure against: `size` as given, or 1 where it
+/// is 0 (a configuration at the origin has no length of its own). Never floored at 1 otherwise:
+/// a mechanism 1e-9 across would then be judged in absolute units, its tolerance allowed to
+/// exceed the mechanism itself.
+#[inline(always)]
+pub(crate) fn scale_or_one(size: f64) -> f64 {
+    if size > 0.0 { size } else { 1.0 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{norm, size};

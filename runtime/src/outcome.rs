@@ -97,7 +97,7 @@ pub(crate) fn holds_dependent<S: Mechanism<N, M>, const N: usize, const M: usize
     // 0 exactly where nothing was left out: then no size is computed (this is on the
     // tracker's path at every sample).
     let offset = sys.dependent_offset(v, x);
-    offset == 0.0 || offset <= 1e-6 * size(v).max(1.0)
+    offset == 0.0 || offset <= 1e-6 * crate::math::scale_or_one(size(v))
 }
 
 /// `sol` from a method that follows no path (NR, NH): [`Status::Converged`] becomes

@@ -75,7 +75,9 @@ pub fn straight_segment_from<S: Mechanism<N, M>, const N: usize, const M: usize>
                 return (v, flips + 1);
             };
             lu.solve(&mut f);
-            let (mut step, mut size) = (0.0f64, 1.0f64);
+            // The configuration's own size, not floored at 1: a mechanism 1e-9 across would
+            // otherwise stop each middle step 1e-3 of its size from the branch.
+            let (mut step, mut size) = (0.0f64, 0.0f64);
             for i in 0..N {
                 v[i] -= f[i];
                 // `!(a <= b)` so that a NaN correction is never mistaken for a small one.

@@ -227,14 +227,54 @@ impl Options {
         linear: Linear::Generated,
     };
 
-    /// Largest tolerance, as a share of the problem's scale max(‖v0‖, 1).
+    /// Largest tolerance, as a share of the problem's scale ‖v0‖ (1 where v0 = 0): a tolerance
+    /// larger than that would call points converged that lie anywhere on a small mechanism.
     pub const MAX_RELATIVE_TOLERANCE: f64 = 1e-3;
+
+    /// Whether these options can be used from `start` (every solver and the tracker checks
+    /// them so, and refuses with this error): a positive tolerance within
+    /// [`MAX_RELATIVE_TOLERANCE`](Self::MAX_RELATIVE_TOLERANCE) of the start's size, and
+    /// positive iteration and step counts. For a program that would rather say so once than
+    /// for every solve.
+    ///
+    /// ```
+    /// use linkage::{Options, SolveError, Start};
+    /// # linkage::mechanism! {
+    /// #     pub struct Rps;
+    /// #     base {
+    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+    /// #     }
+    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+    /// # }
+    /// # use linkage::Mechanism;
+    /// let rps = Rps::new();
+    /// let v0 = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    /// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+    /// let start = Start::new(&rps, v0, x0).unwrap();
+    /// assert_eq!(Options::TIGHT.check_for(&start), Ok(()));
+    /// // A tolerance of 1 m on a platform 200 mm across would call anything converged.
+    /// let loose = Options { tolerance: 1000.0, ..Options::TIGHT };
+    /// assert!(matches!(loose.check_for(&start), Err(SolveError::InvalidOptions { .. })));
+    /// ```
+    pub fn check_for<const N: usize, const M: usize>(
+        &self,
+        start: &crate::Start<N, M>,
+    ) -> Result<(), SolveError> {
+        self.check(start.scale())
+    }
 
     /// Checks the options for a problem whose start has `‖v0‖ = scale`.
     pub(crate) fn check(&self, scale: f64) -> Result<(), SolveError> {
         let reason = if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
             "the tolerance must be a positive number"
-        } else if !(self.tolerance <= Self::MAX_RELATIVE_TOLERANCE * scale.max(1.0)) {
+        } else if !(self.tolerance
+            <= Self::MAX_RELATIVE_TOLERANCE * crate::math::scale_or_one(scale))
+        {
             "the tolerance exceeds 1e-3 of the mechanism's scale (‖v0‖)"
         } else if self.max_iterations == 0 {
             "max_iterations must be positive"

@@ -153,7 +153,7 @@ impl<const N: usize, const M: usize> Start<N, M> {
         if singular_to_rounding(sys, &v, &x) {
             return Err(SolveError::SingularStart);
         }
-        let scale = norm(&v).max(1.0);
+        let scale = crate::math::scale_or_one(norm(&v));
         let given = v;
         let mut v = v;
         let refined = |v: &[f64; N]| match correction(sys, v, &x) {

@@ -427,5 +427,5 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
 /// [`MAX_CORRECTIONS`], instead of handing a converged sample to continuation, whose final
 /// Newton run may then stop at the same floor.
 fn at_rounding_floor<const N: usize>(size: f64, tolerance: f64, v: &[f64; N]) -> bool {
-    size <= FLOOR_BAND * tolerance && size <= 1e-6 * crate::math::size(v).max(1.0)
+    size <= FLOOR_BAND * tolerance && size <= 1e-6 * crate::math::scale_or_one(crate::math::size(v))
 }

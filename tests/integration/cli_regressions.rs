@@ -1157,3 +1157,81 @@ fn modes_png_draws_every_real_mode_of_the_row_asked_for() {
         assert!(!other.exists(), "{name}");
     }
 }
+
+/// Table III's platform with every length times 1e-9 (0.2 µm across, in mm): with the default
+/// tolerance of 1e-9 mm, five times the machine, every row came back `ok` — the home pose for
+/// legs 0.6 % longer at 1e-12, a yaw wrong in its third digit at 1e-9. Now a tolerance the
+/// machine is too small for is refused before any row, and with one scaled as the machine is,
+/// the poses are the unscaled machine's.
+#[test]
+fn a_machine_smaller_than_its_tolerance_is_refused_and_scaled_one_agrees() {
+    let k = 1e-9;
+    let table = linkage_examples::stewart::Stewart::new();
+    use linkage::Mechanism;
+    use linkage_examples::stewart::SixSix;
+    let list = |points: Vec<[f64; 3]>| {
+        let items: Vec<String> = points
+            .iter()
+            .map(|p| format!("[{:e}, {:e}, {:e}]", p[0] * k, p[1] * k, p[2] * k))
+            .collect();
+        format!("[{}]", items.join(", "))
+    };
+    let dir = scratch("tiny");
+    let geometry = dir.join("tiny.toml");
+    std::fs::write(
+        &geometry,
+        format!(
+            "base = {}\nplatform = {}\n[start]\nlegs = [{:e}, {:e}, {:e}, {:e}, {:e}, {:e}]\n",
+            list(table.base_joints().to_vec()),
+            list((0..6).map(|i| table.point_local(i)).collect()),
+            170.0 * k,
+            170.0 * k,
+            170.0 * k,
+            170.0 * k,
+            170.0 * k,
+            170.0 * k
+        ),
+    )
+    .unwrap();
+    let scaled = |line: &str| {
+        line.split(',')
+            .map(|l| format!("{:e}", l.parse::<f64>().unwrap() * k))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let input = csv(&[HEADER, &scaled(HOME), &scaled(NEAR_HOME)]);
+    let g = geometry.to_str().unwrap();
+    for track in [false, true] {
+        let mut args = vec!["solve", "--geometry", g, "--input", "-"];
+        if track {
+            args.push("--track");
+        }
+        assert_refused(&run(&args, &input), "--tolerance 1e-9");
+        args.extend(["--tolerance", "1e-18"]);
+        let tiny = run(&args, &input);
+        assert!(tiny.status.success(), "{}", stderr(&tiny));
+        let unscaled = run(&["solve", "--input", "-"], &csv(&[HEADER, HOME, NEAR_HOME]));
+        let ((header, rows), (_, truth)) = (self::rows(&tiny), self::rows(&unscaled));
+        assert_eq!(rows.len(), 2);
+        for (row, truth) in rows.iter().zip(&truth) {
+            assert_eq!(field(&header, row, "status"), "ok", "{row:?}");
+            for name in ["yaw", "pitch", "roll"] {
+                let got: f64 = field(&header, row, name).parse().unwrap();
+                let want: f64 = field(&header, truth, name).parse().unwrap();
+                assert!((got - want).abs() < 1e-9, "{name}: {got} vs {want}");
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `modes --row N` without `--png` printed every row, as if `--row` had not been given: an
+/// option that only `--png` reads is now refused without it.
+#[test]
+fn modes_row_without_png_is_refused() {
+    let out = run(
+        &["modes", "--input", "-", "--row", "2"],
+        &csv(&[HEADER, HOME]),
+    );
+    assert_refused(&out, "--png");
+}

@@ -15,6 +15,7 @@ mod no_alloc;
 mod other_mechanisms;
 mod properties;
 mod regressions;
+mod scale;
 mod solvers;
 mod start_report;
 mod stewart_cli;

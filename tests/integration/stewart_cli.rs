@@ -94,6 +94,66 @@ fn leg_csv_rows_carry_their_own_status() {
     assert!(legs_csv::read(&dir.join("missing.csv")).is_err());
 }
 
+/// A row with a field more or fewer than the header was read by position: `0,170,1,170,…`
+/// with one value too many under `t,L1…L6` gave L2 = 1 and was solved, its answer `ok` for leg
+/// lengths no one wrote; a row one field short but with every `L` column present was solved
+/// too. Either is now the row's own status, and an empty field past the header's (a trailing
+/// comma) is still harmless.
+#[test]
+fn a_row_with_a_field_more_or_fewer_than_the_header_is_refused() {
+    let text = b"t,L1,L2,L3,L4,L5,L6,note\n\
+        0,170,170,170,170,170,170,a\n\
+        1,170,1,170,170,170,170,170,a\n\
+        2,170,170,170,170,170,170\n\
+        3,170,170,170,170,170,170,a,\n\
+        4,170,170,170,170,170,170,a, ,\n";
+    assert_eq!(
+        legs_csv::read_from(&text[..]).unwrap(),
+        [
+            Ok([170.0; 6]),
+            Err("extra_value"),
+            Err("missing_value"),
+            Ok([170.0; 6]),
+            Ok([170.0; 6]),
+        ]
+    );
+}
+
+/// Files as other programs write them: a UTF-8 byte-order mark before the header (a
+/// spreadsheet's "CSV UTF-8"), CRLF or bare CR line ends, a blank line between rows, quoted
+/// fields. Each row is read, none is lost, and the header is found; a geometry file with a key
+/// or section given twice is an error naming it, not the first or last one silently.
+#[test]
+fn leg_files_from_other_programs_read_every_row() {
+    let want = [
+        Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+        Ok([6.0, 5.0, 4.0, 3.0, 2.0, 1.0]),
+    ];
+    for text in [
+        &b"\xef\xbb\xbfL1,L2,L3,L4,L5,L6\n1,2,3,4,5,6\n6,5,4,3,2,1\n"[..],
+        b"L1,L2,L3,L4,L5,L6\r\n1,2,3,4,5,6\r\n6,5,4,3,2,1\r\n",
+        b"L1,L2,L3,L4,L5,L6\r1,2,3,4,5,6\r6,5,4,3,2,1",
+        b"\"L1\",\"L2\",L3,L4,L5,L6\n\n\"1\",2, 3 ,4,5,6\n\n6,5,4,3,2,1\n",
+    ] {
+        let rows = legs_csv::read_from(text);
+        assert_eq!(
+            rows.as_deref(),
+            Ok(&want[..]),
+            "{:?}",
+            String::from_utf8_lossy(text)
+        );
+    }
+    let ok = "base = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\nplatform = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\n[start]\nlegs = [1,1,1,1,1,1]\n";
+    for twice in [
+        format!("{ok}legs = [2,2,2,2,2,2]\n"),
+        format!("platform = [[0,0,0],[1,0,0],[2,0,0],[3,0,0],[4,0,0],[5,0,0]]\n{ok}"),
+        format!("{ok}[start]\nlegs = [2,2,2,2,2,2]\n"),
+    ] {
+        let err = geometry::parse(&twice).err().unwrap_or_default();
+        assert!(err.contains("duplicate key"), "{twice:?}: {err}");
+    }
+}
+
 /// A random 6-6 geometry around Table III's, optionally lifting pivots off their planes.
 fn random_geometry(
     rng: &mut Rng,

@@ -2,7 +2,9 @@
 //!
 //! Rows are read as bytes and only the six `L1`…`L6` fields are decoded: a stray byte in a
 //! column nobody reads must not cost a valid row, and a bad byte in a leg field costs that row
-//! alone (`invalid_number`).
+//! alone (`invalid_number`). A row must have as many fields as the header: with one lost or
+//! one added, every field after it moves to the next column, and the leg lengths read would be
+//! other numbers than the ones written under `L1`…`L6` (`missing_value`, `extra_value`).
 
 use std::io::Read;
 
@@ -18,6 +20,8 @@ pub const MAX_LINE: usize = 1 << 20;
 pub struct LegRows<R: Read> {
     reader: csv::Reader<LineLimit<R>>,
     columns: [usize; 6],
+    /// The header's number of fields, which every row must have.
+    fields: usize,
     record: csv::ByteRecord,
     /// Rows read so far, for the message of a read error.
     rows: u64,
@@ -82,6 +86,7 @@ impl<R: Read> LegRows<R> {
             }
         }
         Ok(LegRows {
+            fields: headers.len(),
             reader,
             columns,
             record: csv::ByteRecord::new(),
@@ -96,7 +101,7 @@ impl<R: Read> LegRows<R> {
             Ok(false) => Ok(None),
             Ok(true) => {
                 self.rows += 1;
-                Ok(Some(parse_row(&self.record, &self.columns)))
+                Ok(Some(parse_row(&self.record, &self.columns, self.fields)))
             }
             Err(e) => Err(format!(
                 "cannot read the input after row {}: {e}",
@@ -127,7 +132,17 @@ pub fn read_from<R: Read>(source: R) -> Result<Vec<Row>, String> {
     LegRows::new(source)?.collect()
 }
 
-fn parse_row(r: &csv::ByteRecord, columns: &[usize; 6]) -> Row {
+/// A row's leg lengths. Its fields are matched to the header's by position, so a row with a
+/// field fewer or more than the header is refused whole: which field was lost or added cannot
+/// be told, and every field after it would be read under the wrong name. Empty fields past
+/// the header's (a trailing comma) add nothing and are allowed.
+fn parse_row(r: &csv::ByteRecord, columns: &[usize; 6], fields: usize) -> Row {
+    if r.len() < fields {
+        return Err("missing_value");
+    }
+    if r.iter().skip(fields).any(|f| !f.is_empty()) {
+        return Err("extra_value");
+    }
     let mut x = [0.0; 6];
     for (j, &c) in columns.iter().enumerate() {
         let field = r.get(c).ok_or("missing_value")?;

@@ -87,7 +87,7 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // Scale λ by how far v moves over the whole path to first order, ‖B⁻¹(∂F/∂x)(x* − x0)‖,
     // so that λ and v weigh alike in the arc length whatever the inputs' units (mm, rad).
     let length = first_order_travel(sys, start, &dx).unwrap_or_else(|| norm(&dx));
-    let scale = norm(start.v()).max(length).max(1.0);
+    let scale = crate::math::scale_or_one(norm(start.v()).max(length));
     let path = Path {
         sys,
         start,

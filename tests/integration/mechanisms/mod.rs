@@ -7,6 +7,7 @@
 mod all_modes;
 mod delta;
 mod delta_tools;
+mod delta_tracking;
 mod five_bar;
 mod four_bar;
 mod home_by_inputs;
@@ -17,6 +18,7 @@ mod pcs;
 mod planar_rpr;
 mod planar_rrr;
 mod prs;
+mod rps_tracking;
 mod rrs;
 mod scara;
 mod slider_crank;
