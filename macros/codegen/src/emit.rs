@@ -27,6 +27,15 @@ pub fn expand(
         .any(|(_, _, e)| (0..m).any(|j| e.depends_on(Var::Input(j))));
 
     let geometry_names = model.slots.iter().map(|s| s.name.as_str());
+    // Links' lengths enter the equations squared: a negative one is refused, not taken for
+    // its magnitude.
+    let positive_checks = model.slots.iter().enumerate().filter(|(_, s)| s.positive).map(|(k, _)| {
+        quote! {
+            if !(geometry[#k] > 0.0) {
+                return Err(::linkage::GeometryError::NonPositiveLength { name: Self::GEOMETRY_NAMES[#k] });
+            }
+        }
+    });
     let defaults = model.slots.iter().map(|s| lit(s.default));
     let constant_names = model.constants.iter().map(|c| c.name.as_str());
     let unknown_names = model.unknowns.iter().map(String::as_str);
@@ -315,6 +324,7 @@ pub fn expand(
                     }
                     k += 1;
                 }
+                #(#positive_checks)*
                 use ::linkage::__private::recipe;
                 const RECIPES: recipe::Recipes<'static> = #recipes;
                 let mut auto = [[0.0f64; 3]; #na];

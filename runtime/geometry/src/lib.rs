@@ -26,6 +26,8 @@ pub enum GeometryError {
     NotCoplanar,
     /// A pair's axis is given by (nearly) coincident points.
     DegenerateAxis,
+    /// A link's length is zero or negative.
+    NonPositiveLength { name: &'static str },
 }
 
 impl fmt::Display for GeometryError {
@@ -39,6 +41,12 @@ impl fmt::Display for GeometryError {
                 "a platform pivot is off the frame's plane but the system uses the coplanar form"
             ),
             GeometryError::DegenerateAxis => write!(f, "a pair axis is given by coincident points"),
+            GeometryError::NonPositiveLength { name } => {
+                write!(
+                    f,
+                    "geometry value `{name}` is a link's length and must be positive"
+                )
+            }
         }
     }
 }

@@ -242,3 +242,27 @@ fn delta_with_shared_inputs_is_the_same_machine() {
         check_inverse(&split, &b.v, &q, &[0.0; 3], 1e-9);
     }
 }
+
+/// A rod's length enters the equations squared: set at run time to zero or a negative value
+/// it is refused with the parameter's name (it used to be taken for its magnitude), and the
+/// mechanism is left as it was.
+#[test]
+fn a_non_positive_rod_length_is_refused() {
+    let mut d = Delta::new();
+    let before = *d.constants();
+    for bad in [-368.8, 0.0, -0.0] {
+        assert_eq!(
+            d.set_geometry("rod", bad),
+            Err(linkage::GeometryError::NonPositiveLength { name: "rod" })
+        );
+        assert_eq!(d.constants(), &before);
+    }
+    let mut g = *d.geometry();
+    let rod = Delta::GEOMETRY_NAMES
+        .iter()
+        .position(|n| *n == "rod")
+        .unwrap();
+    g[rod] = -1.0;
+    assert!(Delta::from_geometry(g).is_err());
+    assert!(d.set_geometry("rod", 370.0).is_ok());
+}

@@ -252,7 +252,22 @@ pub fn lower(m: &Mechanism, inputs: &[Ident], errors: &mut Errors) -> Option<Dec
                 coords,
             });
         }
-        let length = l.length.as_ref().map(|c| value(c, errors));
+        let length = l.length.as_ref().map(|c| {
+            let v = value(c, errors);
+            let n = match v {
+                Value::Literal(n) => n,
+                Value::Param(id) => out.params[id.index()].value,
+            };
+            // A length enters the equations squared: a negative one would be taken for its
+            // magnitude, silently.
+            if !(n > 0.0) && !n.is_nan() {
+                errors.push(
+                    c.span(),
+                    format!("link `{}`: `length` must be positive, found {n}", l.name),
+                );
+            }
+            v
+        });
         out.links.push(Link {
             name: l.name.clone(),
             role: l.role,

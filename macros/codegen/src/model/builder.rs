@@ -75,6 +75,7 @@ impl<'d> Builder<'d> {
             }
             if let Some(length) = link.length {
                 let s = b.value_slot(format!("{}.length", link.name), length);
+                b.slots[s].positive = true;
                 b.scalar_slots.insert(Scalar::Length(id), s);
             }
         }
@@ -89,7 +90,11 @@ impl<'d> Builder<'d> {
     }
 
     fn new_slot(&mut self, name: String, default: f64) -> usize {
-        self.slots.push(Slot { name, default });
+        self.slots.push(Slot {
+            name,
+            default,
+            positive: false,
+        });
         self.slots.len() - 1
     }
 

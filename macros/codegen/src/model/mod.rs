@@ -27,6 +27,8 @@ pub use linkage_geometry::recipe::{Auto, PointRef, Recipe, Recipes};
 pub struct Slot {
     pub name: String,
     pub default: f64,
+    /// A link's length: `from_geometry` refuses a value that is not positive.
+    pub positive: bool,
 }
 
 /// Where a link's frame point was in the link's declared coordinates.
