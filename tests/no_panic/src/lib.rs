@@ -170,6 +170,41 @@ proven!(rps, Rps, 9, 3);
 proven!(stewart, Stewart, 18, 6);
 proven!(hexapod, RssHexapod, 18, 6);
 
+/// The all-modes query ([`AllModes::solve`](linkage::modes::AllModes::solve): every path from
+/// the start set to the target, the refills of failed paths, the real roots' refinement), each
+/// mechanism with the capacity its root count needs.
+pub mod modes {
+    use super::*;
+    use linkage::modes::{AllModes, ModesError, Roots};
+
+    #[no_panic]
+    pub fn rps(
+        m: &AllModes<Rps, 9, 3, 32>,
+        x: &[f64; 3],
+        out: &mut Roots<9, 32>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+
+    #[no_panic]
+    pub fn stewart(
+        m: &AllModes<Stewart, 18, 6, 64>,
+        x: &[f64; 6],
+        out: &mut Roots<18, 64>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+
+    #[no_panic]
+    pub fn hexapod(
+        m: &AllModes<RssHexapod, 18, 6, 64>,
+        x: &[f64; 6],
+        out: &mut Roots<18, 64>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+}
+
 /// The C interface's calls (`linkage-ffi`, which LinuxCNC's kinematics module links), each in
 /// a `#[no_panic]` function. They wrap the Rust-ABI functions the `extern "C"` symbols
 /// forward to, not the symbols: a panic cannot unwind out of an `extern "C"` function (it

@@ -3,6 +3,7 @@
 
 use core::hint::black_box;
 use core::mem::MaybeUninit;
+use linkage::modes::{AllModes, EndpointKind, ModesError, ModesOptions, Roots};
 use linkage::{Mechanism, Options, Pose, Tracker};
 use linkage_ffi::{status, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection};
 use no_panic_proof::{ffi, hexapod, rps, stewart, Rps, RssHexapod, Stewart};
@@ -56,6 +57,7 @@ fn main() {
     assert!(hexapod::track(&mut t, &x).is_ok());
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
     c_interface();
+    all_modes();
     println!("no-panic proof: linked; every entry point ran on good and bad input");
 }
 
@@ -215,4 +217,48 @@ fn c_interface() {
     assert_eq!(report.status, status::NULL_POINTER);
     assert_eq!(ffi::init(None, Some(&geometry)), status::NULL_POINTER);
     assert!(!ffi::status_name(black_box(1234)).is_null());
+}
+
+/// The all-modes query for each mechanism: its real roots include the pose it was given, and
+/// bad input is an error.
+fn all_modes() {
+    let options = ModesOptions::default();
+    let modes = AllModes::<Rps, 9, 3, 32>::new(Rps::new(), &options).expect("the 3-RPS's starts");
+    let mut roots = Box::new(Roots::<9, 32>::new());
+    no_panic_proof::modes::rps(&modes, &black_box([150.0, 160.0, 155.0]), &mut roots)
+        .expect("a 3-RPS query");
+    assert!(roots.is_complete() && roots.count(EndpointKind::Real) > 0);
+    let bad = no_panic_proof::modes::rps(&modes, &black_box([f64::NAN; 3]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
+
+    let sys = Stewart::new();
+    let v = linkage::unknowns_from_pose(
+        &sys,
+        &Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 159.011]),
+    );
+    let x = sys
+        .inverse(&v, &[170.0; 6])
+        .expect("the Stewart platform at home");
+    let modes = Box::new(AllModes::<Stewart, 18, 6, 64>::new(sys, &options).expect("starts"));
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    no_panic_proof::modes::stewart(&modes, &black_box(x), &mut roots).expect("a query");
+    let home = roots
+        .real()
+        .iter()
+        .any(|r| (0..18).all(|k| (r.v[k] - v[k]).abs() < 1e-6 * 200.0));
+    assert!(home, "the home pose among the real roots");
+    let bad = no_panic_proof::modes::stewart(&modes, &black_box([f64::INFINITY; 6]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
+
+    let sys = RssHexapod::new();
+    let s = sys.home_start().expect("the hexapod's start");
+    let modes = Box::new(AllModes::<RssHexapod, 18, 6, 64>::new(sys, &options).expect("starts"));
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    no_panic_proof::modes::hexapod(&modes, &black_box(*s.x()), &mut roots).expect("a query");
+    assert!(roots
+        .real()
+        .iter()
+        .any(|r| (0..18).all(|k| (r.v[k] - s.v()[k]).abs() < 1e-4)));
+    let bad = no_panic_proof::modes::hexapod(&modes, &black_box([f64::NAN; 6]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
 }
