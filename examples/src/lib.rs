@@ -6,4 +6,5 @@ pub mod demo;
 pub mod rps;
 pub mod rss_hexapod;
 pub mod start_sets;
-pub mod stewart;
+/// Gao & Wu's Stewart platform, in a crate of its own that the C interface shares.
+pub use linkage_stewart as stewart;

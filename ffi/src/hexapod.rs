@@ -2,7 +2,7 @@
 //! forward kinematics by the trajectory tracker, which stays on one branch.
 
 use linkage::{Options, Tracker};
-use linkage_examples::stewart::{
+use linkage_stewart::{
     find_start, legs_for_pose, platform_is_coplanar, SixSix, StartError, Stewart, StewartGeneral,
 };
 

@@ -34,6 +34,7 @@
 //! assert!((pose.c - 5.0).abs() < 1e-6 && report.proximity > 0.0);
 //! ```
 
+pub mod calls;
 mod exports;
 mod geometry;
 mod hexapod;
@@ -41,6 +42,7 @@ mod pose;
 pub mod status;
 mod strut_correction;
 
+pub use calls::{ALIGN, STORAGE};
 pub use exports::*;
 pub use geometry::LinkageGeometry;
 pub use hexapod::{Hexapod, LinkageReport};

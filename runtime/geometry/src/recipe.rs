@@ -166,17 +166,28 @@ impl Recipes<'_> {
         auto: &mut [[f64; 3]],
         out: &mut [f64],
     ) -> Result<(), DeriveError> {
+        // An index past its table (a slot, an added point, a coefficient) or buffers shorter
+        // than the recipes would be the generator's bug: `UnknownName` (no value has that
+        // name), never a panic, so that a generated `from_geometry` is total.
+        let unknown = |constant| DeriveError {
+            error: GeometryError::UnknownName,
+            constant,
+        };
         for (i, a) in self.auto.iter().enumerate() {
-            auto[i] = self
-                .added_point(g, &auto[..i], a)
-                .map_err(|error| DeriveError {
-                    error,
-                    constant: None,
-                })?;
+            let Some((done, [slot, ..])) = auto.split_at_mut_checked(i) else {
+                return Err(unknown(None));
+            };
+            *slot = self.added_point(g, done, a).map_err(|error| DeriveError {
+                error,
+                constant: None,
+            })?;
         }
-        let auto = &auto[..self.auto.len()];
+        let auto = auto.get(..self.auto.len()).ok_or(unknown(None))?;
+        if out.len() < self.constants.len() {
+            return Err(unknown(None));
+        }
         let mut last: Option<(Recipe, [f64; 12])> = None;
-        for (i, r) in self.constants.iter().enumerate() {
+        for (i, (r, out)) in self.constants.iter().zip(out.iter_mut()).enumerate() {
             let at = |p: PointRef| self.point(g, auto, p);
             let fail = |error| DeriveError {
                 error,
@@ -203,10 +214,10 @@ impl Recipes<'_> {
                 }
                 Ok(v)
             };
-            out[i] = match *r {
-                Recipe::Slot(s) => g[s],
-                Recipe::Distance { a, b } => distance(at(a), at(b)),
-                Recipe::Coordinate { point, index } => at(point)[index],
+            let value = match *r {
+                Recipe::Slot(s) => g.get(s).copied(),
+                Recipe::Distance { a, b } => Some(distance(at(a), at(b))),
+                Recipe::Coordinate { point, index } => at(point).get(index).copied(),
                 Recipe::Rigid { index, .. }
                 | Recipe::Collinear { index, .. }
                 | Recipe::Axis { index, .. } => {
@@ -216,20 +227,23 @@ impl Recipes<'_> {
                         _ => vector(r).map_err(fail)?,
                     };
                     last = Some((key, v));
-                    v[index]
+                    v.get(index).copied()
                 }
             };
+            *out = value.ok_or(unknown(Some(i)))?;
         }
         Ok(())
     }
 
-    /// A point's home position, with the added points computed so far.
+    /// A point's home position, with the added points computed so far. A slot or added point
+    /// past its table is not a point: NaN, which the kernels report as a degenerate axis.
     pub fn point(&self, g: &[f64], auto: &[[f64; 3]], p: PointRef) -> [f64; 3] {
+        let slot = |i: usize| g.get(i).copied().unwrap_or(f64::NAN);
         match p {
-            PointRef::Slots(s) => s.map(|i| g[i]),
-            PointRef::PlatformHome(s) => place(self.home_pose, s.map(|i| g[i])),
+            PointRef::Slots(s) => s.map(slot),
+            PointRef::PlatformHome(s) => place(self.home_pose, s.map(slot)),
             // The generator orders added points so that each uses earlier ones only; anything
-            // else is not a point (NaN makes the kernels report a degenerate axis).
+            // else is not a point.
             PointRef::Auto(i) => auto.get(i).copied().unwrap_or([f64::NAN; 3]),
         }
     }

@@ -538,6 +538,13 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         }
     }
 
+    /// The start count as an index bound: `count` ≤ K by construction (`new` and
+    /// `from_starts` refuse more); the `min` lets the compiler see it too, so that the query's
+    /// loops over the paths have no panic path (`tests/no_panic`).
+    fn count(&self) -> usize {
+        self.count.min(K)
+    }
+
     /// The mechanism.
     pub fn mechanism(&self) -> &S {
         &self.sys
@@ -555,7 +562,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
 
     /// Start solution `i` (v at p₀), `None` past [`AllModes::start_count`].
     pub fn start(&self, i: usize) -> Option<[Complex; N]> {
-        (i < self.count).then(|| self.model().leave(&self.starts[i]))
+        self.starts[..self.count()]
+            .get(i)
+            .map(|s| self.model().leave(s))
     }
 
     /// How the start set was found.
@@ -584,11 +593,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             .map_err(|input| ModesError::InvalidInput { input })?;
         let target = x.map(Complex::real);
         let mut ws = Workspace::new();
-        out.paths = self.count;
+        out.paths = self.count();
         out.n_real = 0;
         let path = ParameterPath::new(self.p0, target, self.gamma);
-        for i in 0..self.count {
-            out.endpoints[i] = self.retried_endpoint(&path, i, &target, &mut ws);
+        for (i, e) in out.endpoints.iter_mut().take(self.count()).enumerate() {
+            *e = self.retried_endpoint(&path, i, &target, &mut ws);
         }
         self.separate_duplicates(&path, &target, out, &mut ws);
         // Paths that still end short of a regular root: conjugates, every start again along
@@ -638,8 +647,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         ws: &mut Workspace<N>,
     ) {
         let model = self.model();
-        for i in 0..self.count {
-            for j in i + 1..self.count {
+        let count = self.count();
+        for i in 0..count {
+            for j in i + 1..count {
                 if !(out.endpoints[i].is_root() && out.endpoints[j].is_root()) {
                     continue;
                 }
@@ -648,10 +658,12 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                     continue;
                 }
                 for k in [i, j] {
-                    let steps = out.endpoints[k].steps;
-                    out.endpoints[k] =
-                        self.endpoint(&model, path, k, target, &Settings::CAREFUL, ws);
-                    out.endpoints[k].steps += steps;
+                    let Some(e) = out.endpoints.get_mut(k) else {
+                        continue;
+                    };
+                    let steps = e.steps;
+                    *e = self.endpoint(&model, path, k, target, &Settings::CAREFUL, ws);
+                    e.steps += steps;
                 }
                 let (a, b) = (out.endpoints[i].z, out.endpoints[j].z);
                 if out.endpoints[i].is_root() && contains(&model, &[a], &b, SAME) {
@@ -673,7 +685,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         ws: &mut Workspace<N>,
     ) -> Endpoint<N> {
         let own = self.model();
-        let mut z = model.enter(&own.leave(&self.starts[i]));
+        // `i` is below the start count wherever this is called; past it no path exists.
+        let Some(start) = self.starts.get(i) else {
+            return Endpoint::EMPTY;
+        };
+        let mut z = model.enter(&own.leave(start));
         let tracked = model.track(path, &mut z, ws, settings);
         let mut e = endpoint::classify(model, target, &tracked, &z, ws);
         if model.chart.is_none() && e.v.iter().all(|c| c.is_finite()) {
@@ -684,7 +700,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
 
     /// Distances between roots and the real roots' refinement.
     fn finish(&self, x: &[f64; M], out: &mut Roots<N, K>) {
-        let n = out.paths;
+        let n = out.paths.min(K);
         for i in 0..n {
             out.endpoints[i].nearest = f64::INFINITY;
         }
@@ -717,7 +733,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 out.endpoints[i].kind = EndpointKind::Spurious;
                 continue;
             }
-            let seen = out.real[..out.n_real].iter().any(|r| {
+            let seen = out.real().iter().any(|r| {
                 (0..N).all(|k| (r.v[k] - v[k]).abs() <= 1e-9 * self.scale.max(v[k].abs()))
             });
             if seen {
@@ -726,7 +742,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 out.endpoints[i].kind = EndpointKind::Complex;
                 continue;
             }
-            out.real[out.n_real] = RealRoot {
+            // At most one real root per path: `n_real` stays below `paths` ≤ K.
+            let Some(slot) = out.real.get_mut(out.n_real) else {
+                break;
+            };
+            *slot = RealRoot {
                 v,
                 pose: crate::pose_from_unknowns(&self.sys, &v),
                 det,
@@ -737,8 +757,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             };
             out.n_real += 1;
         }
-        for i in 0..out.n_real {
-            for j in i + 1..out.n_real {
+        let n_real = out.n_real.min(K);
+        for i in 0..n_real {
+            for j in i + 1..n_real {
                 let d = crate::math::norm(&core::array::from_fn::<f64, N, _>(|k| {
                     out.real[i].v[k] - out.real[j].v[k]
                 }));

@@ -91,7 +91,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             }
             let path = ParameterPath::new(self.p0, *target, gamma);
             let model = self.model();
-            for j in 0..self.count {
+            for j in 0..self.count() {
                 if out.endpoints[j].is_root() {
                     continue;
                 }
@@ -117,8 +117,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
     /// need not be), which also catches equations with complex coefficients.
     fn conjugates(&self, target: &[Complex; M], out: &mut Roots<N, K>) {
         let model = self.model();
-        for i in 0..self.count {
-            let Some(slot) = (0..self.count).find(|&j| !out.endpoints[j].is_root()) else {
+        let count = self.count();
+        for i in 0..count {
+            let Some(slot) = (0..count).find(|&j| !out.endpoints[j].is_root()) else {
                 return;
             };
             let root = out.endpoints[i];
@@ -158,8 +159,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         ws: &mut Workspace<N>,
     ) {
         let model = self.model();
-        for i in 0..self.count {
-            let Some(slot) = (0..self.count).find(|&j| !out.endpoints[j].is_root()) else {
+        let count = self.count();
+        for i in 0..count {
+            let Some(slot) = (0..count).find(|&j| !out.endpoints[j].is_root()) else {
                 return;
             };
             let e = self.retried_endpoint(path, i, target, ws);

@@ -48,7 +48,7 @@ pub struct Endpoint<const N: usize> {
 }
 
 impl<const N: usize> Endpoint<N> {
-    const EMPTY: Self = Endpoint {
+    pub(crate) const EMPTY: Self = Endpoint {
         v: [Complex::ZERO; N],
         z: [Complex::ZERO; N],
         kind: EndpointKind::Failed,
@@ -129,12 +129,13 @@ impl<const N: usize, const K: usize> Roots<N, K> {
 
     /// One endpoint per start solution, in the order of the starts.
     pub fn endpoints(&self) -> &[Endpoint<N>] {
-        &self.endpoints[..self.paths]
+        // `paths` ≤ K by construction; the `min` lets the compiler see it (no panic path).
+        &self.endpoints[..self.paths.min(K)]
     }
 
     /// The real roots (assembly modes), distinct.
     pub fn real(&self) -> &[RealRoot<N>] {
-        &self.real[..self.n_real]
+        &self.real[..self.n_real.min(K)]
     }
 
     /// Number of paths that ended as `kind`.

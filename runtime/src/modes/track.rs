@@ -284,8 +284,11 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         self.sys.residual_in(&v, p, &mut f);
         // r = B v − d∘F, then rows scaled by w^(d − 1).
         let mut r = [Complex::ZERO; N];
+        // The pattern's entries are below N (the plan refused it otherwise).
         for (&(row, col), &b) in self.pattern.iter().zip(flat.iter()) {
-            r[row] += b * v[col];
+            if let (Some(r), Some(v)) = (r.get_mut(row), v.get(col)) {
+                *r += b * *v;
+            }
         }
         let mut scale = [Complex::ONE; N];
         for i in 0..N {
@@ -295,7 +298,9 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
             r[i] *= scale[i];
         }
         for (&(row, _), b) in self.pattern.iter().zip(flat.iter_mut()) {
-            *b *= scale[row];
+            if let Some(s) = scale.get(row) {
+                *b *= *s;
+            }
         }
         let border = Border {
             col: r,
@@ -429,7 +434,11 @@ impl<'a, S, const N: usize> Model<'a, S, N> {
         let mut coeffs = self.taylor(&ws.lu, path, s, v);
         // First step: where the cubic term alone reaches the error target.
         let c3 = self.norm(&coeffs[2], v).max(1e-300);
-        let mut h = libm::cbrt(set.tau / c3).min(1.0);
+        // `pow`, not `libm::cbrt`: cbrt reaches fma through a function pointer (chosen by CPU
+        // feature), a call the optimiser cannot prove never unwinds, so the no-panic proof of
+        // the query fails on it. The ratio is positive (or 0, or +inf); a first step size
+        // needs no correctly rounded root.
+        let mut h = libm::pow(set.tau / c3, 1.0 / 3.0).min(1.0);
         let mut omega = 0.0f64;
         loop {
             if steps >= set.max_steps {

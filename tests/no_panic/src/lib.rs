@@ -4,7 +4,11 @@
 //! (an index out of bounds, an `unwrap`, an assertion, a `clamp` with a NaN bound) survives
 //! the optimiser in one of them, linking `src/main.rs` fails and names the function. The
 //! runtime's promise is that bad input is a typed error, never a panic; this checks it for
-//! every input at once, not for the inputs a test happens to try.
+//! every input at once, not for the inputs a test happens to try. The same for every call of
+//! the C interface (`linkage-ffi`), where a panic would abort LinuxCNC's motion controller.
+//!
+//! Every wrapper must be called from `main`: one the binary never calls is dropped before
+//! linking, and proves nothing.
 //!
 //! ```text
 //! cargo run --release --manifest-path tests/no_panic/Cargo.toml
@@ -165,3 +169,128 @@ macro_rules! proven {
 proven!(rps, Rps, 9, 3);
 proven!(stewart, Stewart, 18, 6);
 proven!(hexapod, RssHexapod, 18, 6);
+
+/// The all-modes query ([`AllModes::solve`](linkage::modes::AllModes::solve): every path from
+/// the start set to the target, the refills of failed paths, the real roots' refinement), each
+/// mechanism with the capacity its root count needs.
+pub mod modes {
+    use super::*;
+    use linkage::modes::{AllModes, ModesError, Roots};
+
+    #[no_panic]
+    pub fn rps(
+        m: &AllModes<Rps, 9, 3, 32>,
+        x: &[f64; 3],
+        out: &mut Roots<9, 32>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+
+    #[no_panic]
+    pub fn stewart(
+        m: &AllModes<Stewart, 18, 6, 64>,
+        x: &[f64; 6],
+        out: &mut Roots<18, 64>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+
+    #[no_panic]
+    pub fn hexapod(
+        m: &AllModes<RssHexapod, 18, 6, 64>,
+        x: &[f64; 6],
+        out: &mut Roots<18, 64>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+}
+
+/// The C interface's calls (`linkage-ffi`, which LinuxCNC's kinematics module links), each in
+/// a `#[no_panic]` function. They wrap the Rust-ABI functions the `extern "C"` symbols
+/// forward to, not the symbols: a panic cannot unwind out of an `extern "C"` function (it
+/// aborts), so the optimiser takes a call to one as panic-free and wrapping it proves nothing.
+pub mod ffi {
+    use core::ffi::c_char;
+    use core::mem::MaybeUninit;
+
+    use linkage_ffi::{
+        calls, Hexapod, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection,
+    };
+    use no_panic::no_panic;
+
+    #[no_panic]
+    pub fn size() -> usize {
+        calls::size()
+    }
+
+    #[no_panic]
+    pub fn init(s: Option<&mut MaybeUninit<Hexapod>>, g: Option<&LinkageGeometry>) -> i32 {
+        calls::init(s, g)
+    }
+
+    #[no_panic]
+    pub fn set_geometry(h: Option<&mut Hexapod>, g: Option<&LinkageGeometry>) -> i32 {
+        calls::set_geometry(h, g)
+    }
+
+    #[no_panic]
+    pub fn set_options(h: Option<&mut Hexapod>, tolerance: f64, max_iterations: u32) -> i32 {
+        calls::set_options(h, tolerance, max_iterations)
+    }
+
+    #[no_panic]
+    pub fn set_strut_correction(
+        h: Option<&mut Hexapod>,
+        c: Option<&LinkageStrutCorrection>,
+    ) -> i32 {
+        calls::set_strut_correction(h, c)
+    }
+
+    #[no_panic]
+    pub fn set_certify(h: Option<&mut Hexapod>, on: i32) -> i32 {
+        calls::set_certify(h, on)
+    }
+
+    #[no_panic]
+    pub fn reset(h: Option<&mut Hexapod>) -> i32 {
+        calls::reset(h)
+    }
+
+    #[no_panic]
+    pub fn is_tracking(h: Option<&Hexapod>) -> i32 {
+        calls::is_tracking(h)
+    }
+
+    #[no_panic]
+    pub fn inverse(
+        h: Option<&Hexapod>,
+        pose: Option<&LinkagePose>,
+        legs: Option<&mut [f64; 6]>,
+    ) -> i32 {
+        calls::inverse(h, pose, legs)
+    }
+
+    #[no_panic]
+    pub fn strut_corrections(
+        h: Option<&Hexapod>,
+        pose: Option<&LinkagePose>,
+        out: Option<&mut [f64; 6]>,
+    ) -> i32 {
+        calls::strut_corrections(h, pose, out)
+    }
+
+    #[no_panic]
+    pub fn forward(
+        h: Option<&mut Hexapod>,
+        legs: Option<&[f64; 6]>,
+        pose: Option<&mut LinkagePose>,
+        report: Option<&mut LinkageReport>,
+    ) -> i32 {
+        calls::forward(h, legs, pose, report)
+    }
+
+    #[no_panic]
+    pub fn status_name(code: i32) -> *const c_char {
+        calls::status_name(code)
+    }
+}

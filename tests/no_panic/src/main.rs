@@ -2,8 +2,11 @@
 //! good and on bad input (a smoke test that they are the real thing).
 
 use core::hint::black_box;
+use core::mem::MaybeUninit;
+use linkage::modes::{AllModes, EndpointKind, ModesError, ModesOptions, Roots};
 use linkage::{Mechanism, Options, Pose, Tracker};
-use no_panic_proof::{hexapod, rps, stewart, Rps, RssHexapod, Stewart};
+use linkage_ffi::{status, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection};
+use no_panic_proof::{ffi, hexapod, rps, stewart, Rps, RssHexapod, Stewart};
 
 fn main() {
     let o = black_box(Options::TIGHT);
@@ -53,5 +56,209 @@ fn main() {
     let mut t = Tracker::new(sys.clone(), s, o);
     assert!(hexapod::track(&mut t, &x).is_ok());
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
+    c_interface();
+    all_modes();
     println!("no-panic proof: linked; every entry point ran on good and bad input");
+}
+
+/// The C interface as LinuxCNC's module drives it: a handle in caller storage, inverse and
+/// forward kinematics on genhexkins' default geometry, then the refusals.
+fn c_interface() {
+    let geometry = black_box(LinkageGeometry {
+        base: [
+            [-22.95, 13.25, 0.0],
+            [22.95, 13.25, 0.0],
+            [22.95, 13.25, 0.0],
+            [0.0, -26.5, 0.0],
+            [0.0, -26.5, 0.0],
+            [-22.95, 13.25, 0.0],
+        ],
+        platform: [
+            [-1.0, 11.5, 0.0],
+            [1.0, 11.5, 0.0],
+            [10.459, -4.884, 0.0],
+            [9.459, -6.616, 0.0],
+            [-9.459, -6.616, 0.0],
+            [-10.459, -4.884, 0.0],
+        ],
+    });
+    assert!(ffi::size() <= linkage_ffi::STORAGE);
+    let mut slot = MaybeUninit::uninit();
+    assert_eq!(ffi::init(Some(&mut slot), Some(&geometry)), status::OK);
+    // A copy of what init wrote, through the safe constructor (no `unsafe` here).
+    let h = slot.write(linkage_ffi::Hexapod::new(&geometry).expect("the geometry"));
+    assert_eq!(ffi::set_options(Some(&mut *h), 1e-10, 50), status::OK);
+    assert_eq!(ffi::set_certify(Some(&mut *h), 1), status::OK);
+    let home = LinkagePose {
+        z: 20.0,
+        ..Default::default()
+    };
+    let moved = black_box(LinkagePose {
+        x: 0.5,
+        z: 20.5,
+        c: 5.0,
+        ..home
+    });
+    let (mut legs, mut corrections) = ([0.0; 6], [1.0; 6]);
+    assert_eq!(
+        ffi::inverse(Some(&*h), Some(&home), Some(&mut legs)),
+        status::OK
+    );
+    assert_eq!(
+        ffi::strut_corrections(Some(&*h), Some(&home), Some(&mut corrections)),
+        status::OK
+    );
+    assert_eq!(corrections, [0.0; 6]);
+    let mut pose = home;
+    let mut report = LinkageReport::default();
+    assert_eq!(
+        ffi::forward(
+            Some(&mut *h),
+            Some(&legs),
+            Some(&mut pose),
+            Some(&mut report)
+        ),
+        status::OK
+    );
+    assert_eq!(ffi::is_tracking(Some(&*h)), 1);
+    assert_eq!(
+        ffi::inverse(Some(&*h), Some(&moved), Some(&mut legs)),
+        status::OK
+    );
+    assert_eq!(
+        ffi::forward(
+            Some(&mut *h),
+            Some(&legs),
+            Some(&mut pose),
+            Some(&mut report)
+        ),
+        status::OK
+    );
+    assert!(
+        (pose.c - 5.0).abs() < 1e-6 && report.certified == 1,
+        "{pose:?} {report:?}"
+    );
+    // The strut correction on: forward kinematics solves for it.
+    let mut correction = LinkageStrutCorrection::NONE;
+    correction.base_n = [[1.0, 0.0, 0.0]; 6];
+    correction.platform_n = [[0.0, 1.0, 0.0]; 6];
+    correction.screw_lead = black_box(0.2);
+    assert_eq!(
+        ffi::set_strut_correction(Some(&mut *h), Some(&correction)),
+        status::OK
+    );
+    assert_eq!(
+        ffi::inverse(Some(&*h), Some(&moved), Some(&mut legs)),
+        status::OK
+    );
+    assert_eq!(
+        ffi::forward(Some(&mut *h), Some(&legs), Some(&mut pose), None),
+        status::OK
+    );
+
+    // Bad input comes back as a status code.
+    let nan = black_box(f64::NAN);
+    let mut bad = geometry;
+    bad.platform[2][1] = nan;
+    assert_eq!(
+        ffi::set_geometry(Some(&mut *h), Some(&bad)),
+        status::INVALID_GEOMETRY
+    );
+    bad.platform[2][1] = bad.platform[0][1];
+    bad.platform = [bad.platform[0]; 6];
+    assert_eq!(
+        ffi::set_geometry(Some(&mut *h), Some(&bad)),
+        status::INVALID_GEOMETRY
+    );
+    assert_eq!(
+        ffi::set_options(Some(&mut *h), nan, 50),
+        status::INVALID_OPTIONS
+    );
+    assert_eq!(ffi::set_certify(Some(&mut *h), 7), status::INVALID_OPTIONS);
+    correction.screw_lead = nan;
+    assert_eq!(
+        ffi::set_strut_correction(Some(&mut *h), Some(&correction)),
+        status::NON_FINITE
+    );
+    let nan_pose = LinkagePose { a: nan, ..home };
+    assert_eq!(
+        ffi::inverse(Some(&*h), Some(&nan_pose), Some(&mut legs)),
+        status::NON_FINITE
+    );
+    assert_eq!(
+        ffi::strut_corrections(Some(&*h), Some(&nan_pose), Some(&mut legs)),
+        status::NON_FINITE
+    );
+    assert_eq!(
+        ffi::forward(Some(&mut *h), Some(&[nan; 6]), Some(&mut pose), None),
+        status::NON_FINITE
+    );
+    assert_eq!(
+        ffi::forward(Some(&mut *h), Some(&[-1.0; 6]), Some(&mut pose), None),
+        status::INVALID_INPUT
+    );
+    assert_eq!(ffi::reset(Some(&mut *h)), status::OK);
+    assert_eq!(ffi::is_tracking(Some(&*h)), 0);
+    // Legs far from the start pose: refused, not started.
+    let mut report = LinkageReport::default();
+    assert_eq!(
+        ffi::forward(
+            Some(&mut *h),
+            Some(&[40.0; 6]),
+            Some(&mut pose),
+            Some(&mut report)
+        ),
+        status::POSE_MISMATCH
+    );
+    assert_eq!(
+        ffi::forward(None, None, None, Some(&mut report)),
+        status::NULL_POINTER
+    );
+    assert_eq!(report.status, status::NULL_POINTER);
+    assert_eq!(ffi::init(None, Some(&geometry)), status::NULL_POINTER);
+    assert!(!ffi::status_name(black_box(1234)).is_null());
+}
+
+/// The all-modes query for each mechanism: its real roots include the pose it was given, and
+/// bad input is an error.
+fn all_modes() {
+    let options = ModesOptions::default();
+    let modes = AllModes::<Rps, 9, 3, 32>::new(Rps::new(), &options).expect("the 3-RPS's starts");
+    let mut roots = Box::new(Roots::<9, 32>::new());
+    no_panic_proof::modes::rps(&modes, &black_box([150.0, 160.0, 155.0]), &mut roots)
+        .expect("a 3-RPS query");
+    assert!(roots.is_complete() && roots.count(EndpointKind::Real) > 0);
+    let bad = no_panic_proof::modes::rps(&modes, &black_box([f64::NAN; 3]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
+
+    let sys = Stewart::new();
+    let v = linkage::unknowns_from_pose(
+        &sys,
+        &Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 159.011]),
+    );
+    let x = sys
+        .inverse(&v, &[170.0; 6])
+        .expect("the Stewart platform at home");
+    let modes = Box::new(AllModes::<Stewart, 18, 6, 64>::new(sys, &options).expect("starts"));
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    no_panic_proof::modes::stewart(&modes, &black_box(x), &mut roots).expect("a query");
+    let home = roots
+        .real()
+        .iter()
+        .any(|r| (0..18).all(|k| (r.v[k] - v[k]).abs() < 1e-6 * 200.0));
+    assert!(home, "the home pose among the real roots");
+    let bad = no_panic_proof::modes::stewart(&modes, &black_box([f64::INFINITY; 6]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
+
+    let sys = RssHexapod::new();
+    let s = sys.home_start().expect("the hexapod's start");
+    let modes = Box::new(AllModes::<RssHexapod, 18, 6, 64>::new(sys, &options).expect("starts"));
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    no_panic_proof::modes::hexapod(&modes, &black_box(*s.x()), &mut roots).expect("a query");
+    assert!(roots
+        .real()
+        .iter()
+        .any(|r| (0..18).all(|k| (r.v[k] - s.v()[k]).abs() < 1e-4)));
+    let bad = no_panic_proof::modes::hexapod(&modes, &black_box([f64::NAN; 6]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
 }

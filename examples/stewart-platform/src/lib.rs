@@ -1,4 +1,9 @@
 //! The general 6-6 Stewart platform of Gao & Wu (2015), Table III: six S–P–S legs.
+//!
+//! Shared by the examples, the `stewart` CLI and the C interface (`linkage-ffi`); `no_std`
+//! so that the C interface needs nothing beyond the runtime.
+
+#![no_std]
 
 use linkage::{GeometryError, Mechanism, Pose, SolveError, Start};
 
@@ -78,6 +83,34 @@ pub trait SixSix: Mechanism<18, 6> + Clone + Sized {
     fn base_joints(&self) -> [[f64; 3]; 6];
 }
 
+/// A generated geometry name, `link.Pn.axis` (as `base.D3.y`): the link, the pivot's index
+/// (n − 1, below 6) and the axis's (0, 1, 2). Total: a name of any other shape is `None`,
+/// never a panic (the C interface builds its geometry through this).
+fn parse_name(name: &str) -> Option<(&str, usize, usize)> {
+    let (link, rest) = split_dot(name)?;
+    let (pivot, axis) = split_dot(rest).unwrap_or((rest, ""));
+    let i = pivot
+        .get(1..)?
+        .parse::<usize>()
+        .ok()?
+        .checked_sub(1)
+        .filter(|i| *i < 6)?;
+    let a = match axis {
+        "x" => 0,
+        "y" => 1,
+        _ => 2,
+    };
+    Some((link, i, a))
+}
+
+/// `s` split at its first '.', which neither part keeps. By hand: `str::split` keeps a bounds
+/// check the optimiser cannot remove, and the no-panic proof links this.
+fn split_dot(s: &str) -> Option<(&str, &str)> {
+    let at = s.bytes().position(|b| b == b'.')?;
+    let (head, tail) = s.split_at_checked(at)?;
+    Some((head, tail.get(1..)?))
+}
+
 macro_rules! six_six {
     ($name:ident) => {
         impl SixSix for $name {
@@ -86,46 +119,23 @@ macro_rules! six_six {
                 platform: &[[f64; 3]; 6],
             ) -> Result<Self, GeometryError> {
                 let mut g = $name::DEFAULT_GEOMETRY;
-                for (k, name) in $name::GEOMETRY_NAMES.iter().enumerate() {
-                    let mut parts = name.split('.');
-                    let (link, pivot, axis) = (parts.next(), parts.next(), parts.next());
-                    let i = pivot
-                        .and_then(|p| p[1..].parse::<usize>().ok())
-                        .filter(|i| (1..=6).contains(i));
-                    let a = match axis {
-                        Some("x") => 0,
-                        Some("y") => 1,
-                        _ => 2,
+                for (value, name) in g.iter_mut().zip($name::GEOMETRY_NAMES) {
+                    let joint = match parse_name(name) {
+                        Some(("base", i, a)) => base.get(i).and_then(|p| p.get(a)),
+                        Some(("platform", i, a)) => platform.get(i).and_then(|p| p.get(a)),
+                        _ => None,
                     };
-                    match (link, i) {
-                        (Some("base"), Some(i)) => g[k] = base[i - 1][a],
-                        (Some("platform"), Some(i)) => g[k] = platform[i - 1][a],
-                        _ => return Err(GeometryError::UnknownName),
-                    }
+                    *value = *joint.ok_or(GeometryError::UnknownName)?;
                 }
                 $name::from_geometry(g)
             }
 
             fn base_joints(&self) -> [[f64; 3]; 6] {
                 let mut out = [[0.0; 3]; 6];
-                for (k, name) in $name::GEOMETRY_NAMES.iter().enumerate() {
-                    let mut parts = name.split('.');
-                    if let (Some("base"), Some(pivot), Some(axis)) =
-                        (parts.next(), parts.next(), parts.next())
-                    {
-                        if let Some(i) = pivot[1..]
-                            .parse::<usize>()
-                            .ok()
-                            .filter(|i| (1..=6).contains(i))
-                        {
-                            let a = if axis == "x" {
-                                0
-                            } else if axis == "y" {
-                                1
-                            } else {
-                                2
-                            };
-                            out[i - 1][a] = self.geometry()[k];
+                for (value, name) in self.geometry().iter().zip($name::GEOMETRY_NAMES) {
+                    if let Some(("base", i, a)) = parse_name(name) {
+                        if let Some(slot) = out.get_mut(i).and_then(|p| p.get_mut(a)) {
+                            *slot = *value;
                         }
                     }
                 }
@@ -149,20 +159,21 @@ pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
         ]
     };
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    // The best-conditioned triangle defines the plane.
-    let mut best = (0.0, [0.0; 3], 0);
+    // The best-conditioned triangle defines the plane (kept with its corner, not the corner's
+    // index: the C interface's geometry check is proven not to panic).
+    let mut best = (0.0, [0.0; 3], [0.0; 3]);
     for i in 0..6 {
         for j in i + 1..6 {
             for k in j + 1..6 {
                 let n = cross(sub(platform[j], platform[i]), sub(platform[k], platform[i]));
                 let a = dot(n, n).sqrt();
                 if a > best.0 {
-                    best = (a, n, i);
+                    best = (a, n, platform[i]);
                 }
             }
         }
     }
-    let (area, n, i) = best;
+    let (area, n, corner) = best;
     if area == 0.0 {
         return false;
     }
@@ -174,7 +185,7 @@ pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
         .fold(0.0f64, |m, x| m.max(x.abs()));
     platform
         .iter()
-        .all(|p| (dot(n, sub(*p, platform[i])) / area).abs() <= 1e-9 * size)
+        .all(|p| (dot(n, sub(*p, corner)) / area).abs() <= 1e-9 * size)
 }
 
 /// Why no start configuration could be found.
@@ -188,8 +199,8 @@ pub enum StartError {
     PoseMismatch,
 }
 
-impl std::fmt::Display for StartError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl core::fmt::Display for StartError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             StartError::Solve(e) => write!(f, "{e}"),
             StartError::NoAssemblyMode => write!(f, "no assembly mode with the platform above the base was found for the start legs"),
@@ -263,7 +274,7 @@ pub fn find_start<S: SixSix>(
     let base_top = base.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p[2]));
     let mut best: Option<([f64; 18], f64)> = None;
     for height in [0.3, 0.5, 0.7, 0.85, 1.0, 1.2] {
-        for yaw in [0.0, 0.4, -0.4, 0.8, -0.8, 1.6, -1.6, std::f64::consts::PI] {
+        for yaw in [0.0, 0.4, -0.4, 0.8, -0.8, 1.6, -1.6, core::f64::consts::PI] {
             // Centre the platform over the base centroid.
             let local_c = (0..6).map(|p| sys.point_local(p)).fold([0.0; 3], |a, p| {
                 [a[0] + p[0] / 6.0, a[1] + p[1] / 6.0, a[2] + p[2] / 6.0]
