@@ -18,7 +18,7 @@
 
 use linkage::{
     arc_length, arc_length_detour, certify, newton_homotopy, newton_raphson, Certificate,
-    CertifyError, Detoured, Options, Solution, SolveError, Start, TrackError, Tracker,
+    CertifyError, Detoured, NewtonRaphson, Options, Solution, SolveError, Start, TrackError, Tracker,
 };
 use no_panic::no_panic;
 
@@ -114,6 +114,17 @@ macro_rules! proven {
                 o: &Options,
             ) -> Result<Solution<$n>, SolveError> {
                 newton_raphson(sys, s, x, o)
+            }
+
+            /// Newton–Raphson prepared for one start (B factored there once where it serves
+            /// every target).
+            #[no_panic]
+            pub fn nr_prepared(
+                nr: &NewtonRaphson<$sys, $n, $m>,
+                x: &[f64; $m],
+                o: &Options,
+            ) -> Result<Solution<$n>, SolveError> {
+                nr.solve(x, o)
             }
 
             #[no_panic]

@@ -19,6 +19,8 @@ fn main() {
     let sol = rps::ph(&sys, &s, &x, &o).expect("a solve");
     assert!(sol.is_ok(), "{:?}", sol.status);
     assert!(rps::nr(&sys, &s, &x, &o).is_ok() && rps::nh(&sys, &s, &x, &o).is_ok());
+    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
+    assert_eq!(rps::nr_prepared(&prepared, &x, &o), rps::nr(&sys, &s, &x, &o));
     assert!(rps::detour(&sys, &s, &x, &o).is_ok());
     assert!(rps::proof(&sys, &sol.v, &x).is_ok());
     let mut t = Tracker::new(sys.clone(), s, o);
@@ -41,6 +43,8 @@ fn main() {
     let sol = stewart::ph(&sys, &s, &x, &o).expect("a solve");
     assert!(sol.is_ok(), "{:?}", sol.status);
     assert!(stewart::nr(&sys, &s, &x, &o).is_ok() && stewart::nh(&sys, &s, &x, &o).is_ok());
+    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
+    assert_eq!(stewart::nr_prepared(&prepared, &x, &o), stewart::nr(&sys, &s, &x, &o));
     assert!(stewart::detour(&sys, &s, &x, &o).is_ok());
     assert!(stewart::proof(&sys, &sol.v, &x).is_ok());
     let mut t = Tracker::new(sys.clone(), s, o);
@@ -53,6 +57,8 @@ fn main() {
     let sol = hexapod::ph(&sys, &s, &x, &o).expect("a solve");
     assert!(sol.is_ok(), "{:?}", sol.status);
     assert!(hexapod::nr(&sys, &s, &x, &o).is_ok() && hexapod::proof(&sys, &sol.v, &x).is_ok());
+    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
+    assert_eq!(hexapod::nr_prepared(&prepared, &x, &o), hexapod::nr(&sys, &s, &x, &o));
     let mut t = Tracker::new(sys.clone(), s, o);
     assert!(hexapod::track(&mut t, &x).is_ok());
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
