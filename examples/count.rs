@@ -14,7 +14,8 @@
 //! (`Linear::Dense`). `nr-rps`, `nr-rss_hexapod`: the same from the
 //! home configurations of the other examples to 100 inputs around it. `ph-all`: pseudo-arc-length
 //! continuation from home to every row. `track TRAJECTORY.csv`:
-//! the `Tracker` over every sample of a `stewart trajectory` CSV. `certify`: the Krawczyk
+//! the `Tracker` over every sample of a `stewart trajectory` CSV; `track-rss_hexapod` over 2 s
+//! at 1 kHz of the 6-RSS hexapod's cranks swinging 0.1 rad about home. `certify`: the Krawczyk
 //! certificate of NR's answer from home at every row it solves; `certify-step TRAJECTORY.csv`:
 //! `certify_step` between successive tracked samples; `track-certify TRAJECTORY.csv`: the
 //! certified `Tracker` (each sample's step proven). `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
@@ -86,6 +87,22 @@ fn main() -> Result<(), String> {
             let rows = legs_after_first_column(&path)?;
             let (ok, samples) = measure_track(&sys, &start, &rows);
             println!("stewart tracker: {samples} samples, {ok} ok");
+        }
+        "track-rss_hexapod" => {
+            // 2 s at 1 kHz: each crank swings 0.1 rad about home at its own slow frequency.
+            let h = rss_hexapod::RssHexapod::new();
+            let start = rss_hexapod::home_start(&h).map_err(|e| e.to_string())?;
+            let rows: Vec<[f64; 6]> = (0..=2000)
+                .map(|k| {
+                    let t = k as f64 * 1e-3;
+                    std::array::from_fn(|j| {
+                        let f = 0.5 + 0.1 * j as f64;
+                        start.x()[j] + 0.1 * (2.0 * std::f64::consts::PI * f * t).sin()
+                    })
+                })
+                .collect();
+            let (ok, samples) = measure_track(&h, &start, &rows);
+            println!("rss_hexapod tracker: {samples} samples, {ok} ok");
         }
         "track-certify" => {
             let rows = legs_after_first_column(&path)?;
@@ -220,10 +237,10 @@ fn measure_ph(sys: &stewart::Stewart, start: &Start<18, 6>, rows: &[[f64; 6]]) -
 }
 
 #[inline(never)]
-fn measure_track(
-    sys: &stewart::Stewart,
-    start: &Start<18, 6>,
-    rows: &[[f64; 6]],
+fn measure_track<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    rows: &[[f64; M]],
 ) -> (usize, usize) {
     let mut tracker = linkage::Tracker::new(sys.clone(), *start, Options::TIGHT);
     let ok = rows

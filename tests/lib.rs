@@ -80,6 +80,11 @@ pub fn check_jacobians<S: Mechanism<N, M>, const N: usize, const M: usize>(
         "{}: solve after factor_turned",
         S::NAME
     );
+    let dx: [f64; M] = std::array::from_fn(|j| 0.25 - 0.5 * j as f64);
+    let (mut d1, mut d2) = ([0.0; N], [f64::NAN; N]);
+    sys.input_derivative(v, x, &dx, &mut d1);
+    sys.input_derivative_turned(v, x, &t, &dx, &mut d2);
+    assert_eq!(d1, d2, "{}: input_derivative_turned", S::NAME);
     if !S::TURNS {
         assert_eq!(t, linkage::Turns::NONE, "{}", S::NAME);
     }

@@ -43,7 +43,7 @@ extern "C" {
 
 /* Bytes and alignment of caller storage for one handle (checked at compile time in Rust;
    linkage_hexapod_size() gives the exact size). */
-#define LINKAGE_HEXAPOD_STORAGE 4096
+#define LINKAGE_HEXAPOD_STORAGE 8192
 
 typedef struct linkage_hexapod {
     _Alignas(16) unsigned char opaque[LINKAGE_HEXAPOD_STORAGE];

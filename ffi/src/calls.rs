@@ -21,7 +21,7 @@ use crate::status;
 use crate::strut_correction::LinkageStrutCorrection;
 
 /// Bytes of caller storage a handle needs (`LINKAGE_HEXAPOD_STORAGE` in the header).
-pub const STORAGE: usize = 4096;
+pub const STORAGE: usize = 8192;
 /// The alignment the header gives that storage.
 pub const ALIGN: usize = 16;
 

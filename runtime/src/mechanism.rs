@@ -178,6 +178,20 @@ pub trait Mechanism<const N: usize, const M: usize> {
             out[i] = (0..M).map(|j| a[i][j] * dx[j]).sum::<f64>();
         }
     }
+    /// [`Self::input_derivative`] with `t` = [`Self::turns`]`(x)` given: the same values bit
+    /// for bit.
+    #[inline]
+    fn input_derivative_turned(
+        &self,
+        v: &[f64; N],
+        x: &[f64; M],
+        t: &crate::Turns<M>,
+        dx: &[f64; M],
+        out: &mut [f64; N],
+    ) {
+        let _ = t;
+        self.input_derivative(v, x, dx, out);
+    }
     /// A platform pivot's coordinates in the platform frame; NaN for an index out of range.
     fn point_local(&self, p: usize) -> [f64; 3];
     /// Checks that joint inputs are physically meaningful (e.g. leg lengths positive);

@@ -167,6 +167,11 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     certified: Option<crate::CertifiedSteps<N, M>>,
     /// The options checked against the start once: neither changes while tracking.
     options_checked: Result<(), SolveError>,
+    /// The sines and cosines of the inputs (for a mechanism that turns by them) at the inputs
+    /// beside them: those of the last fast step's sample, which the next predictor reuses
+    /// where that sample was accepted (the inputs compared, so no other path can leave them
+    /// stale).
+    turns: (Turns<M>, [f64; M]),
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
@@ -183,6 +188,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             bend: None,
             certified: None,
             options_checked: options.check(start.scale()),
+            turns: (Turns::NONE, [f64::NAN; M]),
         }
     }
 
@@ -323,7 +329,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         let dx: [f64; M] = core::array::from_fn(|j| x[j] - self.x[j]);
         // The predictor step is −dv: B dv = (∂F/∂x) dx.
         let mut dv = [0.0; N];
-        self.sys.input_derivative(&self.v, &self.x, &dx, &mut dv);
+        let mut at_last = Turns::NONE;
+        let t_last = if S::TURNS && self.turns.1 == self.x {
+            &self.turns.0
+        } else {
+            Turns::of(&self.sys, &self.x, &mut at_last)
+        };
+        self.sys
+            .input_derivative_turned(&self.v, &self.x, t_last, &dx, &mut dv);
         self.sys.solve(fac, &mut dv);
         let step = size(&dv);
         if !step.is_finite() {
@@ -386,6 +399,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                         dv: core::array::from_fn(|i| v[i] - linear[i]),
                         dx,
                     });
+                    if S::TURNS {
+                        self.turns = (turned, *x);
+                    }
                     return Some(c.det);
                 }
                 if !contraction.admits(c.size) && !at_rounding_floor(c.size, tol, v) {

@@ -59,11 +59,26 @@ pub fn expand(
 
     let dependent_offset = crate::emit_dependent::dependent_offset(model);
     let symmetry = crate::emit_symmetry::symmetry(model);
+    // ∂F/∂x's nonzeros, row by row in column order.
+    let input_terms: Vec<Vec<(usize, Expr)>> = model
+        .equations
+        .iter()
+        .map(|f| {
+            (0..m)
+                .map(|j| (j, f.derivative(Var::Input(j))))
+                .filter(|(_, d)| !d.is_zero())
+                .collect()
+        })
+        .collect();
     // Sines and cosines of inputs, where the kernels have any, evaluated once per fixed
     // inputs by `turns` and read from `t` by the residual and the factorisation.
     let turned = crate::emit_turns::turned_inputs(
         m,
-        model.equations.iter().chain(jac.iter().map(|(_, _, e)| e)),
+        model
+            .equations
+            .iter()
+            .chain(jac.iter().map(|(_, _, e)| e))
+            .chain(input_terms.iter().flatten().map(|(_, d)| d)),
     );
     let turns = turned.iter().any(|t| t[0] || t[1]);
     let residual_body = assignments(
@@ -102,17 +117,6 @@ pub fn expand(
         Arithmetic::F64,
         jac.iter().map(|(r, c, e)| (quote!(b[#r][#c]), e)),
     );
-    // ∂F/∂x's nonzeros, row by row in column order.
-    let input_terms: Vec<Vec<(usize, Expr)>> = model
-        .equations
-        .iter()
-        .map(|f| {
-            (0..m)
-                .map(|j| (j, f.derivative(Var::Input(j))))
-                .filter(|(_, d)| !d.is_zero())
-                .collect()
-        })
-        .collect();
     let input_jacobian = assignments(
         Arithmetic::F64,
         input_terms
@@ -121,8 +125,12 @@ pub fn expand(
             .flat_map(|(r, terms)| terms.iter().map(move |(j, d)| (quote!(a[#r][#j]), d))),
     );
     // The same products as `input_jacobian`'s nonzeros, summed per row in column order.
-    let input_derivative = {
-        let mut emitter = Emitter::new(Arithmetic::F64);
+    let input_derivative_body = {
+        let mut emitter = Emitter::new(if turns {
+            Arithmetic::Turned
+        } else {
+            Arithmetic::F64
+        });
         input_terms
             .iter()
             .flatten()
@@ -206,6 +214,30 @@ pub fn expand(
             fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
                 let c = &self.constants;
                 #residual_body
+            }
+        }
+    };
+    let input_derivative_fns = if turns {
+        quote! {
+            #[inline]
+            fn input_derivative(&self, v: &[f64; #n], x: &[f64; #m], dx: &[f64; #m], out: &mut [f64; #n]) {
+                self.input_derivative_turned(v, x, &self.turns(x), dx, out);
+            }
+
+            #[inline]
+            #[allow(unused_variables)]
+            fn input_derivative_turned(&self, v: &[f64; #n], x: &[f64; #m], t: &::linkage::Turns<#m>, dx: &[f64; #m], out: &mut [f64; #n]) {
+                let c = &self.constants;
+                #input_derivative_body
+            }
+        }
+    } else {
+        quote! {
+            #[inline]
+            #[allow(unused_variables)]
+            fn input_derivative(&self, v: &[f64; #n], x: &[f64; #m], dx: &[f64; #m], out: &mut [f64; #n]) {
+                let c = &self.constants;
+                #input_derivative_body
             }
         }
     };
@@ -454,12 +486,7 @@ pub fn expand(
                 #input_jacobian
             }
 
-            #[inline]
-            #[allow(unused_variables)]
-            fn input_derivative(&self, v: &[f64; #n], x: &[f64; #m], dx: &[f64; #m], out: &mut [f64; #n]) {
-                let c = &self.constants;
-                #input_derivative
-            }
+            #input_derivative_fns
 
             #home_configuration
 
