@@ -19,6 +19,12 @@ pub enum GeometryError {
     NonFinite { name: &'static str },
     /// No geometry value or pivot has this name.
     UnknownName,
+    /// The geometry value `name` (a pivot coordinate or a length) was declared as the
+    /// parameter `parameter` and follows it: set the parameter instead.
+    FollowsParameter {
+        name: &'static str,
+        parameter: &'static str,
+    },
     /// The platform's three frame pivots are (nearly) collinear.
     CollinearFrame,
     /// A platform pivot left the plane of the frame, but the system was generated in the
@@ -35,6 +41,10 @@ impl fmt::Display for GeometryError {
         match self {
             GeometryError::NonFinite { name } => write!(f, "geometry value `{name}` is not finite"),
             GeometryError::UnknownName => write!(f, "no geometry value or pivot has that name"),
+            GeometryError::FollowsParameter { name, parameter } => write!(
+                f,
+                "{name} follows the parameter {parameter}: set the parameter instead"
+            ),
             GeometryError::CollinearFrame => write!(f, "the platform's frame pivots are collinear"),
             GeometryError::NotCoplanar => write!(
                 f,
