@@ -26,7 +26,14 @@ pub fn derive_constants(
     auto: &mut [[f64; 3]],
     out: &mut [f64],
 ) -> Result<(), GeometryError> {
-    recipes.derive(g, auto, out).map_err(|e| e.error)
+    recipes.derive(g, auto, out).map_err(|e| e.error)?;
+    // Finite values whose squares overflow (a platform of 1e200 mm: the squared distances
+    // between its pivots): say so rather than build equations of infinities.
+    if out.iter().all(|c| c.is_finite()) {
+        Ok(())
+    } else {
+        Err(GeometryError::Overflow)
+    }
 }
 
 /// Why `name` has no geometry slot: it follows a parameter (`followed`: name, parameter), or
