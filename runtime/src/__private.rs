@@ -26,11 +26,30 @@ pub fn derive_constants(
     auto: &mut [[f64; 3]],
     out: &mut [f64],
 ) -> Result<(), GeometryError> {
-    recipes.derive(g, auto, out).map_err(|e| e.error)
+    recipes.derive(g, auto, out).map_err(|e| e.error)?;
+    // Finite values whose squares overflow (a platform of 1e200 mm: the squared distances
+    // between its pivots): say so rather than build equations of infinities.
+    if out.iter().all(|c| c.is_finite()) {
+        Ok(())
+    } else {
+        Err(GeometryError::Overflow)
+    }
+}
+
+/// Why `name` has no geometry slot: it follows a parameter (`followed`: name, parameter), or
+/// no such name was declared.
+fn missing(followed: &[(&'static str, &'static str)], name: &str) -> GeometryError {
+    followed
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map_or(GeometryError::UnknownName, |&(name, parameter)| {
+            GeometryError::FollowsParameter { name, parameter }
+        })
 }
 
 pub fn set_named(
     names: &[&str],
+    followed: &[(&'static str, &'static str)],
     g: &mut [f64],
     name: &str,
     value: f64,
@@ -38,29 +57,35 @@ pub fn set_named(
     let i = names
         .iter()
         .position(|n| *n == name)
-        .ok_or(GeometryError::UnknownName)?;
+        .ok_or_else(|| missing(followed, name))?;
     g[i] = value;
     Ok(())
 }
 
 pub fn set_pivot(
     names: &[&str],
+    followed: &[(&'static str, &'static str)],
     g: &mut [f64],
     link: &str,
     pivot: &str,
     p: [f64; 3],
 ) -> Result<(), GeometryError> {
+    let named = |n: &str, axis: &str| {
+        n.strip_prefix(link)
+            .and_then(|r| r.strip_prefix('.'))
+            .and_then(|r| r.strip_prefix(pivot))
+            .and_then(|r| r.strip_prefix('.'))
+            == Some(axis)
+    };
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        let i = names
-            .iter()
-            .position(|n| {
-                n.strip_prefix(link)
-                    .and_then(|r| r.strip_prefix('.'))
-                    .and_then(|r| r.strip_prefix(pivot))
-                    .and_then(|r| r.strip_prefix('.'))
-                    == Some(axis)
-            })
-            .ok_or(GeometryError::UnknownName)?;
+        let i = names.iter().position(|n| named(n, axis)).ok_or_else(|| {
+            followed
+                .iter()
+                .find(|(n, _)| named(n, axis))
+                .map_or(GeometryError::UnknownName, |&(name, parameter)| {
+                    GeometryError::FollowsParameter { name, parameter }
+                })
+        })?;
         g[i] = p[k];
     }
     Ok(())

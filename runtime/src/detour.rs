@@ -10,7 +10,7 @@
 //! start's branch. It is the valid solution for a machine that moves along that path (see the
 //! README on path dependence).
 
-use crate::arc_length::arc_length;
+use crate::arc_length::{arc_length, from_accepted};
 use crate::correction::det_b;
 use crate::lu::Lu;
 use crate::math::norm;
@@ -113,7 +113,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if sys.validate_inputs(&via).is_err() {
             continue;
         }
-        let Ok(first) = arc_length(sys, &here, &via, options) else {
+        let Ok(first) = from_accepted(sys, &here, &via, options) else {
             continue;
         };
         // The waypoint only leads on: reached by continuation, on the branch (det B checked
@@ -127,7 +127,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
             continue;
         }
         let mid = Start::accepted(first.v, via, det_mid);
-        let Ok(second) = arc_length(sys, &mid, target, options) else {
+        let Ok(second) = from_accepted(sys, &mid, target, options) else {
             continue;
         };
         if second.is_ok() || matches!(second.status, Status::ToleranceNotMet { .. }) {

@@ -18,6 +18,9 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
     crate::start::check_target(sys, start, target, options)?;
+    // Each step corrects toward the homotopy's root from the last: from a start made for
+    // another geometry the first would pull wherever Newton leads.
+    crate::start::check_consistent(sys, start)?;
     let mut v = *start.v();
     let nominal = 1.0 / options.homotopy_steps as f64;
     let mut step = nominal;

@@ -15,6 +15,18 @@ const MIN_RCOND: f64 = 1e-7;
 /// A consistent, nonsingular start configuration `(v0, x0)` and the sign of det B there,
 /// which marks its branch: det B keeps its sign throughout the valid joint space.
 ///
+/// A start belongs to the mechanism it was checked against, geometry included. Changing the
+/// geometry afterwards (`set_geometry`, `set_pivot`) leaves `(v0, x0)` off the new solution
+/// set: the solvers that claim the start's branch ([`arc_length`](crate::arc_length),
+/// [`arc_length_detour`](crate::arc_length_detour),
+/// [`arc_length_certified`](crate::arc_length_certified),
+/// [`newton_homotopy`](crate::newton_homotopy), [`Tracker`](crate::Tracker)) measure the
+/// start's own Newton correction and refuse such a start with
+/// [`SolveError::InconsistentStart`]; make a new start for the new geometry.
+/// [`newton_raphson`](crate::newton_raphson) and [`NewtonRaphson`](crate::NewtonRaphson)
+/// take `v0` as a guess only and do not check it (their answer is
+/// [`Status::Unverified`](crate::Status::Unverified) either way).
+///
 /// Only checked constructors make one ([`Start::new`]), so every solve can rely on it:
 ///
 /// ```compile_fail
@@ -72,6 +84,56 @@ pub(crate) fn check_sample<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     sys.validate_inputs(x)
         .map_err(|input| SolveError::InvalidInput { input })
+}
+
+/// How far a start's own Newton correction may be and still count as consistent, relative to
+/// ‖v0‖: twice what [`Start::new`] accepts (1e-6 ‖v‖, measured against the given rather
+/// than the refined v, which differ by at most 0.1 %), so no start it made is refused here,
+/// while one made for another geometry (a link a millimetre longer) is off by far more.
+const CONSISTENT: f64 = 2e-6;
+
+/// Refuses a start that is not a solution for `sys` (made for another geometry, before
+/// `set_geometry`): its Newton correction ‖B⁻¹F(v0, x0)‖, with B factored at the start in
+/// `fac`, must be within [`CONSISTENT`] of ‖v0‖. One residual and one solve.
+pub(crate) fn consistent_with<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    fac: &S::Factor,
+) -> Result<(), SolveError> {
+    let mut f = [0.0; N];
+    sys.residual(&start.v, &start.x, &mut f);
+    let residual_norm = norm(&f);
+    sys.solve(fac, &mut f);
+    judge(start, size(&f), residual_norm)
+}
+
+/// [`consistent_with`] for a caller with no factorisation at hand (the tracker, once; a start
+/// where the generated factorisation fails): a correction by dense LU.
+pub(crate) fn check_consistent<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+) -> Result<(), SolveError> {
+    let mut f = [0.0; N];
+    sys.residual(&start.v, &start.x, &mut f);
+    let residual_norm = norm(&f);
+    match correction(sys, &start.v, &start.x) {
+        Ok(c) => judge(start, c.size, residual_norm),
+        // B singular at a start `Start::new` accepted as regular: not this mechanism's start.
+        Err(Failure::Singular) => Err(SolveError::SingularStart),
+        Err(Failure::NonFinite) => Err(SolveError::InconsistentStart { residual_norm }),
+    }
+}
+
+fn judge<const N: usize, const M: usize>(
+    start: &Start<N, M>,
+    correction: f64,
+    residual_norm: f64,
+) -> Result<(), SolveError> {
+    if correction <= CONSISTENT * crate::math::scale_or_one(start.scale) {
+        Ok(())
+    } else {
+        Err(SolveError::InconsistentStart { residual_norm })
+    }
 }
 
 /// Whether B at (v, x) is singular to working precision, judged without regard to units: the

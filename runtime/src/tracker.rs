@@ -1,7 +1,7 @@
 //! Trajectory mode: successive joint vectors (e.g. 1 kHz samples), each solved from the last
 //! solution, never leaving the start's branch.
 
-use crate::arc_length::arc_length;
+use crate::arc_length::from_accepted;
 use crate::convergence::Contraction;
 use crate::correction::{Correction, det_b};
 use crate::math::size;
@@ -176,6 +176,10 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     pub fn new(sys: S, start: Start<N, M>, options: Options) -> Self {
+        // A start made for another geometry is refused at the first sample, like bad options.
+        let options_checked = options
+            .check(start.scale())
+            .and_then(|()| crate::start::check_consistent(&sys, &start));
         Tracker {
             v: *start.v(),
             x: *start.x(),
@@ -187,7 +191,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             refused: false,
             bend: None,
             certified: None,
-            options_checked: options.check(start.scale()),
+            options_checked,
             turns: (Turns::NONE, [f64::NAN; M]),
         }
     }
@@ -299,7 +303,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         }
         // Continuation from the last accepted sample, whose branch is the start's.
         let here = Start::accepted(self.v, self.x, self.det);
-        let sol = arc_length(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
+        let sol = from_accepted(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
         }

@@ -1235,3 +1235,104 @@ fn modes_row_without_png_is_refused() {
     );
     assert_refused(&out, "--png");
 }
+
+/// The general 6-6 platform with every length times 1e-12: `modes` said the geometry was
+/// architecture-singular (the seed's pivot test compared rows of lengths, 1e-10, with rows of
+/// unit coefficients). Now its roots are counted, and the real ones are the unscaled machine's.
+#[test]
+fn modes_on_a_machine_of_1e_minus_12_finds_the_unscaled_roots() {
+    let k = 1e-12;
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/data/");
+    let toml = std::fs::read_to_string(format!("{data}general_6_6.toml")).unwrap();
+    // Every number in the geometry file scaled; comments have none.
+    let scaled_toml: String = toml
+        .lines()
+        .filter(|l| !l.trim_start().starts_with('#'))
+        .map(|l| {
+            let mut out = String::new();
+            let mut num = String::new();
+            for ch in l.chars().chain(std::iter::once('\n')) {
+                if ch.is_ascii_digit() || ch == '.' || ch == '-' {
+                    num.push(ch);
+                } else {
+                    if !num.is_empty() {
+                        out.push_str(&format!("{:e}", num.parse::<f64>().unwrap() * k));
+                        num.clear();
+                    }
+                    out.push(ch);
+                }
+            }
+            out
+        })
+        .collect();
+    let dir = scratch("modes-tiny");
+    let geometry = dir.join("tiny.toml");
+    std::fs::write(&geometry, scaled_toml).unwrap();
+    let legs = std::fs::read_to_string(format!("{data}general_6_6_legs.csv")).unwrap();
+    let mut lines = legs.lines();
+    let header = lines.next().unwrap();
+    let row = lines.next().unwrap();
+    let fields: Vec<&str> = row.split(',').collect();
+    let tiny_row: Vec<String> = fields[..6]
+        .iter()
+        .map(|s| s.to_string())
+        .chain(
+            fields[6..]
+                .iter()
+                .map(|l| format!("{:e}", l.parse::<f64>().unwrap() * k)),
+        )
+        .collect();
+    let g = geometry.to_str().unwrap();
+    let (tiny_legs, legs_file) = (dir.join("tiny.csv"), dir.join("legs.csv"));
+    std::fs::write(&tiny_legs, csv(&[header, &tiny_row.join(",")])).unwrap();
+    std::fs::write(&legs_file, csv(&[header, row])).unwrap();
+    let tiny = run(
+        &[
+            "modes",
+            "--geometry",
+            g,
+            "--input",
+            tiny_legs.to_str().unwrap(),
+        ],
+        b"",
+    );
+    assert!(tiny.status.success(), "{}", stderr(&tiny));
+    let unscaled = run(
+        &[
+            "modes",
+            "--geometry",
+            &format!("{data}general_6_6.toml"),
+            "--input",
+            legs_file.to_str().unwrap(),
+        ],
+        b"",
+    );
+    let text = |o: &Output| String::from_utf8_lossy(&o.stdout).into_owned();
+    let (tiny, unscaled) = (text(&tiny), text(&unscaled));
+    let first = |t: &str| t.lines().next().unwrap_or("").to_string();
+    assert_eq!(first(&tiny), first(&unscaled), "{tiny}");
+    assert!(first(&tiny).contains("4 real"), "{tiny}");
+    // The real modes' angles (yaw, pitch, roll) agree to the printed digits (± 1 in the last).
+    let angles = |t: &str| -> Vec<[f64; 3]> {
+        t.lines()
+            .skip(2)
+            .take(4)
+            .map(|l| {
+                let f: Vec<f64> = l
+                    .split_whitespace()
+                    .take(3)
+                    .map(|x| x.parse().unwrap())
+                    .collect();
+                [f[0], f[1], f[2]]
+            })
+            .collect()
+    };
+    let (a, b) = (angles(&tiny), angles(&unscaled));
+    assert_eq!(a.len(), 4);
+    for (p, q) in a.iter().zip(&b) {
+        for i in 0..3 {
+            assert!((p[i] - q[i]).abs() <= 2e-6, "{p:?} vs {q:?}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -17,6 +17,7 @@ mod properties;
 mod regressions;
 mod scale;
 mod solvers;
+mod stale_start;
 mod start_report;
 mod stewart_cli;
 mod stress;

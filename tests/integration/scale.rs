@@ -98,3 +98,30 @@ fn a_tolerance_larger_than_the_mechanism_is_refused_not_converged() {
         );
     }
 }
+
+#[test]
+fn a_geometry_at_1e200_or_1e_minus_200_is_not_called_collinear() {
+    use linkage::GeometryError;
+    use linkage_examples::stewart::Stewart;
+    // Every scale whose derived constants fit in f64 is accepted, with the frame's shape
+    // (the E_j of Table IV) unchanged; the squared distances at 1e200 overflow, and that is
+    // what is said, not that the frame is collinear (it used to be, for both).
+    let home = Stewart::new();
+    for unit in [1e-200, 1e-150, 1e-100, 1e100, 1e150] {
+        let s = Stewart::from_geometry(Stewart::DEFAULT_GEOMETRY.map(|c| c * unit)).unwrap();
+        for (k, name) in Stewart::CONSTANT_NAMES.iter().enumerate() {
+            if name.len() == 2 {
+                // E1..E9: ratios, the same at every scale.
+                let (got, want) = (s.constants()[k], home.constants()[k]);
+                assert!(
+                    (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                    "{unit:e} {name}"
+                );
+            }
+        }
+    }
+    assert_eq!(
+        Stewart::from_geometry(Stewart::DEFAULT_GEOMETRY.map(|c| c * 1e200)),
+        Err(GeometryError::Overflow)
+    );
+}

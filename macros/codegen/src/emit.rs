@@ -37,6 +37,9 @@ pub fn expand(
         }
     });
     let defaults = model.slots.iter().map(|s| lit(s.default));
+    // Names with no slot of their own, so that setting one says which parameter to set.
+    let followed = model.followed.iter().map(|(n, p)| quote!((#n, #p)));
+    let followed = quote!(&[#(#followed),*]);
     let constant_names = model.constants.iter().map(|c| c.name.as_str());
     let unknown_names = model.unknowns.iter().map(String::as_str);
     let input_names = model.inputs.iter().map(String::as_str);
@@ -378,7 +381,7 @@ pub fn expand(
             /// Changes one geometry value by name; the mechanism is unchanged on error.
             pub fn set_geometry(&mut self, name: &str, value: f64) -> ::core::result::Result<(), ::linkage::GeometryError> {
                 let mut g = self.geometry;
-                #priv_::set_named(&Self::GEOMETRY_NAMES, &mut g, name, value)?;
+                #priv_::set_named(&Self::GEOMETRY_NAMES, #followed, &mut g, name, value)?;
                 *self = Self::from_geometry(g)?;
                 Ok(())
             }
@@ -406,7 +409,7 @@ pub fn expand(
             /// Moves pivot `pivot` of link `link` (its own frame); the mechanism is unchanged on error.
             pub fn set_pivot(&mut self, link: &str, pivot: &str, p: [f64; 3]) -> ::core::result::Result<(), ::linkage::GeometryError> {
                 let mut g = self.geometry;
-                #priv_::set_pivot(&Self::GEOMETRY_NAMES, &mut g, link, pivot, p)?;
+                #priv_::set_pivot(&Self::GEOMETRY_NAMES, #followed, &mut g, link, pivot, p)?;
                 *self = Self::from_geometry(g)?;
                 Ok(())
             }

@@ -19,6 +19,15 @@ pub enum GeometryError {
     NonFinite { name: &'static str },
     /// No geometry value or pivot has this name.
     UnknownName,
+    /// The values are finite, but constants derived from them (squared distances) overflow:
+    /// the geometry is too large to compute with in f64.
+    Overflow,
+    /// The geometry value `name` (a pivot coordinate or a length) was declared as the
+    /// parameter `parameter` and follows it: set the parameter instead.
+    FollowsParameter {
+        name: &'static str,
+        parameter: &'static str,
+    },
     /// The platform's three frame pivots are (nearly) collinear.
     CollinearFrame,
     /// A platform pivot left the plane of the frame, but the system was generated in the
@@ -35,6 +44,14 @@ impl fmt::Display for GeometryError {
         match self {
             GeometryError::NonFinite { name } => write!(f, "geometry value `{name}` is not finite"),
             GeometryError::UnknownName => write!(f, "no geometry value or pivot has that name"),
+            GeometryError::Overflow => write!(
+                f,
+                "the geometry is too large: constants derived from it overflow"
+            ),
+            GeometryError::FollowsParameter { name, parameter } => write!(
+                f,
+                "{name} follows the parameter {parameter}: set the parameter instead"
+            ),
             GeometryError::CollinearFrame => write!(f, "the platform's frame pivots are collinear"),
             GeometryError::NotCoplanar => write!(
                 f,
@@ -75,7 +92,12 @@ pub fn rigid_coefficients(
     // scaling is exact, and the results are those of the unscaled computation wherever that
     // one neither overflows nor underflows; a, b and c do not depend on the unit, and d (a
     // length⁻¹) is scaled back at the end.
-    let size = distance(p2, p1).max(distance(p3, p1));
+    // The largest coordinate difference, not a Euclidean length: its squares would overflow
+    // at 1e200 and underflow at 1e-200, and a frame of either size is not collinear.
+    let size = sub3(p2, p1)
+        .into_iter()
+        .chain(sub3(p3, p1))
+        .fold(0.0f64, |m, c| m.max(c.abs()));
     if !(size > 0.0 && size.is_finite()) {
         return Err(GeometryError::CollinearFrame);
     }

@@ -79,6 +79,28 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     target: &[f64; M],
     options: &Options,
 ) -> Result<Solution<N>, SolveError> {
+    from(sys, start, target, options, true)
+}
+
+/// [`arc_length`] from a point the crate accepted itself ([`Start::accepted`]: a tracked
+/// sample, a detour's waypoint), whose consistency its acceptance showed to the caller's own
+/// tolerance: not measured again.
+pub(crate) fn from_accepted<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    target: &[f64; M],
+    options: &Options,
+) -> Result<Solution<N>, SolveError> {
+    from(sys, start, target, options, false)
+}
+
+fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    start: &Start<N, M>,
+    target: &[f64; M],
+    options: &Options,
+    check_start: bool,
+) -> Result<Solution<N>, SolveError> {
     crate::start::check_target(sys, start, target, options)?;
     let mut dx = [0.0; M];
     for j in 0..M {
@@ -86,7 +108,8 @@ pub fn arc_length<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     // Scale λ by how far v moves over the whole path to first order, ‖B⁻¹(∂F/∂x)(x* − x0)‖,
     // so that λ and v weigh alike in the arc length whatever the inputs' units (mm, rad).
-    let length = first_order_travel(sys, start, &dx).unwrap_or_else(|| norm(&dx));
+    // With the start's consistency: the factorisation is made here anyway.
+    let length = first_order_travel(sys, start, &dx, check_start)?.unwrap_or_else(|| norm(&dx));
     let scale = crate::math::scale_or_one(norm(start.v()).max(length));
     let path = Path {
         sys,

@@ -71,17 +71,31 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
 }
 
 /// ‖B⁻¹ (∂F/∂x) dx‖ at the start, if B is regular there: how far v moves over the whole path
-/// to first order.
+/// to first order. With `check`, the factorisation also measures the start's own Newton
+/// correction ‖B⁻¹ F(v0, x0)‖ first (one residual and one solve more): a start that is not a
+/// solution for the mechanism it is given (made before `set_geometry`) is refused with
+/// [`SolveError::InconsistentStart`](crate::SolveError::InconsistentStart), as
+/// [`crate::start::check_consistent`] says.
 pub(super) fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     dx: &[f64; M],
-) -> Option<f64> {
+    check: bool,
+) -> Result<Option<f64>, crate::SolveError> {
     let mut fac = sys.new_factor();
-    sys.factor(start.v(), start.x(), &mut fac)?;
+    if sys.factor(start.v(), start.x(), &mut fac).is_none() {
+        // The generated factorisation failed: judge the start by a dense correction instead.
+        if check {
+            crate::start::check_consistent(sys, start)?;
+        }
+        return Ok(None);
+    }
+    if check {
+        crate::start::consistent_with(sys, start, &fac)?;
+    }
     let mut y = [0.0; N];
     sys.input_derivative(start.v(), start.x(), dx, &mut y);
     sys.solve(&fac, &mut y);
     let travel = norm(&y);
-    (travel.is_finite() && travel > 1e-12 * norm(dx).max(1e-300)).then_some(travel)
+    Ok((travel.is_finite() && travel > 1e-12 * norm(dx).max(1e-300)).then_some(travel))
 }

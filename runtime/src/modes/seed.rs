@@ -214,15 +214,40 @@ fn walk<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !converged {
         return Err(Miss::Walk);
     }
+    // B with its rows and columns scaled to unit largest entry before the pivot test: rows of
+    // lengths beside rows of unit coefficients (the Stewart platform's) differ by the
+    // machine's size, and a machine of 1e-12 mm was called singular at every seed.
     let mut values = [[Complex::ZERO; N]; N];
+    let flat = values.as_flattened_mut();
+    model.sys.jacobian_in(&v, &x, flat);
+    equilibrate::<N>(S::PATTERN, flat);
     let mut lu = Lu::new();
-    let affine = Model {
-        chart: None,
-        ..*model
-    };
-    if affine.factor(&v, &x, &mut values, &mut lu) && lu.pivot_ratio() > 1e-9 {
+    if lu.factor(model.plan, flat, None) && lu.pivot_ratio() > 1e-9 {
         Ok((v, x))
     } else {
         Err(Miss::Singular)
+    }
+}
+
+/// Scales the nonzeros `values` (in the order of `pattern`) so that every row, then every
+/// column, has largest entry 1 in magnitude (`abs_max`): the pivot ratio of the result does not
+/// depend on the units of the equations or of the unknowns. A zero row or column is left.
+fn equilibrate<const N: usize>(pattern: &[(usize, usize)], values: &mut [Complex]) {
+    for by_column in [false, true] {
+        let mut max = [0.0f64; N];
+        let line = |&(row, col): &(usize, usize)| if by_column { col } else { row };
+        for (rc, v) in pattern.iter().zip(values.iter()) {
+            if let Some(m) = max.get_mut(line(rc)) {
+                *m = m.max(v.abs_max());
+            }
+        }
+        for (rc, v) in pattern.iter().zip(values.iter_mut()) {
+            if let Some(&m) = max.get(line(rc))
+                && m > 0.0
+                && m.is_finite()
+            {
+                *v = v.scale(1.0 / m);
+            }
+        }
     }
 }

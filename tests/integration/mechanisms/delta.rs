@@ -266,3 +266,36 @@ fn a_non_positive_rod_length_is_refused() {
     assert!(Delta::from_geometry(g).is_err());
     assert!(d.set_geometry("rod", 370.0).is_ok());
 }
+
+#[test]
+fn a_pivot_coordinate_declared_as_a_parameter_names_the_parameter_to_set() {
+    use linkage::GeometryError;
+    let mut d = Delta::new();
+    let kept = d.clone();
+    // E11 = [rb + ra, hw, 0.0]: its y is the parameter `hw`, which the other arms' pivots
+    // follow too; a rod's length is `rod`.
+    assert_eq!(
+        d.set_pivot("arm1", "E11", [200.0, 35.0, 0.0]),
+        Err(GeometryError::FollowsParameter {
+            name: "arm1.E11.y",
+            parameter: "hw"
+        })
+    );
+    assert_eq!(
+        d.set_geometry("rod11.length", 370.0),
+        Err(GeometryError::FollowsParameter {
+            name: "rod11.length",
+            parameter: "rod"
+        })
+    );
+    assert_eq!(d, kept, "unchanged on error");
+    // A name nobody declared is still just unknown.
+    assert_eq!(
+        d.set_pivot("arm1", "E19", [0.0; 3]),
+        Err(GeometryError::UnknownName)
+    );
+    assert_eq!(d.set_geometry("hx", 1.0), Err(GeometryError::UnknownName));
+    // The parameter itself is set by its name.
+    d.set_geometry("hw", 35.0).unwrap();
+    assert_ne!(d, kept);
+}

@@ -208,8 +208,14 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     let located = frame.is_some();
     let frame = frame.unwrap_or([0, 0, 0]);
     let carried_by = carriers(&b, &added.points);
+    let followed = b
+        .followed
+        .iter()
+        .map(|(name, s)| (name.clone(), b.slots[*s].name.clone()))
+        .collect();
     let mut model = Model {
         name: d.name.clone(),
+        followed,
         slots: b.slots,
         constants: b.constants,
         unknowns: b.unknowns,

@@ -25,6 +25,9 @@ pub struct Builder<'d> {
     /// By `PivotId`.
     pivot_slots: Vec<[usize; 3]>,
     scalar_slots: HashMap<Scalar, usize>,
+    /// Geometry names that follow a parameter (a pivot coordinate or a length declared as
+    /// one), with the parameter's slot: they have no slot of their own.
+    pub followed: Vec<(String, usize)>,
     pub constants: Vec<Constant>,
     pub unknowns: Vec<String>,
     /// The inputs' names, by `InputId`.
@@ -46,6 +49,7 @@ impl<'d> Builder<'d> {
             param_slots: Vec::new(),
             pivot_slots: Vec::new(),
             scalar_slots: HashMap::new(),
+            followed: Vec::new(),
             constants: Vec::new(),
             unknowns: Vec::new(),
             inputs: decl.inputs.iter().map(|i| i.name.to_string()).collect(),
@@ -85,7 +89,11 @@ impl<'d> Builder<'d> {
     fn value_slot(&mut self, name: String, v: Value) -> usize {
         match v {
             Value::Literal(x) => self.new_slot(name, x),
-            Value::Param(p) => self.param_slots[p.index()],
+            Value::Param(p) => {
+                let s = self.param_slots[p.index()];
+                self.followed.push((name, s));
+                s
+            }
         }
     }
 

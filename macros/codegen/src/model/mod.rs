@@ -89,6 +89,9 @@ pub struct PlatformPoint {
 pub struct Model {
     pub name: Ident,
     pub slots: Vec<Slot>,
+    /// Geometry names that follow a parameter, with the parameter's name (see
+    /// [`Builder::followed`]).
+    pub followed: Vec<(String, String)>,
     pub constants: Vec<Constant>,
     pub unknowns: Vec<String>,
     pub inputs: Vec<String>,
