@@ -19,10 +19,19 @@ pub fn run(
         heave: 0.8 * translation,
         ..Protocol::default()
     };
+    // The export file is created before the minutes of solving, so that a path that cannot
+    // be written fails at once, not after them.
+    let export = export
+        .map(|path| {
+            std::fs::File::create(path)
+                .map(|file| (path, file))
+                .map_err(|e| format!("{}: {e}", path.display()))
+        })
+        .transpose()?;
     let report = table_v::run(protocol, |stage| eprintln!("table-v: {stage}…"))
         .map_err(|e| format!("test points: {e}"))?;
-    if let Some(path) = export {
-        write_points(&report, path)?;
+    if let Some((path, file)) = export {
+        write_points(&report, path, file)?;
     }
     if json {
         print(&format!("{}\n", table_v::to_json(&report)))
@@ -133,10 +142,10 @@ fn table(r: &Report) -> String {
 }
 
 /// The test points: kind, legs, true pose (Appendix B) and pivots (Eq. 19's order).
-fn write_points(r: &Report, path: &std::path::Path) -> Result<(), String> {
+fn write_points(r: &Report, path: &std::path::Path, file: std::fs::File) -> Result<(), String> {
     use std::io::Write;
     let io = |e: std::io::Error| format!("{}: {e}", path.display());
-    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
+    let mut w = std::io::BufWriter::new(file);
     let v_names: Vec<String> = (1..=18).map(|i| format!("v{i}")).collect();
     writeln!(
         w,

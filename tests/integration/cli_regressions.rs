@@ -229,6 +229,18 @@ fn table_v_gives_up_on_a_box_that_never_meets_a_singularity() {
     eprintln!("table-v with a ±1e-9 box refused in {:?}", began.elapsed());
 }
 
+/// An export path that cannot be written is refused before any test point is solved (it
+/// used to fail only after the minutes of solving).
+#[test]
+fn table_v_refuses_an_unwritable_export_before_solving() {
+    let out = run(
+        &["table-v", "--export", "/nonexistent-directory/points.csv"],
+        b"",
+    );
+    assert_refused(&out, "nonexistent-directory");
+    assert!(!stderr(&out).contains("table-v: "), "{}", stderr(&out));
+}
+
 #[test]
 fn table_v_refuses_bad_box_sizes_while_parsing() {
     for (flag, value) in [
