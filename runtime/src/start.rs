@@ -108,7 +108,7 @@ pub(crate) fn consistent_with<S: Mechanism<N, M>, const N: usize, const M: usize
 }
 
 /// [`consistent_with`] for a caller with no factorisation at hand (the tracker, once; a start
-/// where the generated factorisation fails): a correction by dense LU.
+/// where the generated factorisation fails): a Newton correction of its own.
 pub(crate) fn check_consistent<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,

@@ -84,7 +84,8 @@ pub(super) fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: us
 ) -> Result<Option<f64>, crate::SolveError> {
     let mut fac = sys.new_factor();
     if sys.factor(start.v(), start.x(), &mut fac).is_none() {
-        // The generated factorisation failed: judge the start by a dense correction instead.
+        // B singular here, where `Start::new` found it regular: judged (and refused) as
+        // another mechanism's start.
         if check {
             crate::start::check_consistent(sys, start)?;
         }
