@@ -36,12 +36,12 @@ pub fn derive_constants(
     }
 }
 
-/// Why `name` has no geometry slot: it follows a parameter (`followed`: name, parameter), or
-/// no such name was declared.
-fn missing(followed: &[(&'static str, &'static str)], name: &str) -> GeometryError {
+/// Why the name `is` picks out has no geometry slot: it follows a parameter (`followed`:
+/// name, parameter), or no such name was declared.
+fn missing(followed: &[(&'static str, &'static str)], is: impl Fn(&str) -> bool) -> GeometryError {
     followed
         .iter()
-        .find(|(n, _)| *n == name)
+        .find(|(n, _)| is(n))
         .map_or(GeometryError::UnknownName, |&(name, parameter)| {
             GeometryError::FollowsParameter { name, parameter }
         })
@@ -57,7 +57,7 @@ pub fn set_named(
     let i = names
         .iter()
         .position(|n| *n == name)
-        .ok_or_else(|| missing(followed, name))?;
+        .ok_or_else(|| missing(followed, |n| n == name))?;
     g[i] = value;
     Ok(())
 }
@@ -78,14 +78,10 @@ pub fn set_pivot(
             == Some(axis)
     };
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        let i = names.iter().position(|n| named(n, axis)).ok_or_else(|| {
-            followed
-                .iter()
-                .find(|(n, _)| named(n, axis))
-                .map_or(GeometryError::UnknownName, |&(name, parameter)| {
-                    GeometryError::FollowsParameter { name, parameter }
-                })
-        })?;
+        let i = names
+            .iter()
+            .position(|n| named(n, axis))
+            .ok_or_else(|| missing(followed, |n| named(n, axis)))?;
         g[i] = p[k];
     }
     Ok(())
