@@ -36,60 +36,10 @@ linkage::mechanism! {
     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
 }
 
-linkage::mechanism! {
-    /// Gao & Wu's Stewart platform (Table III).
-    pub struct Stewart;
-    base {
-        D1 = [200.764, 53.795, 0.0], D2 = [169.706, 0.0, 0.0], D3 = [0.0, 0.0, 0.0],
-        D4 = [-31.058, 53.795, 0.0], D5 = [53.795, 200.764, 0.0], D6 = [115.911, 200.764, 0.0],
-    }
-    platform(frame = [G1, G3, G5], form = coplanar, home = [0.0, 0.0, 0.0, 58.971, -11.739, 159.011]) {
-        G1 = [122.475, 122.475, 0.0], G2 = [51.764, 0.0, 0.0], G3 = [0.0, 0.0, 0.0],
-        G4 = [-70.711, 122.475, 0.0], G5 = [-44.829, 167.303, 0.0], G6 = [96.593, 167.303, 0.0],
-    }
-    chain leg1 = base - S(D1) - P(active L1) - S(G1) - platform;
-    chain leg2 = base - S(D2) - P(active L2) - S(G2) - platform;
-    chain leg3 = base - S(D3) - P(active L3) - S(G3) - platform;
-    chain leg4 = base - S(D4) - P(active L4) - S(G4) - platform;
-    chain leg5 = base - S(D5) - P(active L5) - S(G5) - platform;
-    chain leg6 = base - S(D6) - P(active L6) - S(G6) - platform;
-}
-
-linkage::mechanism! {
-    /// A 6-RSS rotary hexapod: driven cranks, whose angles enter through sin and cos.
-    pub struct RssHexapod;
-    params { rod = 170.986 }
-    base {
-        A1 = [93.969, -34.202, 0.0],   B1 = [87.129, -52.996, 0.0],
-        A2 = [93.969, 34.202, 0.0],    B2 = [87.129, 52.996, 0.0],
-        A3 = [-17.365, 98.481, 0.0],   B3 = [2.331, 101.954, 0.0],
-        A4 = [-76.604, 64.279, 0.0],   B4 = [-89.46, 48.958, 0.0],
-        A5 = [-76.604, -64.279, 0.0],  B5 = [-89.46, -48.958, 0.0],
-        A6 = [-17.365, -98.481, 0.0],  B6 = [2.331, -101.954, 0.0],
-    }
-    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
-        G1 = [49.497, -49.497, 0.0], G2 = [49.497, 49.497, 0.0], G3 = [18.117, 67.615, 0.0],
-        G4 = [-67.615, 18.117, 0.0], G5 = [-67.615, -18.117, 0.0], G6 = [18.117, -67.615, 0.0],
-    }
-    link crank1 { C1 = [131.557, -47.883, 0.0] }
-    link crank2 { C2 = [131.557, 47.883, 0.0] }
-    link crank3 { C3 = [-24.311, 137.873, 0.0] }
-    link crank4 { C4 = [-107.246, 89.99, 0.0] }
-    link crank5 { C5 = [-107.246, -89.99, 0.0] }
-    link crank6 { C6 = [-24.311, -137.873, 0.0] }
-    link rod1 { length = rod }
-    link rod2 { length = rod }
-    link rod3 { length = rod }
-    link rod4 { length = rod }
-    link rod5 { length = rod }
-    link rod6 { length = rod }
-    chain arm1 = base - R(active q1, axis = A1 -> B1) - crank1 - S(C1) - rod1 - S(G1) - platform;
-    chain arm2 = base - R(active q2, axis = A2 -> B2) - crank2 - S(C2) - rod2 - S(G2) - platform;
-    chain arm3 = base - R(active q3, axis = A3 -> B3) - crank3 - S(C3) - rod3 - S(G3) - platform;
-    chain arm4 = base - R(active q4, axis = A4 -> B4) - crank4 - S(C4) - rod4 - S(G4) - platform;
-    chain arm5 = base - R(active q5, axis = A5 -> B5) - crank5 - S(C5) - rod5 - S(G5) - platform;
-    chain arm6 = base - R(active q6, axis = A6 -> B6) - crank6 - S(C6) - rod6 - S(G6) - platform;
-}
+// The Stewart platform of the paper (Table III) and a 6-RSS rotary hexapod, whose crank angles
+// enter through sin and cos: the crates the examples and the C interface use, as they are.
+pub use linkage_rss_hexapod::RssHexapod;
+pub use linkage_stewart::Stewart;
 
 /// The entry points for one mechanism type, each in a `#[no_panic]` function.
 macro_rules! proven {
