@@ -65,6 +65,7 @@ mod solution;
 mod start;
 mod tracker;
 mod turns;
+pub mod velocity;
 
 #[doc(hidden)]
 pub mod __private;

@@ -22,3 +22,4 @@ mod start_report;
 mod stewart_cli;
 mod stress;
 mod tracking;
+mod velocity;

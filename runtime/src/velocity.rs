@@ -1,0 +1,366 @@
+//! Velocity kinematics at a solution: how fast the pivots and the platform move for given
+//! input rates, and the input rates a wanted platform motion takes.
+//!
+//! Differentiating F(v(t), x(t)) = 0 along a motion gives B v̇ + (∂F/∂x) ẋ = 0 (Eq. 5 without
+//! the step), so at a configuration where B is regular — away from direct singularities —
+//! v̇ = −B⁻¹ (∂F/∂x) ẋ, with the generated sparse factorisation and ∂F/∂x product. The
+//! platform's [`Twist`] (angular velocity and the velocity of its frame's origin) follows from
+//! the rates of its frame pivots; [`platform_jacobian`] holds one twist per unit input rate, and
+//! [`input_rates`] inverts it (exactly where the platform has as many freedoms as inputs, in
+//! the least-squares sense otherwise, with what is left over reported).
+//!
+//! ```
+//! use linkage::velocity::{input_rates, twist};
+//! use linkage::{Mechanism, Pose};
+//! # linkage::mechanism! {
+//! #     pub struct Rps;
+//! #     base {
+//! #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+//! #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+//! #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+//! #     }
+//! #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+//! #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+//! #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+//! #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+//! # }
+//! let rps = Rps::new();
+//! let v = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.1, 0.0, [0.0, 0.0, 150.0]));
+//! let x = rps.inverse(&v, &[0.0; 3]).unwrap();
+//! // All three legs extending at 1 mm/s: the platform rises, and turns as the legs lean.
+//! let t = twist(&rps, &v, &x, &[1.0, 1.0, 1.0]).unwrap();
+//! assert!(t.linear[2] > 0.5);
+//! // The legs' rates back from that twist, which the 3-RPS can make: nothing left over.
+//! let back = input_rates(&rps, &v, &x, &t).unwrap();
+//! assert!(back.rates.iter().all(|r| (r - 1.0).abs() < 1e-9));
+//! assert!(back.left_over.angular.iter().chain(&back.left_over.linear).all(|e| e.abs() < 1e-9));
+//! ```
+
+use crate::lu::Lu;
+use crate::math::{cross3, dot3, norm3, sub3};
+use crate::{Mechanism, pose_from_unknowns};
+
+/// Why no velocity could be computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VelocityError {
+    /// B is singular at the configuration (a direct singularity: the inputs do not determine
+    /// the motion there), or, for [`input_rates`], some combination of input rates moves the
+    /// platform not at all.
+    Singular,
+    /// A value given, or one computed from it, is NaN or infinite.
+    NonFinite,
+    /// The platform's frame pivots are collinear, to rounding (a point or a rod for a
+    /// platform): it has no angular velocity of its own. The pivots' rates are [`pivot_rates`].
+    NoFrame,
+}
+
+impl core::fmt::Display for VelocityError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            VelocityError::Singular => {
+                write!(f, "singular configuration: the rates are not determined")
+            }
+            VelocityError::NonFinite => write!(f, "a value is not finite"),
+            VelocityError::NoFrame => {
+                write!(f, "the platform has no frame of three non-collinear pivots")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for VelocityError {}
+
+/// The platform's velocity: its angular velocity and the velocity of its frame's origin (the
+/// point [`Pose::translation`](crate::Pose) places), both in base-frame axes; per unit of time
+/// of the input rates (rad and mm per second for rates per second).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Twist {
+    /// ω, rad per unit time.
+    pub angular: [f64; 3],
+    /// The frame origin's velocity, length per unit time.
+    pub linear: [f64; 3],
+}
+
+impl Twist {
+    /// The velocity of a platform point now at `p` (base frame, the origin at `origin`):
+    /// linear + ω × (p − origin).
+    pub fn at(&self, origin: [f64; 3], p: [f64; 3]) -> [f64; 3] {
+        let w = cross3(self.angular, sub3(p, origin));
+        [0, 1, 2].map(|i| self.linear[i] + w[i])
+    }
+
+    fn as_array(&self) -> [f64; 6] {
+        let [a, b, c] = self.angular;
+        let [d, e, f] = self.linear;
+        [a, b, c, d, e, f]
+    }
+}
+
+/// Input rates for a wanted twist ([`input_rates`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rates<const M: usize> {
+    /// ẋ: the input rates whose twist is nearest the wanted one.
+    pub rates: [f64; M],
+    /// The twist of `rates` minus the wanted twist: zero, to rounding, where the wanted motion
+    /// is one the mechanism can make (always, for six independent inputs moving a platform of
+    /// six freedoms); otherwise the part of it the inputs cannot produce.
+    pub left_over: Twist,
+}
+
+/// v̇ = −B⁻¹ (∂F/∂x) ẋ: the rates of every unknown at the solution `(v, x)` for input rates
+/// `xdot`. One factorisation of B and one solve.
+pub fn pivot_rates<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    xdot: &[f64; M],
+) -> Result<[f64; N], VelocityError> {
+    let mut fac = sys.new_factor();
+    factor(sys, v, x, &mut fac)?;
+    rates_with(sys, v, x, &fac, xdot)
+}
+
+/// The platform's [`Twist`] at the solution `(v, x)` for input rates `xdot`.
+pub fn twist<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    xdot: &[f64; M],
+) -> Result<Twist, VelocityError> {
+    let frame = Frame::of(sys, v)?;
+    let vdot = pivot_rates(sys, v, x, xdot)?;
+    frame.twist(&vdot)
+}
+
+/// The platform Jacobian at the solution `(v, x)`: column j is the [`Twist`] of a unit rate of
+/// input j, as rows ωx, ωy, ωz, then the frame origin's velocity x, y, z. One factorisation
+/// and `M` solves.
+pub fn platform_jacobian<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Result<[[f64; M]; 6], VelocityError> {
+    let frame = Frame::of(sys, v)?;
+    let mut fac = sys.new_factor();
+    factor(sys, v, x, &mut fac)?;
+    let mut j = [[0.0; M]; 6];
+    for input in 0..M {
+        let mut unit = [0.0; M];
+        unit[input] = 1.0;
+        let column = frame
+            .twist(&rates_with(sys, v, x, &fac, &unit)?)?
+            .as_array();
+        for (row, value) in j.iter_mut().zip(column) {
+            row[input] = value;
+        }
+    }
+    Ok(j)
+}
+
+/// The input rates that move the platform with `wanted` at the solution `(v, x)`: the
+/// least-squares solution of J ẋ = wanted over the [`platform_jacobian`] J (by Householder
+/// reflections; the angular rows weighted by the distance between the first two frame pivots,
+/// so that both halves are lengths per unit time), with what the inputs cannot produce in
+/// [`Rates::left_over`]. A mechanism with fewer inputs than six can make only some twists (a
+/// 3-RPS cannot slide sideways): check the left-over part, given unweighted, in the wanted
+/// twist's units. [`VelocityError::Singular`] where two combinations of input rates give the
+/// same twist to rounding (an inverse singularity, or more than six inputs).
+pub fn input_rates<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    wanted: &Twist,
+) -> Result<Rates<M>, VelocityError> {
+    let t = wanted.as_array();
+    if !t.iter().all(|c| c.is_finite()) {
+        return Err(VelocityError::NonFinite);
+    }
+    let j = platform_jacobian(sys, v, x)?;
+    // The angular rows weighted by the platform's size, so that both halves of the residual
+    // are lengths per unit time: otherwise "nearest" would depend on the unit of length.
+    let size = Frame::of(sys, v)?.size();
+    let mut weighted = j;
+    let mut rhs = t;
+    for r in 0..3 {
+        for c in weighted[r].iter_mut() {
+            *c *= size;
+        }
+        rhs[r] *= size;
+    }
+    let rates = least_squares(weighted, rhs).ok_or(VelocityError::Singular)?;
+    let made = (0..6).map(|r| (0..M).map(|c| j[r][c] * rates[c]).sum::<f64>() - t[r]);
+    let mut left = [0.0; 6];
+    for (l, m) in left.iter_mut().zip(made) {
+        *l = m;
+    }
+    if !rates.iter().chain(&left).all(|c| c.is_finite()) {
+        return Err(VelocityError::NonFinite);
+    }
+    Ok(Rates {
+        rates,
+        left_over: Twist {
+            angular: [left[0], left[1], left[2]],
+            linear: [left[3], left[4], left[5]],
+        },
+    })
+}
+
+/// The least-squares solution of `a` y = `b` by Householder reflections (not the normal
+/// equations, which would square the condition of a platform Jacobian near a singularity).
+/// `None` with more unknowns than rows or a column dependent on the others to rounding.
+fn least_squares<const M: usize>(mut a: [[f64; M]; 6], mut b: [f64; 6]) -> Option<[f64; M]> {
+    if M > 6 {
+        return None;
+    }
+    let largest = a.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    for k in 0..M {
+        let norm = crate::math::sqrt((k..6).map(|r| a[r][k] * a[r][k]).sum::<f64>());
+        if !(norm > 1e-12 * largest) {
+            return None;
+        }
+        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
+        // v = x − α e₁, applied as H = I − 2 v vᵀ / (vᵀv).
+        let mut h = [0.0; 6];
+        for r in k..6 {
+            h[r] = a[r][k];
+        }
+        h[k] -= alpha;
+        let hh: f64 = (k..6).map(|r| h[r] * h[r]).sum();
+        for c in k..M {
+            let s = 2.0 * (k..6).map(|r| h[r] * a[r][c]).sum::<f64>() / hh;
+            for r in k..6 {
+                a[r][c] -= s * h[r];
+            }
+        }
+        let s = 2.0 * (k..6).map(|r| h[r] * b[r]).sum::<f64>() / hh;
+        for r in k..6 {
+            b[r] -= s * h[r];
+        }
+    }
+    let mut y = [0.0; M];
+    for k in (0..M).rev() {
+        let tail: f64 = (k + 1..M).map(|c| a[k][c] * y[c]).sum();
+        y[k] = (b[k] - tail) / a[k][k];
+    }
+    y.iter().all(|c| c.is_finite()).then_some(y)
+}
+
+fn factor<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    fac: &mut S::Factor,
+) -> Result<(), VelocityError> {
+    if !(v.iter().chain(x).all(|c| c.is_finite())) {
+        return Err(VelocityError::NonFinite);
+    }
+    sys.factor(v, x, fac)
+        .map(|_| ())
+        .ok_or(VelocityError::Singular)
+}
+
+fn rates_with<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    fac: &S::Factor,
+    xdot: &[f64; M],
+) -> Result<[f64; N], VelocityError> {
+    if !xdot.iter().all(|c| c.is_finite()) {
+        return Err(VelocityError::NonFinite);
+    }
+    let mut out = [0.0; N];
+    sys.input_derivative(v, x, xdot, &mut out);
+    sys.solve(fac, &mut out);
+    for o in out.iter_mut() {
+        *o = -*o;
+    }
+    if out.iter().all(|c| c.is_finite()) {
+        Ok(out)
+    } else {
+        // Finite inputs and a factorisation that passed: only a B singular to rounding gives
+        // an overflowing solve.
+        Err(VelocityError::Singular)
+    }
+}
+
+/// The platform's frame pivots where `v` has them, and its frame's origin.
+struct Frame {
+    points: [[f64; 3]; 3],
+    index: [usize; 3],
+    origin: [f64; 3],
+    count: usize,
+}
+
+impl Frame {
+    fn of<S: Mechanism<N, M>, const N: usize, const M: usize>(
+        sys: &S,
+        v: &[f64; N],
+    ) -> Result<Frame, VelocityError> {
+        if !v.iter().all(|c| c.is_finite()) {
+            return Err(VelocityError::NonFinite);
+        }
+        let pose = pose_from_unknowns(sys, v).ok_or(VelocityError::NoFrame)?;
+        let count = S::POINTS.len();
+        let index = S::FRAME;
+        let points = index.map(|p| point(v, count, p));
+        // Collinear to rounding is collinear: the angle at the first pivot must be more than
+        // rounding, or ω about the line through them is not determined by their rates.
+        let (r1, r2) = (sub3(points[1], points[0]), sub3(points[2], points[0]));
+        if !(norm3(cross3(r1, r2)) > 1e-9 * norm3(r1) * norm3(r2)) {
+            return Err(VelocityError::NoFrame);
+        }
+        Ok(Frame {
+            points,
+            index,
+            origin: pose.translation,
+            count,
+        })
+    }
+
+    /// ω and the origin's velocity from the frame pivots' rates: ω is the least-squares
+    /// solution of ω × rₖ = uₖ (rₖ, uₖ the second and third pivots' offsets from the first and
+    /// their relative velocities), Σ (|rₖ|² I − rₖ rₖᵀ) ω = Σ rₖ × uₖ, exact for a rigid motion
+    /// and regular for non-collinear pivots.
+    /// The distance between the first two frame pivots: a length the platform is.
+    fn size(&self) -> f64 {
+        norm3(sub3(self.points[1], self.points[0]))
+    }
+
+    fn twist<const N: usize>(&self, vdot: &[f64; N]) -> Result<Twist, VelocityError> {
+        let rates = self.index.map(|p| point(vdot, self.count, p));
+        let mut a = [[0.0; 3]; 3];
+        let mut b = [0.0; 3];
+        for k in 1..3 {
+            let r = sub3(self.points[k], self.points[0]);
+            let u = sub3(rates[k], rates[0]);
+            let rr = dot3(r, r);
+            for i in 0..3 {
+                for j in 0..3 {
+                    a[i][j] += if i == j { rr } else { 0.0 } - r[i] * r[j];
+                }
+            }
+            let c = cross3(r, u);
+            for i in 0..3 {
+                b[i] += c[i];
+            }
+        }
+        let lu = Lu::new(a).ok_or(VelocityError::NoFrame)?;
+        lu.solve(&mut b);
+        let w = cross3(b, sub3(self.origin, self.points[0]));
+        let t = Twist {
+            angular: b,
+            linear: [0, 1, 2].map(|i| rates[0][i] + w[i]),
+        };
+        if t.as_array().iter().all(|c| c.is_finite()) {
+            Ok(t)
+        } else {
+            Err(VelocityError::NonFinite)
+        }
+    }
+}
+
+fn point<const N: usize>(v: &[f64; N], count: usize, p: usize) -> [f64; 3] {
+    [0, 1, 2].map(|axis| v.get(axis * count + p).copied().unwrap_or(f64::NAN))
+}
