@@ -16,9 +16,11 @@
 
 #![no_std]
 
+use linkage::velocity::{self, VelocityError};
 use linkage::{
     arc_length, arc_length_detour, certify, newton_homotopy, newton_raphson, Certificate,
-    CertifyError, Detoured, NewtonRaphson, Options, Solution, SolveError, Start, TrackError, Tracker,
+    CertifyError, Detoured, NewtonRaphson, Options, Solution, SolveError, Start, TrackError,
+    Tracker,
 };
 use no_panic::no_panic;
 
@@ -122,6 +124,19 @@ macro_rules! proven {
                 x: &[f64; $m],
             ) -> Result<[f64; $n], TrackError> {
                 t.update(x).map(|s| s.v)
+            }
+
+            /// Velocity kinematics: the platform's twist for input rates, then the input
+            /// rates back from it (every function of `linkage::velocity` on the way).
+            #[no_panic]
+            pub fn rates(
+                sys: &$sys,
+                v: &[f64; $n],
+                x: &[f64; $m],
+                xdot: &[f64; $m],
+            ) -> Result<[f64; $m], VelocityError> {
+                let t = velocity::twist(sys, v, x, xdot)?;
+                velocity::input_rates(sys, v, x, &t).map(|r| r.rates)
             }
         }
     };

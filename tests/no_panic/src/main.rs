@@ -20,7 +20,10 @@ fn main() {
     assert!(sol.is_ok(), "{:?}", sol.status);
     assert!(rps::nr(&sys, &s, &x, &o).is_ok() && rps::nh(&sys, &s, &x, &o).is_ok());
     let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
-    assert_eq!(rps::nr_prepared(&prepared, &x, &o), rps::nr(&sys, &s, &x, &o));
+    assert_eq!(
+        rps::nr_prepared(&prepared, &x, &o),
+        rps::nr(&sys, &s, &x, &o)
+    );
     assert!(rps::detour(&sys, &s, &x, &o).is_ok());
     assert!(rps::proof(&sys, &sol.v, &x).is_ok());
     let mut t = Tracker::new(sys.clone(), s, o);
@@ -29,6 +32,13 @@ fn main() {
     assert!(rps::nr(&sys, &s, &bad, &o).is_err() && rps::ph(&sys, &s, &bad, &o).is_err());
     assert!(rps::track(&mut t, &bad).is_err() && rps::proof(&sys, &sol.v, &bad).is_err());
     assert!(rps::start(&sys, [f64::NAN; 9], x0).is_err());
+    let xdot = black_box([1.0, -0.5, 0.25]);
+    let back = rps::rates(&sys, &sol.v, &x, &xdot).expect("rates");
+    assert!(
+        back.iter().zip(&xdot).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
+    assert!(rps::rates(&sys, &sol.v, &x, &bad).is_err());
 
     let sys = Stewart::new();
     let v0 = linkage::unknowns_from_pose(
@@ -44,21 +54,40 @@ fn main() {
     assert!(sol.is_ok(), "{:?}", sol.status);
     assert!(stewart::nr(&sys, &s, &x, &o).is_ok() && stewart::nh(&sys, &s, &x, &o).is_ok());
     let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
-    assert_eq!(stewart::nr_prepared(&prepared, &x, &o), stewart::nr(&sys, &s, &x, &o));
+    assert_eq!(
+        stewart::nr_prepared(&prepared, &x, &o),
+        stewart::nr(&sys, &s, &x, &o)
+    );
     assert!(stewart::detour(&sys, &s, &x, &o).is_ok());
     assert!(stewart::proof(&sys, &sol.v, &x).is_ok());
     let mut t = Tracker::new(sys.clone(), s, o);
     assert!(stewart::track(&mut t, &x).is_ok());
     let bad = black_box([f64::INFINITY; 6]);
     assert!(stewart::nr(&sys, &s, &bad, &o).is_err() && stewart::track(&mut t, &bad).is_err());
+    let xdot = black_box([1.0, -1.0, 0.5, 0.0, 2.0, -0.5]);
+    let back = stewart::rates(&sys, &sol.v, &x, &xdot).expect("rates");
+    assert!(
+        back.iter().zip(&xdot).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
+    assert!(stewart::rates(&sys, &sol.v, &x, &bad).is_err());
     let sys = RssHexapod::new();
     let s = sys.home_start().expect("the hexapod's start");
     let x = black_box(s.x().map(|q| q + 0.05));
     let sol = hexapod::ph(&sys, &s, &x, &o).expect("a solve");
     assert!(sol.is_ok(), "{:?}", sol.status);
     assert!(hexapod::nr(&sys, &s, &x, &o).is_ok() && hexapod::proof(&sys, &sol.v, &x).is_ok());
+    let xdot = black_box([0.1, -0.2, 0.3, 0.0, 0.2, -0.1]);
+    let back = hexapod::rates(&sys, &sol.v, &x, &xdot).expect("rates");
+    assert!(
+        back.iter().zip(&xdot).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
     let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
-    assert_eq!(hexapod::nr_prepared(&prepared, &x, &o), hexapod::nr(&sys, &s, &x, &o));
+    assert_eq!(
+        hexapod::nr_prepared(&prepared, &x, &o),
+        hexapod::nr(&sys, &s, &x, &o)
+    );
     let mut t = Tracker::new(sys.clone(), s, o);
     assert!(hexapod::track(&mut t, &x).is_ok());
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
