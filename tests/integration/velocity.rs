@@ -2,7 +2,9 @@
 //! Jacobians, and against each other (the twist's rigid motion at every platform pivot; the
 //! input rates back from a twist).
 
-use linkage::velocity::{input_rates, pivot_rates, platform_jacobian, twist, Twist, VelocityError};
+use linkage::velocity::{
+    input_efforts, input_rates, pivot_rates, platform_jacobian, twist, Twist, VelocityError, Wrench,
+};
 use linkage::{newton_raphson, pose_from_unknowns, Mechanism, Options, Pose, Start};
 use linkage_examples::{rps, rss_hexapod, stewart};
 use linkage_tests::{stewart_pose_samples, Rng};
@@ -308,4 +310,87 @@ fn a_pure_rotation_about_the_origin_moves_pivots_around_it() {
         "{t:?}"
     );
     assert!(t.linear.iter().all(|c| c.abs() < 1e-4), "{t:?}");
+}
+
+#[test]
+fn stewart_leg_forces_hold_the_platform_in_equilibrium() {
+    // Independent statics: the legs push the platform along their own lines (u_i from base to
+    // platform, from B's leg rows 2 (G_i − D_i)) with forces −τ_i; with the load they must sum
+    // to zero force and zero moment about the frame origin.
+    let s = stewart::Stewart::new();
+    let mut rng = Rng::new(99);
+    for sample in stewart_pose_samples(7, 4, 0.2, 20.0, 8) {
+        let (v, x) = (sample.v, sample.x);
+        let load = Wrench {
+            moment: std::array::from_fn(|_| rng.uniform(-500.0, 500.0)),
+            force: std::array::from_fn(|_| rng.uniform(-20.0, 20.0)),
+        };
+        let tau = input_efforts(&s, &v, &x, &load).unwrap();
+        let mut b = [[0.0; 18]; 18];
+        s.jacobian_dense(&v, &x, &mut b);
+        let origin = pose_from_unknowns(&s, &v).unwrap().translation;
+        let (mut force, mut moment) = (load.force, load.moment);
+        for leg in 0..6 {
+            let row = [b[leg][leg], b[leg][6 + leg], b[leg][12 + leg]];
+            let len = row.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let f: [f64; 3] = std::array::from_fn(|a| -tau[leg] * row[a] / len);
+            let r: [f64; 3] = std::array::from_fn(|a| v[6 * a + leg] - origin[a]);
+            let m = [
+                r[1] * f[2] - r[2] * f[1],
+                r[2] * f[0] - r[0] * f[2],
+                r[0] * f[1] - r[1] * f[0],
+            ];
+            for a in 0..3 {
+                force[a] += f[a];
+                moment[a] += m[a];
+            }
+        }
+        assert!(force.iter().all(|c| c.abs() < 1e-9), "{force:?}");
+        assert!(moment.iter().all(|c| c.abs() < 1e-7), "{moment:?}");
+    }
+}
+
+#[test]
+fn efforts_and_rates_agree_by_virtual_work() {
+    // τ · ẋ = moment · ω + force · v_o for any rates: on the rotary hexapod (torques at the
+    // cranks) and the 3-RPS (fewer inputs than freedoms).
+    fn check<S: Mechanism<N, M>, const N: usize, const M: usize>(
+        sys: &S,
+        v: &[f64; N],
+        x: &[f64; M],
+        rng: &mut Rng,
+    ) {
+        let load = Wrench {
+            moment: std::array::from_fn(|_| rng.uniform(-100.0, 100.0)),
+            force: std::array::from_fn(|_| rng.uniform(-10.0, 10.0)),
+        };
+        let tau = input_efforts(sys, v, x, &load).unwrap();
+        for _ in 0..5 {
+            let xdot: [f64; M] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
+            let t = twist(sys, v, x, &xdot).unwrap();
+            let input: f64 = tau.iter().zip(&xdot).map(|(a, b)| a * b).sum();
+            let platform: f64 = (0..3)
+                .map(|i| load.moment[i] * t.angular[i] + load.force[i] * t.linear[i])
+                .sum();
+            assert!(
+                (input - platform).abs() <= 1e-10 * input.abs().max(platform.abs()).max(1.0),
+                "{input} vs {platform}"
+            );
+        }
+    }
+    let mut rng = Rng::new(3);
+    let h = rss_hexapod::RssHexapod::new();
+    let hs = rss_hexapod::home_start(&h).unwrap();
+    check(&h, hs.v(), hs.x(), &mut rng);
+    let r = rps::Rps3::new();
+    let rs = rps::home_start(&r).unwrap();
+    check(&r, rs.v(), rs.x(), &mut rng);
+    let bad = Wrench {
+        moment: [0.0; 3],
+        force: [f64::INFINITY, 0.0, 0.0],
+    };
+    assert_eq!(
+        input_efforts(&r, rs.v(), rs.x(), &bad),
+        Err(VelocityError::NonFinite)
+    );
 }

@@ -138,6 +138,17 @@ macro_rules! proven {
                 let t = velocity::twist(sys, v, x, xdot)?;
                 velocity::input_rates(sys, v, x, &t).map(|r| r.rates)
             }
+
+            /// Statics: the actuator efforts of a load on the platform.
+            #[no_panic]
+            pub fn efforts(
+                sys: &$sys,
+                v: &[f64; $n],
+                x: &[f64; $m],
+                load: &velocity::Wrench,
+            ) -> Result<[f64; $m], VelocityError> {
+                velocity::input_efforts(sys, v, x, load)
+            }
         }
     };
 }

@@ -4,6 +4,7 @@
 use core::hint::black_box;
 use core::mem::MaybeUninit;
 use linkage::modes::{AllModes, EndpointKind, ModesError, ModesOptions, Roots};
+use linkage::velocity::Wrench;
 use linkage::{Mechanism, Options, Pose, Tracker};
 use linkage_ffi::{status, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection};
 use no_panic_proof::{ffi, hexapod, rps, stewart, Rps, RssHexapod, Stewart};
@@ -39,6 +40,16 @@ fn main() {
         "{back:?}"
     );
     assert!(rps::rates(&sys, &sol.v, &x, &bad).is_err());
+    let load = black_box(Wrench {
+        moment: [0.0; 3],
+        force: [0.0, 0.0, -30.0],
+    });
+    assert!(rps::efforts(&sys, &sol.v, &x, &load).is_ok());
+    let nan = black_box(Wrench {
+        moment: [f64::NAN; 3],
+        force: [0.0; 3],
+    });
+    assert!(rps::efforts(&sys, &sol.v, &x, &nan).is_err());
 
     let sys = Stewart::new();
     let v0 = linkage::unknowns_from_pose(
@@ -71,6 +82,7 @@ fn main() {
         "{back:?}"
     );
     assert!(stewart::rates(&sys, &sol.v, &x, &bad).is_err());
+    assert!(stewart::efforts(&sys, &sol.v, &x, &load).is_ok());
     let sys = RssHexapod::new();
     let s = sys.home_start().expect("the hexapod's start");
     let x = black_box(s.x().map(|q| q + 0.05));
@@ -83,6 +95,7 @@ fn main() {
         back.iter().zip(&xdot).all(|(a, b)| (a - b).abs() < 1e-9),
         "{back:?}"
     );
+    assert!(hexapod::efforts(&sys, &sol.v, &x, &load).is_ok());
     let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
     assert_eq!(
         hexapod::nr_prepared(&prepared, &x, &o),
