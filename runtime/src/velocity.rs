@@ -142,7 +142,16 @@ pub fn platform_jacobian<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> Result<[[f64; M]; 6], VelocityError> {
-    let frame = Frame::of(sys, v)?;
+    jacobian_in(sys, &Frame::of(sys, v)?, v, x)
+}
+
+/// [`platform_jacobian`] for the frame at `v`.
+fn jacobian_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    frame: &Frame,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Result<[[f64; M]; 6], VelocityError> {
     let mut fac = sys.new_factor();
     factor(sys, v, x, &mut fac)?;
     let mut j = [[0.0; M]; 6];
@@ -177,10 +186,11 @@ pub fn input_rates<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !t.iter().all(|c| c.is_finite()) {
         return Err(VelocityError::NonFinite);
     }
-    let j = platform_jacobian(sys, v, x)?;
+    let frame = Frame::of(sys, v)?;
+    let j = jacobian_in(sys, &frame, v, x)?;
     // The angular rows weighted by the platform's size, so that both halves of the residual
     // are lengths per unit time: otherwise "nearest" would depend on the unit of length.
-    let size = Frame::of(sys, v)?.size();
+    let size = frame.size();
     let mut weighted = j;
     let mut rhs = t;
     for r in 0..3 {
@@ -359,6 +369,9 @@ struct Frame {
     index: [usize; 3],
     origin: [f64; 3],
     count: usize,
+    /// Σ (|rₖ|² I − rₖ rₖᵀ) over the second and third pivots' offsets rₖ from the first,
+    /// factored: the normal matrix of ω × rₖ = uₖ, the same for every set of rates.
+    normal: Lu<3>,
 }
 
 impl Frame {
@@ -379,43 +392,46 @@ impl Frame {
         if !(norm3(cross3(r1, r2)) > 1e-9 * norm3(r1) * norm3(r2)) {
             return Err(VelocityError::NoFrame);
         }
-        Ok(Frame {
-            points,
-            index,
-            origin: pose.translation,
-            count,
-        })
-    }
-
-    /// ω and the origin's velocity from the frame pivots' rates: ω is the least-squares
-    /// solution of ω × rₖ = uₖ (rₖ, uₖ the second and third pivots' offsets from the first and
-    /// their relative velocities), Σ (|rₖ|² I − rₖ rₖᵀ) ω = Σ rₖ × uₖ, exact for a rigid motion
-    /// and regular for non-collinear pivots.
-    /// The distance between the first two frame pivots: a length the platform is.
-    fn size(&self) -> f64 {
-        norm3(sub3(self.points[1], self.points[0]))
-    }
-
-    fn twist<const N: usize>(&self, vdot: &[f64; N]) -> Result<Twist, VelocityError> {
-        let rates = self.index.map(|p| point(vdot, self.count, p));
         let mut a = [[0.0; 3]; 3];
-        let mut b = [0.0; 3];
-        for k in 1..3 {
-            let r = sub3(self.points[k], self.points[0]);
-            let u = sub3(rates[k], rates[0]);
+        for r in [r1, r2] {
             let rr = dot3(r, r);
             for i in 0..3 {
                 for j in 0..3 {
                     a[i][j] += if i == j { rr } else { 0.0 } - r[i] * r[j];
                 }
             }
-            let c = cross3(r, u);
+        }
+        Ok(Frame {
+            points,
+            index,
+            origin: pose.translation,
+            count,
+            normal: Lu::new(a).ok_or(VelocityError::NoFrame)?,
+        })
+    }
+
+    /// The distance between the first two frame pivots: a length the platform is.
+    fn size(&self) -> f64 {
+        norm3(sub3(self.points[1], self.points[0]))
+    }
+
+    /// ω and the origin's velocity from the frame pivots' rates: ω is the least-squares
+    /// solution of ω × rₖ = uₖ (rₖ, uₖ the second and third pivots' offsets from the first and
+    /// their relative velocities), Σ (|rₖ|² I − rₖ rₖᵀ) ω = Σ rₖ × uₖ, exact for a rigid motion
+    /// and regular for non-collinear pivots.
+    fn twist<const N: usize>(&self, vdot: &[f64; N]) -> Result<Twist, VelocityError> {
+        let rates = self.index.map(|p| point(vdot, self.count, p));
+        let mut b = [0.0; 3];
+        for k in 1..3 {
+            let c = cross3(
+                sub3(self.points[k], self.points[0]),
+                sub3(rates[k], rates[0]),
+            );
             for i in 0..3 {
                 b[i] += c[i];
             }
         }
-        let lu = Lu::new(a).ok_or(VelocityError::NoFrame)?;
-        lu.solve(&mut b);
+        self.normal.solve(&mut b);
         let w = cross3(b, sub3(self.origin, self.points[0]));
         let t = Twist {
             angular: b,
