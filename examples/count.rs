@@ -18,7 +18,9 @@
 //! at 1 kHz of the 6-RSS hexapod's cranks swinging 0.1 rad about home. `certify`: the Krawczyk
 //! certificate of NR's answer from home at every row it solves; `certify-step TRAJECTORY.csv`:
 //! `certify_step` between successive tracked samples; `track-certify TRAJECTORY.csv`: the
-//! certified `Tracker` (each sample's step proven). `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
+//! certified `Tracker` (each sample's step proven). `velocity`: 1000 calls each of
+//! `velocity::twist` and `velocity::platform_jacobian` on the Stewart platform at home.
+//! `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Linear, Mechanism, NewtonRaphson, Options, Start};
@@ -136,6 +138,12 @@ fn main() -> Result<(), String> {
                 samples.len().saturating_sub(1)
             );
         }
+        "velocity" => {
+            // At home: the twist for leg rates, and the 6×6 platform Jacobian.
+            let xdot = [1.0, -1.0, 0.5, 0.0, 2.0, -0.5];
+            let (twists, jacobians) = measure_velocity(&sys, start.v(), start.x(), &xdot);
+            println!("stewart velocity: {CALLS} twists ({twists} ok), {CALLS} platform Jacobians ({jacobians} ok)");
+        }
         "stewart" => kernels("stewart", &sys, &start),
         "rps" => {
             let r = rps::Rps3::new();
@@ -147,7 +155,7 @@ fn main() -> Result<(), String> {
             kernels("rss_hexapod", &h, &s);
         }
         _ => {
-            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|track-certify|certify|certify-step|stewart|rps|rss_hexapod [POINTS.csv]".into())
+            return Err("usage: count nr-normal|nr-all|nr-dense|nr-rps|nr-rss_hexapod|ph-all|track|track-certify|certify|certify-step|velocity|stewart|rps|rss_hexapod [POINTS.csv]".into())
         }
     }
     Ok(())
@@ -337,4 +345,20 @@ fn measure_residual<S: Mechanism<N, M>, const N: usize, const M: usize>(
         black_box(&mut f);
     }
     f
+}
+
+#[inline(never)]
+fn measure_velocity<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    xdot: &[f64; M],
+) -> (usize, usize) {
+    let twists = (0..CALLS)
+        .filter(|_| linkage::velocity::twist(sys, black_box(v), x, xdot).is_ok())
+        .count();
+    let jacobians = (0..CALLS)
+        .filter(|_| linkage::velocity::platform_jacobian(sys, black_box(v), x).is_ok())
+        .count();
+    (twists, jacobians)
 }
