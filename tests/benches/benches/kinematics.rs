@@ -1,5 +1,5 @@
-//! criterion benches: residual, Jacobian, factorisation, one NR solve, one PH path and one
-//! trajectory update, for every example mechanism. `cargo bench -p linkage-tests`.
+//! criterion benches: residual, Jacobian, factorisation, one NR solve, one PH path, the
+//! platform's twist and Jacobian, and one trajectory update, for every example mechanism. `cargo bench -p linkage-tests`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use linkage::{arc_length, newton_raphson, Mechanism, Options, Start, Tracker};
@@ -64,6 +64,12 @@ fn bench_mechanism<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
     });
     g.bench_function("ph_path", |b| {
         b.iter(|| arc_length(sys, &start, black_box(&target), &Options::TIGHT))
+    });
+    g.bench_function("twist", |b| {
+        b.iter(|| linkage::velocity::twist(sys, black_box(start.v()), start.x(), black_box(&step)))
+    });
+    g.bench_function("platform_jacobian", |b| {
+        b.iter(|| linkage::velocity::platform_jacobian(sys, black_box(start.v()), start.x()))
     });
     let mut tracker = Tracker::new(sys.clone(), start, Options::TIGHT);
     let mut k = 0u64;
