@@ -38,12 +38,19 @@
 //! ```
 
 use crate::lu::Lu;
-use crate::math::{cross3, dot3, norm3, sub3};
+use crate::math::{cross3, dot3, norm3, scale_or_one, size, sub3};
 use crate::{Mechanism, pose_from_unknowns};
 
 /// Why no velocity could be computed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum VelocityError {
+    /// `(v, x)` is not a solution of F(v, x) = 0: its Newton correction `error` exceeds 1e-3 of
+    /// ‖v‖ (the loosest tolerance a solver accepts). Pass a solver's answer with the inputs it
+    /// was solved for.
+    NotASolution {
+        /// ‖B⁻¹F(v, x)‖.
+        error: f64,
+    },
     /// B is singular at the configuration (a direct singularity: the inputs do not determine
     /// the motion there), or, for [`input_rates`], some combination of input rates moves the
     /// platform not at all.
@@ -58,6 +65,9 @@ pub enum VelocityError {
 impl core::fmt::Display for VelocityError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
+            VelocityError::NotASolution { error } => {
+                write!(f, "not a solution: its Newton correction is {error:e}")
+            }
             VelocityError::Singular => {
                 write!(f, "singular configuration: the rates are not determined")
             }
@@ -324,6 +334,12 @@ fn least_squares<const M: usize>(mut a: [[f64; M]; 6], mut b: [f64; 6]) -> Optio
     y.iter().all(|c| c.is_finite()).then_some(y)
 }
 
+/// How far from a solution `(v, x)` may be, relative to ‖v‖: the loosest tolerance the
+/// solvers accept (`Options::check_for`), so that any answer they return passes.
+const SOLUTION: f64 = 1e-3;
+
+/// B factored at `(v, x)`, after checking that `(v, x)` is a solution (its Newton correction
+/// within [`SOLUTION`] of ‖v‖): rates anywhere else would be rates of nothing.
 fn factor<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     v: &[f64; N],
@@ -333,9 +349,18 @@ fn factor<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !(v.iter().chain(x).all(|c| c.is_finite())) {
         return Err(VelocityError::NonFinite);
     }
-    sys.factor(v, x, fac)
-        .map(|_| ())
-        .ok_or(VelocityError::Singular)
+    sys.factor(v, x, fac).ok_or(VelocityError::Singular)?;
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    sys.solve(fac, &mut f);
+    let error = size(&f);
+    if error <= SOLUTION * scale_or_one(size(v)) {
+        Ok(())
+    } else if error.is_finite() {
+        Err(VelocityError::NotASolution { error })
+    } else {
+        Err(VelocityError::NonFinite)
+    }
 }
 
 fn rates_with<S: Mechanism<N, M>, const N: usize, const M: usize>(

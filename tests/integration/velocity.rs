@@ -249,6 +249,17 @@ fn bad_configurations_are_typed_errors() {
     );
     assert_eq!(twist(&s, &zero, &x, &xdot), Err(VelocityError::Singular));
 
+    // Inputs that are not the configuration's: a leg 10 mm longer than v has it.
+    let mut other = x;
+    other[2] += 10.0;
+    assert!(matches!(
+        pivot_rates(&s, &v, &other, &xdot),
+        Err(VelocityError::NotASolution { error }) if error > 1.0
+    ));
+    // Within the solvers' loosest tolerance (1e-3 of ‖v‖), a solution still.
+    other[2] = x[2] + 1e-6;
+    assert!(pivot_rates(&s, &v, &other, &xdot).is_ok());
+
     // NaN anywhere.
     let mut nan = xdot;
     nan[3] = f64::NAN;
