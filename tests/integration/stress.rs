@@ -29,6 +29,7 @@ mod run;
 mod starts;
 mod tracker;
 mod trajectory;
+mod velocity;
 
 use geometry::random_geometry;
 use linkage_examples::stewart::{Stewart, StewartGeneral};
@@ -301,4 +302,24 @@ fn known_cases_rounding_floor_near_the_tolerance() {
         0x5EED_0003,
         &[4709, 23615, 29734],
     ));
+}
+
+/// Velocity kinematics on random machines at random poses (`velocity::twist`,
+/// `velocity::input_rates`), against central differences of inverse kinematics along a random
+/// motion: no wrong twist or input rates, nothing left over of a twist the legs made, no rates
+/// for legs that are not the pose's.
+#[test]
+fn velocity_on_random_machines() {
+    let run = Run::new("velocity_on_random_machines", 0x5EED_0007);
+    let mut tally = Tally::new(&run);
+    for case in run.cases(800) {
+        let mut rng = run.rng(case);
+        let g = random_geometry(&mut rng);
+        if g.coplanar() {
+            velocity::case::<Stewart>(&mut tally, case, &mut rng, g);
+        } else {
+            velocity::case::<StewartGeneral>(&mut tally, case, &mut rng, g);
+        }
+    }
+    tally.finish();
 }
