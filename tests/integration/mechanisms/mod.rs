@@ -18,6 +18,7 @@ mod pcs;
 mod planar_rpr;
 mod planar_rrr;
 mod prs;
+mod published;
 mod rps_tracking;
 mod rrs;
 mod scara;

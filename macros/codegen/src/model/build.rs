@@ -99,6 +99,8 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         home_inputs: Vec::new(),
         links: Vec::new(),
         link_equations: 0..0,
+        sliders: Vec::new(),
+        slider_again: Vec::new(),
         platform_placed: false,
         spins: Vec::new(),
     };
@@ -179,11 +181,20 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     // than one of those (the two points on a cylindrical pair's axis); and where the legs and
     // the platform overlap (a spherical mechanism), every leg keeps its own constraints and
     // the platform's go — dropping a leg's instead leaves that leg held only near home.
+    // A link that several prismatic pairs carry (a platform on three guides): the first pair
+    // places it, and the others' placements of it come after the links' Eq. 3 — offered
+    // first, they kept all three placements and dropped the guides' own distances, which left
+    // the square system singular at regular configurations of a 3-PRP.
     let mut priority = vec![0u8; chain_equations];
     for i in added.link_equations.clone() {
         priority[i] = 1;
     }
-    priority.resize(b.equations.len(), 2);
+    for &i in &added.slider_again {
+        if let Some(p) = priority.get_mut(i) {
+            *p = 2;
+        }
+    }
+    priority.resize(b.equations.len(), 3);
     let kept = crate::simplify::duplicates::remove_duplicates(&mut b.equations);
     let priority: Vec<u8> = kept.iter().map(|&i| priority[i]).collect();
 

@@ -103,6 +103,11 @@ pub struct Added {
     pub links: Vec<crate::model::LinkFrame>,
     /// Where the intermediate links' Eq. 3 are among the equations.
     pub link_equations: std::ops::Range<usize>,
+    /// The links a prismatic (or passive cylindrical) pair between moving links carries.
+    pub sliders: Vec<usize>,
+    /// The equations by which such a pair places a slider that an earlier one already places
+    /// (a platform on three guides): see `build`'s order for the rank test.
+    pub slider_again: Vec<usize>,
     /// Whether an active pair places the platform relative to another link (see [`relative`]):
     /// its Eq. 3 is then implied.
     pub platform_placed: bool,

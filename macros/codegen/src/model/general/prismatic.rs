@@ -197,6 +197,10 @@ pub fn equations(
     let direction = expr::vsub(&et, &eo);
     let at = |q: PointId| -> PointRef { topo.home(q) };
     let cylinder = p.kind == PairKind::C;
+    let again = added.sliders.contains(&j.after);
+    if !again {
+        added.sliders.push(j.after);
+    }
     for &q in &slider.members {
         // The turn about a cylindrical pair's axis is free: its slider's other points follow
         // from the slider's own Eq. 3.
@@ -264,6 +268,9 @@ pub fn equations(
             sum.push(eq_q[a].clone().negated());
             let eq = Expr::Sum(sum).simplify();
             if eq.degree() > 0 {
+                if again {
+                    added.slider_again.push(b.equations.len());
+                }
                 b.equations.push(eq);
             }
         }
