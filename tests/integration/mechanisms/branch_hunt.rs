@@ -430,7 +430,7 @@ fn linear_delta_keeps_its_branch() {
         GENERAL_MODEL,
         [400.0; 3],
         0x1DE1,
-        linkage_tests::sweep(4, 40),
+        linkage_tests::sweep(3, 40),
     );
 }
 

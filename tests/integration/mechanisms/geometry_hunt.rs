@@ -69,7 +69,7 @@ macro_rules! calibrated {
             let lengths: &[&str] = &$lengths;
             let names = <$ty>::GEOMETRY_NAMES;
             let nominal = <$ty>::new().home_start().unwrap();
-            for case in 0..linkage_tests::sweep(3, 30) {
+            for case in 0..linkage_tests::sweep(2, 30) {
                 let mut g = <$ty>::DEFAULT_GEOMETRY;
                 let offsets = calibration(&mut rng, &names, $planar);
                 for (k, name) in names.iter().enumerate() {
@@ -85,7 +85,11 @@ macro_rules! calibrated {
                     linkage::Start::new(&sys, v, *nominal.x())
                 });
                 let start = start.unwrap_or_else(|e| panic!("case {case}: calibrated home: {e}"));
-                let curve = Curve::random(&mut rng, *start.x(), $reach);
+                let mut curve = Curve::random(&mut rng, *start.x(), $reach);
+                // Without `LINKAGE_STRESS`, at most 100 samples a curve (within two seconds).
+                if std::env::var("LINKAGE_STRESS").is_err() {
+                    curve.rate = curve.rate.min(100.0);
+                }
                 let at = format!("{} calibrated, case {case}", stringify!($ty));
                 hunt(&sys, start, $options, &curve, &mut tally, &at);
             }
@@ -167,9 +171,9 @@ macro_rules! geometry_hunt {
             let mut rng = Rng::new($seed ^ 0xBAD);
             // Solves on a degenerate machine: either a typed error at home, or every answer
             // labelled ok is right on it (one short curve, PH to four of its points).
-            // Returns whether the geometry was refused. Without `LINKAGE_STRESS` every eighth
+            // Returns whether the geometry was refused. Without `LINKAGE_STRESS` every sixteenth
             // accepted geometry is solved on (each is still built and started).
-            let every = linkage_tests::sweep(8, 1);
+            let every = linkage_tests::sweep(16, 1);
             let mut seen = 0;
             let mut check = |g: [f64; <$ty>::DEFAULT_GEOMETRY.len()], what: &str| -> bool {
                 let Ok(sys) = <$ty>::from_geometry(g) else {
