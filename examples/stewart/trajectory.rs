@@ -26,13 +26,22 @@ pub fn run(out: &Path, seconds: f64, rate: f64) -> Result<(), String> {
     if !(seconds > 0.0 && rate > 0.0 && seconds * rate <= 1e7) {
         return Err("--seconds and --rate must be positive (at most 10 million samples)".into());
     }
+    // Samples at t = 0, 1/rate, …, seconds (rounded to whole samples). A duration that rounds
+    // to no step (`--seconds 1e-9` at 1 kHz) would write the home sample alone: no trajectory
+    // to track, and not what was asked for. Refused before the file is created.
+    let n = (seconds * rate).round();
+    if n < 1.0 {
+        return Err(format!(
+            "--seconds {seconds} at --rate {rate} Hz is less than half a sample period: a trajectory needs at least two samples"
+        ));
+    }
+    let n = n as usize;
     let sys = Stewart::new();
     let mut w = std::io::BufWriter::new(
         std::fs::File::create(out).map_err(|e| format!("cannot write {}: {e}", out.display()))?,
     );
     let io = |e: std::io::Error| e.to_string();
     writeln!(w, "t_s,L1,L2,L3,L4,L5,L6,yaw,pitch,roll,x,y,z").map_err(io)?;
-    let n = (seconds * rate).round() as usize;
     for k in 0..=n {
         let t = k as f64 / rate;
         let pose = pose_at(t);

@@ -1348,3 +1348,58 @@ fn modes_on_a_machine_of_1e_minus_12_finds_the_unscaled_roots() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+// ---- The third hunt: the remaining corners of `trajectory` and `map`.
+
+/// `trajectory --seconds 1e-9` (at 1 kHz) wrote one sample, the home row, and succeeded: a
+/// duration that rounds to no step is refused, before the file is made. One step is two rows.
+#[test]
+fn a_trajectory_shorter_than_half_a_sample_is_refused() {
+    let dir = scratch("trajectory");
+    let file = dir.join("t.csv");
+    let path = file.to_str().unwrap();
+    for seconds in ["1e-9", "0.0004"] {
+        let out = run(&["trajectory", "--out", path, "--seconds", seconds], b"");
+        assert_refused(&out, "at least two samples");
+        assert!(!file.exists(), "--seconds {seconds}: no file written");
+    }
+    let out = run(&["trajectory", "--out", path, "--seconds", "0.001"], b"");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = std::fs::read_to_string(&file).unwrap().lines().count();
+    assert_eq!(rows, 3, "the header and the samples at t = 0 and 1 ms");
+    // Into a directory that does not exist: a file's directory is not made for it.
+    let out = run(
+        &[
+            "trajectory",
+            "--out",
+            dir.join("no/such/t.csv").to_str().unwrap(),
+        ],
+        b"",
+    );
+    assert_refused(&out, "cannot write");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `map --out` names a directory of figures: made if it does not exist (with its parents, as
+/// `errors --out` does), and a path that cannot be one fails at once, before minutes of
+/// continuation, with the path in the message. `map` takes no geometry: Table III's figures.
+#[test]
+fn map_out_that_cannot_be_a_directory_fails_at_once() {
+    let dir = scratch("map");
+    let file = dir.join("plain");
+    std::fs::write(&file, b"x").unwrap();
+    let clock = Instant::now();
+    let out = run(
+        &["map", "--out", file.join("figures").to_str().unwrap()],
+        b"",
+    );
+    assert_refused(&out, "cannot create");
+    assert!(stderr(&out).contains("plain/figures"), "{}", stderr(&out));
+    assert!(
+        clock.elapsed() < Duration::from_secs(20),
+        "refused before the map is computed"
+    );
+    let out = run(&["map", "--geometry", "g.toml"], b"");
+    assert_refused(&out, "--geometry");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

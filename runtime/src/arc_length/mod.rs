@@ -33,6 +33,7 @@ mod corrector;
 mod path;
 mod step;
 
+use crate::correction::det_b;
 use crate::math::norm;
 use crate::newton::{Rule, newton};
 use crate::outcome::{Account, conclude, finish};
@@ -42,6 +43,9 @@ use step::{Previous, StepControl, det_dips};
 
 /// Below this cosine between successive tangents (about 37°) a step is rejected.
 const MIN_TANGENT_COS: f64 = 0.8;
+/// How far behind the start, as a share of the path's length, det B is taken to see its slope
+/// before the first step (a thousandth of the first step, a quarter of the path).
+const FIRST_PROBE: f64 = 2.5e-4;
 
 /// Solves F(v, x*) = 0 by pseudo-arc-length continuation from the start along the straight
 /// joint-space segment, stopping with [`Status::Fold`] where that segment leaves the valid
@@ -158,6 +162,30 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut det_prev = start.det();
     let mut previous: Option<Previous<N>> = None;
     let mut control = StepControl::new(length);
+    // The first step has no earlier point to show det B heading for zero. det B a short way
+    // behind the start along the tangent stands in for one (one determinant more per solve),
+    // so that the first step too goes at most twice as far as det B = 0 lies by linear
+    // extrapolation, and the parabola test sees a dip within it. Without it a first step of a
+    // quarter of the segment, from a point near a singularity (a tracked sample the tracker
+    // hands to continuation), went over two sign changes of det B and answered Converged
+    // (the linear delta, found by the third hunt).
+    let behind = {
+        let chord = FIRST_PROBE * length;
+        let mut v = p.v;
+        for i in 0..N {
+            v[i] -= chord * t.v[i];
+        }
+        let x = path.x(-chord * t.mu);
+        // The generated factorisation's determinant (a tenth of a dense LU's work), the dense
+        // one where it declines or the dense baseline was asked for.
+        let mut factor = sys.new_factor();
+        let generated = match options.linear {
+            crate::Linear::Dense => None,
+            crate::Linear::Generated => sys.factor(&v, &x, &mut factor).map(|info| info.det),
+        };
+        (generated.unwrap_or_else(|| det_b(sys, &v, &x)), chord)
+    };
+    control.toward_singularity(behind.0, behind.1, det_prev);
     let mut account = Account::at(0.0);
     // Ends the solve at the last accepted point `p`.
     let stop = |p: &Point<N>, status, account: Account| {
@@ -218,9 +246,8 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 // det B of one sign at both ends may still hide two folds in between: where
                 // the parabola through the last three values of det B dips across zero within
                 // the step, take a shorter one.
-                let dips = previous
-                    .as_ref()
-                    .is_some_and(|pr| det_dips(pr.det, pr.chord, det_prev, chord, next.det));
+                let (d0, c0) = previous.as_ref().map_or(behind, |pr| (pr.det, pr.chord));
+                let dips = det_dips(d0, c0, det_prev, chord, next.det);
                 if dips || (dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !step.end) {
                     account.rejected += 1;
                     control.turned(&step);
@@ -245,7 +272,7 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     }
                     control.accepted(&step, c.first, c.iterations);
                     if let Some(prev) = previous.as_ref() {
-                        control.toward_singularity(prev, det_prev);
+                        control.toward_singularity(prev.det, prev.chord, det_prev);
                     }
                 }
             }

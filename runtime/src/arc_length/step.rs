@@ -147,10 +147,11 @@ impl StepControl {
     /// extrapolation. Two folds close together leave det B of one sign on either side; a step
     /// over both would not see them, and this keeps steps short where det B heads for zero.
     /// Twice, not once: a step must be able to pass a single fold for the sign change to show.
-    pub fn toward_singularity<const N: usize>(&mut self, prev: &Previous<N>, det: f64) {
-        let fall = prev.det.abs() - det.abs();
+    /// `prev_det` is det B a chord `chord` back.
+    pub fn toward_singularity(&mut self, prev_det: f64, chord: f64, det: f64) {
+        let fall = prev_det.abs() - det.abs();
         if fall > 0.0 {
-            let limit = 2.0 * prev.chord * (det.abs() / fall);
+            let limit = 2.0 * chord * (det.abs() / fall);
             if limit < self.h {
                 self.h = limit.max(self.min);
             }

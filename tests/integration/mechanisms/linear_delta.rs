@@ -154,3 +154,47 @@ fn linear_delta_forward_kinematics_and_all_modes() {
         "linear delta: 30 translations by continuation on the closed form's branch; 40 complex roots for {seeds} seeds, {real} real ones at 8 inputs each (2 translations each time)"
     );
 }
+
+/// PH's first step from a point near a singularity. From this configuration (|det B| 2.9e-3
+/// of home's, reached by the tracker on a random slide curve) the straight segment to `x`
+/// meets det B = 0 at 4 % of its length and again at 18 %, the branch passing smoothly through
+/// both; PH's first step, a quarter of the segment, went over both, and it answered Converged
+/// (the tracker accepted it) with no connection to the start but through a singularity. The
+/// first step is now held within twice the distance to det B = 0 by det B's slope along the
+/// tangent, as every later step is: PH stops at the first crossing.
+#[test]
+fn ph_does_not_step_over_two_singularities_on_its_first_step() {
+    let delta = LinearDelta::new();
+    let v = [
+        300.7109097057597,
+        300.7109097057607,
+        219.0602746111488,
+        262.36154480037015,
+        262.3615448003721,
+        219.06027461114962,
+        24.211324211890894,
+        -25.788675788109124,
+        21.352340363266876,
+        46.35234036326771,
+        -47.92969193948739,
+        -22.929691939488254,
+        388.77654553611444,
+        388.7765455361152,
+        388.77654553612615,
+        388.77654553611967,
+        388.776545536121,
+        388.7765455361268,
+    ];
+    let x0 = [341.25019783238815, 121.38091106565814, 52.97697993409166];
+    let x = [186.24896437029253, -137.64223654765541, 30.2259930754077];
+    let start = linkage::Start::new(&delta, v, x0).unwrap();
+    let (_, flips) = straight_segment(&delta, &start, &x, 2000);
+    assert_eq!(flips, 2, "the segment crosses det B = 0 twice");
+    let sol = arc_length(&delta, &start, &x, &GENERAL_MODEL).unwrap();
+    assert!(
+        matches!(sol.status, Status::Fold { lambda } if lambda < 0.2),
+        "{:?} at λ = {}",
+        sol.status,
+        sol.lambda
+    );
+}

@@ -5,11 +5,13 @@
 //! different declared homes of the same machine.
 
 mod all_modes;
+mod branch_hunt;
 mod delta;
 mod delta_tools;
 mod delta_tracking;
 mod five_bar;
 mod four_bar;
+mod geometry_hunt;
 mod home_by_inputs;
 mod linear_delta;
 mod motors;
