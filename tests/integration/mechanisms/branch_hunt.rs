@@ -1,6 +1,6 @@
-//! The tracker and PH (`arc_length`) on the mechanisms the earlier hunts left out — the
-//! five-bar, the planar 3-RPR, the spherical wrist, the 3-PRS, the linear delta, the pan-tilt
-//! head, the SCARA and the 6-RSS hexapod — over random smooth input curves from home, some
+//! The tracker and PH (`arc_length`) on the five-bar, the planar 3-RPR, the spherical wrist,
+//! the 3-PRS, the linear delta, the pan-tilt head, the SCARA, the 6-RSS hexapod and the 3-RPS
+//! (the first hunt's curves, checked here since) over random smooth input curves from home, some
 //! running into and past direct singularities and out of reach. Every answer labelled ok is
 //! held to ground truth computed here, apart from the solvers:
 //!
@@ -28,6 +28,7 @@ use super::spherical_wrist::Wrist;
 use super::GENERAL_MODEL;
 use linkage::reference::{straight_segment, straight_segment_from};
 use linkage::{arc_length, det_b, Mechanism, Options, Start, Tracker};
+use linkage_examples::rps::{self, Rps3};
 use linkage_examples::rss_hexapod::RssHexapod;
 use linkage_tests::{max_diff, Rng};
 use std::f64::consts::TAU;
@@ -472,6 +473,23 @@ fn scara_keeps_its_branch() {
         [6.0, 6.0, 300.0, 6.0, 6.0],
         0x5CA8,
         linkage_tests::sweep(3, 30),
+    );
+}
+
+/// The 3-RPS (16 assembly modes in the complex): legs up to 90 mm from home on legs of
+/// 158 mm, into its singular configurations and out of reach (the first round's curves).
+#[test]
+fn rps_keeps_its_branch() {
+    let sys = Rps3::new();
+    let start = rps::home_start(&sys).unwrap();
+    run(
+        "3-RPS",
+        sys,
+        start,
+        Options::TIGHT,
+        [90.0; 3],
+        0x3295,
+        linkage_tests::sweep(4, 150),
     );
 }
 

@@ -21,7 +21,6 @@ mod planar_rpr;
 mod planar_rrr;
 mod prs;
 mod published;
-mod rps_tracking;
 mod rrs;
 mod scara;
 mod slider_crank;
