@@ -37,9 +37,16 @@
 //! assert!(back.left_over.angular.iter().chain(&back.left_over.linear).all(|e| e.abs() < 1e-9));
 //! ```
 
-use crate::lu::Lu;
-use crate::math::{cross3, dot3, norm3, scale_or_one, size, sub3};
-use crate::{Mechanism, pose_from_unknowns};
+mod frame;
+mod least_squares;
+mod statics;
+
+pub use statics::{Wrench, input_efforts};
+
+use crate::Mechanism;
+use crate::math::{cross3, scale_or_one, size, sub3};
+use frame::Frame;
+use least_squares::least_squares;
 
 /// Why no velocity could be computed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -227,113 +234,6 @@ pub fn input_rates<S: Mechanism<N, M>, const N: usize, const M: usize>(
     })
 }
 
-/// A load on the platform: a force through its frame's origin and a moment, both in base-frame
-/// axes (length times force for the moment, in the same length unit as the mechanism).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Wrench {
-    /// The moment about the frame's origin.
-    pub moment: [f64; 3],
-    /// The force.
-    pub force: [f64; 3],
-}
-
-/// The actuator efforts a load on the platform puts on the inputs at the solution `(v, x)`:
-/// τ = Jᵀ w over the [`platform_jacobian`] J (virtual work: τ · ẋ = moment · ω + force · v_o
-/// for every input rate ẋ), forces for prismatic inputs and torques for revolute ones. To
-/// hold the platform against the load, the actuators exert −τ; the passive joints take the
-/// rest (a 3-RPS's hinges carry what its legs cannot).
-///
-/// ```
-/// use linkage::velocity::{input_efforts, Wrench};
-/// use linkage::{Mechanism, Pose};
-/// # linkage::mechanism! {
-/// #     pub struct Rps;
-/// #     base {
-/// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
-/// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
-/// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
-/// #     }
-/// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
-/// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
-/// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
-/// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
-/// # }
-/// let rps = Rps::new();
-/// let v = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
-/// let x = rps.inverse(&v, &[0.0; 3]).unwrap();
-/// // 30 N of weight on the level platform's centre: each leg leans inwards (50 mm in over
-/// // 150 mm up) and takes 10 N of it upright, 10 N / cos 18.4° along itself, pushing it shorter.
-/// let weight = Wrench { moment: [0.0; 3], force: [0.0, 0.0, -30.0] };
-/// let tau = input_efforts(&rps, &v, &x, &weight).unwrap();
-/// let along = 10.0 * (50.0f64.powi(2) + 150.0f64.powi(2)).sqrt() / 150.0;
-/// assert!(tau.iter().all(|t| (t + along).abs() < 1e-3), "{tau:?}");
-/// ```
-pub fn input_efforts<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-    load: &Wrench,
-) -> Result<[f64; M], VelocityError> {
-    let w = Twist {
-        angular: load.moment,
-        linear: load.force,
-    }
-    .as_array();
-    if !w.iter().all(|c| c.is_finite()) {
-        return Err(VelocityError::NonFinite);
-    }
-    let j = platform_jacobian(sys, v, x)?;
-    let mut tau = [0.0; M];
-    for (input, t) in tau.iter_mut().enumerate() {
-        *t = (0..6).map(|r| j[r][input] * w[r]).sum();
-    }
-    if tau.iter().all(|c| c.is_finite()) {
-        Ok(tau)
-    } else {
-        Err(VelocityError::NonFinite)
-    }
-}
-
-/// The least-squares solution of `a` y = `b` by Householder reflections (not the normal
-/// equations, which would square the condition of a platform Jacobian near a singularity).
-/// `None` with more unknowns than rows or a column dependent on the others to rounding.
-fn least_squares<const M: usize>(mut a: [[f64; M]; 6], mut b: [f64; 6]) -> Option<[f64; M]> {
-    if M > 6 {
-        return None;
-    }
-    let largest = a.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-    for k in 0..M {
-        let norm = crate::math::sqrt((k..6).map(|r| a[r][k] * a[r][k]).sum::<f64>());
-        if !(norm > 1e-12 * largest) {
-            return None;
-        }
-        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
-        // v = x − α e₁, applied as H = I − 2 v vᵀ / (vᵀv).
-        let mut h = [0.0; 6];
-        for r in k..6 {
-            h[r] = a[r][k];
-        }
-        h[k] -= alpha;
-        let hh: f64 = (k..6).map(|r| h[r] * h[r]).sum();
-        for c in k..M {
-            let s = 2.0 * (k..6).map(|r| h[r] * a[r][c]).sum::<f64>() / hh;
-            for r in k..6 {
-                a[r][c] -= s * h[r];
-            }
-        }
-        let s = 2.0 * (k..6).map(|r| h[r] * b[r]).sum::<f64>() / hh;
-        for r in k..6 {
-            b[r] -= s * h[r];
-        }
-    }
-    let mut y = [0.0; M];
-    for k in (0..M).rev() {
-        let tail: f64 = (k + 1..M).map(|c| a[k][c] * y[c]).sum();
-        y[k] = (b[k] - tail) / a[k][k];
-    }
-    y.iter().all(|c| c.is_finite()).then_some(y)
-}
-
 /// How far from a solution `(v, x)` may be, relative to ‖v‖: the loosest tolerance the
 /// solvers accept (`Options::check_for`), so that any answer they return passes.
 const SOLUTION: f64 = 1e-3;
@@ -386,90 +286,4 @@ fn rates_with<S: Mechanism<N, M>, const N: usize, const M: usize>(
         // an overflowing solve.
         Err(VelocityError::Singular)
     }
-}
-
-/// The platform's frame pivots where `v` has them, and its frame's origin.
-struct Frame {
-    points: [[f64; 3]; 3],
-    index: [usize; 3],
-    origin: [f64; 3],
-    count: usize,
-    /// Σ (|rₖ|² I − rₖ rₖᵀ) over the second and third pivots' offsets rₖ from the first,
-    /// factored: the normal matrix of ω × rₖ = uₖ, the same for every set of rates.
-    normal: Lu<3>,
-}
-
-impl Frame {
-    fn of<S: Mechanism<N, M>, const N: usize, const M: usize>(
-        sys: &S,
-        v: &[f64; N],
-    ) -> Result<Frame, VelocityError> {
-        if !v.iter().all(|c| c.is_finite()) {
-            return Err(VelocityError::NonFinite);
-        }
-        let pose = pose_from_unknowns(sys, v).ok_or(VelocityError::NoFrame)?;
-        let count = S::POINTS.len();
-        let index = S::FRAME;
-        let points = index.map(|p| point(v, count, p));
-        // Collinear to rounding is collinear: the angle at the first pivot must be more than
-        // rounding, or ω about the line through them is not determined by their rates.
-        let (r1, r2) = (sub3(points[1], points[0]), sub3(points[2], points[0]));
-        if !(norm3(cross3(r1, r2)) > 1e-9 * norm3(r1) * norm3(r2)) {
-            return Err(VelocityError::NoFrame);
-        }
-        let mut a = [[0.0; 3]; 3];
-        for r in [r1, r2] {
-            let rr = dot3(r, r);
-            for i in 0..3 {
-                for j in 0..3 {
-                    a[i][j] += if i == j { rr } else { 0.0 } - r[i] * r[j];
-                }
-            }
-        }
-        Ok(Frame {
-            points,
-            index,
-            origin: pose.translation,
-            count,
-            normal: Lu::new(a).ok_or(VelocityError::NoFrame)?,
-        })
-    }
-
-    /// The distance between the first two frame pivots: a length the platform is.
-    fn size(&self) -> f64 {
-        norm3(sub3(self.points[1], self.points[0]))
-    }
-
-    /// ω and the origin's velocity from the frame pivots' rates: ω is the least-squares
-    /// solution of ω × rₖ = uₖ (rₖ, uₖ the second and third pivots' offsets from the first and
-    /// their relative velocities), Σ (|rₖ|² I − rₖ rₖᵀ) ω = Σ rₖ × uₖ, exact for a rigid motion
-    /// and regular for non-collinear pivots.
-    fn twist<const N: usize>(&self, vdot: &[f64; N]) -> Result<Twist, VelocityError> {
-        let rates = self.index.map(|p| point(vdot, self.count, p));
-        let mut b = [0.0; 3];
-        for k in 1..3 {
-            let c = cross3(
-                sub3(self.points[k], self.points[0]),
-                sub3(rates[k], rates[0]),
-            );
-            for i in 0..3 {
-                b[i] += c[i];
-            }
-        }
-        self.normal.solve(&mut b);
-        let w = cross3(b, sub3(self.origin, self.points[0]));
-        let t = Twist {
-            angular: b,
-            linear: [0, 1, 2].map(|i| rates[0][i] + w[i]),
-        };
-        if t.as_array().iter().all(|c| c.is_finite()) {
-            Ok(t)
-        } else {
-            Err(VelocityError::NonFinite)
-        }
-    }
-}
-
-fn point<const N: usize>(v: &[f64; N], count: usize, p: usize) -> [f64; 3] {
-    [0, 1, 2].map(|axis| v.get(axis * count + p).copied().unwrap_or(f64::NAN))
 }
