@@ -118,12 +118,8 @@ pub enum Solvers {
 }
 
 pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry, solvers: Solvers) {
-    let m = match Machine::<S>::new(&g) {
-        Ok(m) => m,
-        Err(_) => {
-            tally.count("geometry without a valid start (skipped)");
-            return;
-        }
+    let Some(m) = Machine::<S>::for_case(&g, tally) else {
+        return;
     };
     let Some((kind, u, t)) = target(&m, rng) else {
         tally.count("no target found (skipped)");

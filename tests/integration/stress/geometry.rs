@@ -176,6 +176,16 @@ impl<S: SixSix> Machine<S> {
         })
     }
 
+    /// [`Self::new`] for a case of a sweep: `None`, counted as skipped, for a geometry
+    /// without a valid start.
+    pub fn for_case(g: &Geometry, tally: &mut super::run::Tally) -> Option<Self> {
+        let m = Self::new(g).ok();
+        if m.is_none() {
+            tally.count("geometry without a valid start (skipped)");
+        }
+        m
+    }
+
     /// Legs, pivots and det B / det0 at the pose `home ⊕ t u`; `None` where a leg is shorter
     /// than a tenth of the size (not a physical configuration of this machine).
     pub fn at(&self, u: &[f64; 6], t: f64) -> Option<([f64; 6], [f64; 18], f64)> {

@@ -57,12 +57,8 @@ fn sup(a: &[f64]) -> f64 {
 }
 
 pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry) {
-    let m = match Machine::<S>::new(&g) {
-        Ok(m) => m,
-        Err(_) => {
-            tally.count("geometry without a valid start (skipped)");
-            return;
-        }
+    let Some(m) = Machine::<S>::for_case(&g, tally) else {
+        return;
     };
     let u = random_offset(rng, 0.7, 0.5 * m.size);
     let Some((t_in, t_out)) = m.crossing(&u, 3.0, 200) else {

@@ -24,12 +24,8 @@ struct Inputs<'a> {
 const NEAR_SINGULAR: f64 = 1e-3;
 
 pub fn case<S: SixSix>(tally: &mut Tally, case: u64, rng: &mut Rng, g: Geometry) {
-    let m = match Machine::<S>::new(&g) {
-        Ok(m) => m,
-        Err(_) => {
-            tally.count("geometry without a valid start (skipped)");
-            return;
-        }
+    let Some(m) = Machine::<S>::for_case(&g, tally) else {
+        return;
     };
     tally.case();
     let offset: [f64; 6] = std::array::from_fn(|i| {
