@@ -115,6 +115,12 @@ impl Mul for Dd {
 }
 
 /// A complex number in double-double parts: the scalar of [`residual`].
+///
+/// In builds with debug assertions (the dev and test profiles) its sums and products are out
+/// of line, the Dekker arithmetic inside each inlined: written out at every operation of every
+/// mechanism's generated `residual_in` it was the largest code a crate declaring many
+/// mechanisms compiled (15 % of the integration tests' optimised IR, BENCHMARKS.md). Release
+/// builds inline them, for speed. The results are the same bit for bit either way.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Wide {
     re: Dd,
@@ -144,7 +150,8 @@ impl Wide {
 
 impl Add for Wide {
     type Output = Wide;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add(self, b: Wide) -> Wide {
         Wide {
             re: self.re + b.re,
@@ -155,7 +162,8 @@ impl Add for Wide {
 
 impl Sub for Wide {
     type Output = Wide;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub(self, b: Wide) -> Wide {
         Wide {
             re: self.re - b.re,
@@ -177,7 +185,8 @@ impl Neg for Wide {
 
 impl Mul for Wide {
     type Output = Wide;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul(self, b: Wide) -> Wide {
         Wide {
             re: self.re * b.re - self.im * b.im,
@@ -190,6 +199,7 @@ impl crate::Scalar for Wide {
     fn from_f64(x: f64) -> Self {
         Wide::from(Complex::real(x))
     }
+    #[cfg_attr(debug_assertions, inline(never))]
     fn sq(self) -> Self {
         self * self
     }

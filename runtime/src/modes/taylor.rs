@@ -54,9 +54,17 @@ impl<const K: usize> Series<K> {
     }
 }
 
+// The arithmetic is out of line in builds with debug assertions (the dev and test profiles): a
+// generated `residual_in` has hundreds of operations, and each written out (a product's
+// constant checks and both products, a sum's K complex additions through memory) made the
+// series kernels of every declared mechanism the largest part of a crate's optimised IR (18 %
+// of the integration tests', for three orders of series; BENCHMARKS.md). Release builds inline
+// it: out of line, an all-modes query of the general 6-6 platform took 11.5 % more
+// instructions. The results are the same bit for bit either way.
 impl<const K: usize> Add for Series<K> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add(self, o: Self) -> Self {
         let mut r = self;
         for k in 0..K {
@@ -68,7 +76,8 @@ impl<const K: usize> Add for Series<K> {
 
 impl<const K: usize> Sub for Series<K> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub(self, o: Self) -> Self {
         let mut r = self;
         for k in 0..K {
@@ -80,7 +89,8 @@ impl<const K: usize> Sub for Series<K> {
 
 impl<const K: usize> Neg for Series<K> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn neg(self) -> Self {
         let mut r = self;
         for k in 0..K {
@@ -92,7 +102,8 @@ impl<const K: usize> Neg for Series<K> {
 
 impl<const K: usize> Mul for Series<K> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul(self, o: Self) -> Self {
         // The generated code multiplies by many constants: K products instead of K(K+1)/2.
         if o.is_constant() {
@@ -117,7 +128,8 @@ impl<const K: usize> crate::Scalar for Series<K> {
         Self::constant(Complex::real(x))
     }
 
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sq(self) -> Self {
         if self.is_constant() {
             return Self::constant(self.0[0].sq());
