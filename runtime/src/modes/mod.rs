@@ -122,8 +122,11 @@ fn degrees<S: Mechanism<N, M>, const N: usize, const M: usize>(
 /// Monodromy ends by count stability, which is evidence, not proof, that every root was found.
 /// Judge a start set by its [`StartReport`] (`AllModes::report`):
 ///
-/// - [`Ended::LoopCap`]: the loops never settled; the count is likely short. Raise
-///   `max_loops`.
+/// - [`Ended::LoopCap`]: the loops never settled (or kept failing: `empty_loops`); the count
+///   is likely short. Raise `max_loops`.
+/// - `failed_paths` comparable to `loops`: most loops lost their paths, and count stability
+///   rests on the few that came round. The 3-PRP stopped at 1 of its 2 roots that way, when
+///   loops reached too far and failed ones still counted as fruitless.
 /// - `seed_finds > 0`, and above all `last_after_seed`: random seeds found solutions the loops
 ///   from the others could not reach, and the final count came only with such a late find —
 ///   components are being found by chance. The default rule then asks for a run of fruitless
@@ -144,7 +147,8 @@ fn degrees<S: Mechanism<N, M>, const N: usize, const M: usize>(
 pub struct ModesOptions {
     /// Seed of every random choice (seed point, loops, γ): the same seed gives the same starts.
     pub seed: u64,
-    /// Monodromy stops after this many consecutive loops that bring no new solution.
+    /// Monodromy stops after this many consecutive loops that bring no new solution (loops on
+    /// which every path failed are skipped over, not counted: [`StartReport::empty_loops`]).
     pub stable_loops: usize,
     /// After the loops settle, fresh random solutions are tracked to the base point until this
     /// many in a row bring nothing new (they reach components that loops cannot).
@@ -242,8 +246,14 @@ pub struct StartReport {
     pub seeds: usize,
     /// Monodromy loops run.
     pub loops: usize,
-    /// Paths that failed during monodromy (harmless: their solutions are found another way).
+    /// Paths that failed during monodromy (harmless if their solutions are found another way;
+    /// many against `loops` mean the loops were hard to follow, and the count deserves less
+    /// trust).
     pub failed_paths: usize,
+    /// Loops on which every path failed (none came back to p₀). They are no evidence for the
+    /// count and do not count toward [`ModesOptions::stable_loops`]; if loops keep failing,
+    /// monodromy runs to [`ModesOptions::max_loops`] and ends with [`Ended::LoopCap`].
+    pub empty_loops: usize,
     /// Candidate symmetries ([`Mechanism::symmetry`]) kept: each maps a generic root to
     /// another root (Tsai's 3-UPU: three, one leg spin each, so its roots come in eights).
     pub symmetries: usize,
@@ -274,8 +284,8 @@ pub struct StartReport {
 /// How monodromy ended ([`StartReport::ended`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Ended {
-    /// Count stability: [`ModesOptions::stable_loops`] loops and then the required run of fresh
-    /// seeds in a row brought nothing new.
+    /// Count stability: [`ModesOptions::stable_loops`] loops on which paths came round and
+    /// then the required run of fresh seeds in a row brought nothing new.
     Stable,
     /// [`ModesOptions::max_loops`] was reached first: the count may be short.
     LoopCap,
@@ -352,6 +362,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             seeds: seeds + found.seeds,
             loops: found.loops,
             failed_paths: found.failed_paths,
+            empty_loops: found.empty_loops,
             symmetries: sym.count(),
             ended: found.ending,
             loops_since_new: found.loops_since_new,
@@ -550,7 +561,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         &self.sys
     }
 
-    /// Number of start solutions: the generic number of complex roots.
+    /// Number of start solutions: the generic number of complex roots as far as monodromy
+    /// found them. Count stability is evidence, not proof ([`ModesOptions`],
+    /// [`AllModes::report`]): a root missing here is missing from every query.
     pub fn start_count(&self) -> usize {
         self.count
     }

@@ -24,6 +24,16 @@ use crate::Mechanism;
 /// but stalled at 38 on a planar one, which loops ten times as large completed.
 const LOOP_SIZES: [f64; 2] = [3.0, 10.0];
 
+/// The loops' size (before [`LOOP_SIZES`]) is at most this many times the mechanism's scale.
+/// The seed's walk onto F = 0 can carry the inputs far from the mechanism's size (the planar
+/// 3-PRP's slides to 50 times its scale), and loops ten times as far again put the links
+/// hundreds of scales from the origin, where the tracker's relative norm no longer resolves
+/// a link's own size (a guide 110 mm long at 10⁴ mm, a unit direction point beside it): every
+/// step's corrector contracted slowly, and 9 of its 10 loops ran out of steps, so monodromy
+/// saw 1 of the 3-PRP's 2 roots. Where p₀'s lengths are within this (the Stewart platforms,
+/// the 3-RPS, every other mechanism tested) nothing changes.
+const LOOP_REACH: f64 = 8.0;
+
 /// When monodromy stops.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Stopping {
@@ -43,6 +53,8 @@ pub(crate) struct Found {
     pub(crate) seeds: usize,
     /// Paths that failed on some segment (their solutions are simply not used).
     pub(crate) failed_paths: usize,
+    /// Loops on which every path failed.
+    pub(crate) empty_loops: usize,
     /// A solution would not fit the capacity.
     pub(crate) overflow: bool,
     /// Loops run since the last one that brought a new solution (or since the seed that did).
@@ -65,7 +77,8 @@ pub(crate) struct Found {
 
 /// Fills `out` with the solutions at `p0` in tracking coordinates, starting from `out[0]`
 /// (already a solution):
-/// rounds of loops until `stable_loops` in a row bring nothing new, then fresh seeds (random
+/// rounds of loops until `stable_loops` in a row bring nothing new (loops on which every path
+/// failed are not counted), then fresh seeds (random
 /// solutions at random parameter points, tracked to p₀) until one brings a new solution — and
 /// loops again — or `stable_seeds` in a row bring nothing. Loops cannot leave the irreducible
 /// component of the seed's solution; seeds land on every component (the 3-RPS example's
@@ -88,6 +101,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         loops: 0,
         seeds: 0,
         failed_paths: 0,
+        empty_loops: 0,
         overflow: false,
         loops_since_new: 0,
         seeds_since_new: 0,
@@ -113,8 +127,9 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             || stop.expected.is_some_and(|e| found.count >= e)
     };
     // Loop points as far from zero as p₀'s lengths, times LOOP_SIZES (angles: anywhere on
-    // the turn, imaginary parts LOOP_SIZES / 6 in size).
-    let size = inputs.length_size(p0);
+    // the turn, imaginary parts LOOP_SIZES / 6 in size), but no further than LOOP_REACH times
+    // the mechanism's scale (see there).
+    let size = inputs.length_size(p0).min(LOOP_REACH * inputs.scale);
     let mut home_pending = true;
     // Loops carry out[from..count], until `stable` in a row bring nothing new.
     let (mut from, mut stable) = (0, stop.stable_loops);
@@ -135,6 +150,8 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             // The orbit one of whose members has come round this loop: the images of the
             // others are its images (a loop commutes with the symmetries), and are known.
             let mut carried = usize::MAX;
+            // Whether any path came back to p₀ on this loop.
+            let mut came_round = false;
             while i < found.count && !done(&found) {
                 let mut v = out[i];
                 let this = orbit[i];
@@ -153,9 +170,19 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                     continue;
                 }
                 carried = this;
+                came_round = true;
                 new |= add(model, p0, sym, out, &mut orbit, &mut found, v, &mut ws);
             }
-            stale = if new { 0 } else { stale + 1 };
+            // A loop on which every path failed shows nothing about the count: it is not one
+            // of the fruitless loops count stability asks for (the 3-PRP's monodromy once
+            // stopped "stable" at 1 of its 2 roots after 10 loops, 9 of which had failed).
+            if new {
+                stale = 0;
+            } else if came_round {
+                stale += 1;
+            } else {
+                found.empty_loops += 1;
+            }
             if new {
                 found.loops_since_new = 0;
                 found.seeds_since_new = 0;

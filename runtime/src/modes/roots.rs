@@ -148,8 +148,10 @@ impl<const N: usize, const K: usize> Roots<N, K> {
         self.endpoints().iter().filter(|e| e.is_root()).count()
     }
 
-    /// Whether every path ended at a distinct nonsingular root: the target is generic and the
-    /// list is the complete set of isolated roots.
+    /// Whether every path ended at a distinct nonsingular root: the target is generic, and the
+    /// list holds as many isolated roots as the start set (a root the start set lacks —
+    /// see [`StartReport`](super::StartReport) for how far its count can be trusted — is
+    /// missing here too).
     pub fn is_complete(&self) -> bool {
         self.roots() == self.paths
     }
