@@ -6,7 +6,6 @@
 
 mod all_modes;
 mod branch_hunt;
-mod crr;
 mod delta;
 mod delta_tools;
 mod delta_tracking;
@@ -17,6 +16,7 @@ mod home_by_inputs;
 mod linear_delta;
 mod motors;
 mod pan_tilt;
+mod partly_driven_cylinders;
 mod pcs;
 mod planar_rpr;
 mod planar_rrr;

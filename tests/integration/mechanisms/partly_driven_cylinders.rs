@@ -1,14 +1,17 @@
-//! A 3-CRR translational manipulator (the architecture of Kong & Gosselin, 2002, here with its
-//! three cylindrical axes orthogonal): each leg a C on the base with only its slide driven, then
-//! two passive R, all three axes of a leg parallel. A cylindrical pair with one of its two
-//! freedoms driven is declared as its two pairs on one axis with a link between (the README's
-//! pair table): `P(active d, axis = A -> B) - slider - R(passive, axis = S -> Sx)`. Each leg
-//! leaves the platform free to move across its axis and to turn only about it, so three legs
-//! on orthogonal axes translate it by exactly the three slides — a closed form to check the
-//! general model against.
+//! Cylindrical pairs with one of their two freedoms driven, declared as their two pairs on one
+//! axis with a link between (the README's pair table), each against a closed form.
+//!
+//! - Only the slide: a 3-CRR translational manipulator (the architecture of Kong & Gosselin,
+//!   2002, here with its three cylindrical axes orthogonal), each leg
+//!   `P(active d, axis = A -> B) - slider - R(passive, axis = S -> Sx)` then two passive R, all
+//!   three axes of a leg parallel. Each leg leaves the platform free to move across its axis
+//!   and to turn only about it, so three legs on orthogonal axes translate it by exactly the
+//!   three slides.
+//! - Only the turn: a table on `R(active θ) - sleeve - P(passive)` about one vertical axis, its
+//!   height held by a rod from the base: it turns by θ, at the height where the rod reaches.
 
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
-use linkage::{arc_length, det_b, pose_from_unknowns, Status};
+use linkage::{arc_length, det_b, pose_from_unknowns, Options, Status};
 use linkage_tests::{check_factorization, check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
@@ -80,4 +83,49 @@ fn crr_translates_by_its_three_slides() {
         check_jacobians(&crr, &s.v, &d);
         check_inverse(&crr, &s.v, &d, &[0.0; 3], 1e-6);
     }
+}
+
+linkage::mechanism! {
+    /// A table on a cylindrical pair about the base's z axis, driven only in its turn (the
+    /// sleeve's pivot K off the axis defines the sleeve's turn); a rod of √5000 mm from A on
+    /// the base to G on the table holds its height.
+    pub struct Turntable;
+    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0], A = [100.0, 0.0, 0.0] }
+    platform { T = [0.0, 0.0, 50.0], Tz = [0.0, 0.0, 51.0], G = [50.0, 0.0, 50.0] }
+    link sleeve { K = [10.0, 0.0, 0.0], S0 = [0.0, 0.0, 5.0], Sz = [0.0, 0.0, 10.0] }
+    link rod { }
+    chain drive = base - R(active th, axis = O -> Oz) - sleeve - P(passive, axis = S0 -> Sz) - platform;
+    chain hold = base - S(A) - rod - S(G) - platform;
+}
+
+#[test]
+fn a_table_turned_on_its_cylinder_rises_where_the_rod_reaches() {
+    let line = mobility_line(Turntable::LISTING);
+    assert!(line.contains(" = 1 (Grübler–Kutzbach says 1)"), "{line}");
+    let table = Turntable::new();
+    let start = table.home_start().unwrap();
+    check_jacobians(&table, &Turntable::HOME_V, &Turntable::HOME_INPUTS);
+    check_factorization(&table, &Turntable::HOME_V, &Turntable::HOME_INPUTS);
+    for th in [0.3f64, -0.5, 0.7, -0.7] {
+        let s = arc_length(&table, &start, &[th], &Options::default()).unwrap();
+        assert_eq!(s.status, Status::Converged, "at {th}");
+        let pose = pose_from_unknowns(&table, &s.v).unwrap();
+        // G turned to (50 cos θ, 50 sin θ) at height h, √5000 from A = (100, 0, 0).
+        let (dx, dy) = (50.0 * th.cos() - 100.0, 50.0 * th.sin());
+        let h = (5000.0 - dx * dx - dy * dy).sqrt();
+        let e = pose.euler();
+        assert!(
+            (e[0] - th).abs() < 1e-9 && e[1].abs() < 1e-9 && e[2].abs() < 1e-9,
+            "at {th}: {e:?}"
+        );
+        assert!(
+            max_diff(&pose.translation, &[0.0, 0.0, h - 50.0]) < 1e-7,
+            "at {th}: the table at {:?}, not at height {h}",
+            pose.translation
+        );
+        check_jacobians(&table, &s.v, &[th]);
+    }
+    // Turned 1 rad the rod cannot reach: never an ok answer.
+    let s = arc_length(&table, &start, &[1.0], &Options::default()).unwrap();
+    assert_ne!(s.status, Status::Converged);
 }
