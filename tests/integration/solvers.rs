@@ -90,7 +90,9 @@ fn arc_length_never_crosses_a_singularity_labelled_ok() {
     let st = stewart::home_start(&s).unwrap();
     let mut folds = 0;
     let mut ok = 0;
-    for sample in stewart_pose_samples(2, 400, 1.2, 150.0, 100) {
+    // 160 targets (400 with LINKAGE_STRESS set), each checked by 2 000 steps of continuation.
+    let count = linkage_tests::sweep(160, 400);
+    for sample in stewart_pose_samples(2, count, 1.2, 150.0, 100) {
         let sol = arc_length(&s, &st, &sample.x, &Options::TIGHT).unwrap();
         let (truth, flips) = straight_path_truth(&s, &st, &sample.x, 2000);
         match sol.status {
@@ -117,7 +119,8 @@ fn arc_length_never_crosses_a_singularity_labelled_ok() {
             other => assert!(!sol.is_ok(), "{other:?}"),
         }
     }
-    assert!(ok > 300, "{ok}");
+    // Most targets are reachable on the straight segment (over 300 of the 400).
+    assert!(4 * ok > 3 * count, "{ok} of {count}");
     assert!(folds > 0, "the sample should contain targets behind a fold");
 }
 
