@@ -10,10 +10,13 @@
 //! Marquardt's diagonal scaling (inputs in rad and in mm weigh alike) and each equation weighed
 //! by its row's largest entry (equations in mm and in mm², on points a unit apart and a hundred
 //! apart, count alike), run until its step is negligible, which takes it to Gauss–Newton and
-//! the rounding floor. A result is returned only where every equation is within [`ACCEPT`] of
-//! the scale of holding (its residual over its largest derivative by the coordinates: a
-//! length), so any inputs returned do place the platform at v; a pose the mechanism cannot take
-//! is `Unreachable`.
+//! the rounding floor; a settled fit's inputs are then polished by Gauss–Newton on the
+//! distance from v to where they place the platform (Newton on F(·, x) = 0 over every unknown).
+//! A result is returned only where every equation is within [`ACCEPT`] of the scale of holding
+//! (its residual over its largest derivative by the coordinates: a length), or where the
+//! configuration the inputs place satisfies them so and has the platform within as much of v,
+//! so any inputs returned do place the platform at v; a pose the mechanism cannot take is
+//! `Unreachable`.
 //!
 //! Where to start, in order: the reference inputs with whichever guess for the links between
 //! fits better (the given v's, or the declared home's with each point moved as far as the
