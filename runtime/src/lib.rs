@@ -46,6 +46,7 @@ mod certified_steps;
 mod certify;
 mod convergence;
 mod correction;
+mod damped_least_squares;
 mod detour;
 mod error;
 mod interval;

@@ -15,6 +15,7 @@ mod geometry_hunt;
 mod home_by_inputs;
 mod linear_delta;
 mod motors;
+mod numerical_inverse;
 mod pan_tilt;
 mod partly_driven_cylinders;
 mod pcs;
