@@ -94,7 +94,7 @@ macro_rules! calibrated {
                 hunt(&sys, start, $options, &curve, &mut tally, &at);
             }
             eprintln!("{} calibrated: {tally:?}", stringify!($ty));
-            assert!(tally.clean() && tally.ok() > 0, "{tally:?}");
+            assert!(tally.clean_with_inverse() && tally.ok() > 0, "{tally:?}");
         }
     };
 }
