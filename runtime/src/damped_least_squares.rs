@@ -5,6 +5,7 @@
 //! quill axis gives J a condition near 1e5, and JᵀJ's 1e10 left the steps too inaccurate to
 //! take the inputs within 1e-9 of the scale of a pose the forward solver had placed.
 
+use crate::householder::reflect_column;
 use crate::math::sqrt;
 
 /// R and Qᵀb of `a` = QR (a is N × Z; R is Z × Z, its rows past N zero).
@@ -14,35 +15,12 @@ pub(crate) struct DampedLeastSquares<const Z: usize> {
 }
 
 impl<const Z: usize> DampedLeastSquares<Z> {
-    /// Factorises `a` (Householder reflections, column by column) and applies the same
-    /// reflections to `b`. A column already zero below its diagonal is left as it is.
+    /// Factorises `a` (Householder reflections, column by column: [`reflect_column`]) and
+    /// applies the same reflections to `b`. A column already zero below its diagonal is left
+    /// as it is.
     pub(crate) fn new<const N: usize>(mut a: [[f64; Z]; N], mut b: [f64; N]) -> Self {
-        for k in 0..Z {
-            if k >= N {
-                break;
-            }
-            let norm = sqrt((k..N).map(|r| a[r][k] * a[r][k]).sum::<f64>());
-            if !(norm > 0.0) || !norm.is_finite() {
-                continue;
-            }
-            let alpha = if a[k][k] > 0.0 { -norm } else { norm };
-            // h = x − α e₁, applied as I − 2 h hᵀ / (hᵀh); hᵀh = 2 (norm² − α x₁) > 0.
-            let mut h = [0.0; N];
-            for r in k..N {
-                h[r] = a[r][k];
-            }
-            h[k] -= alpha;
-            let hh: f64 = (k..N).map(|r| h[r] * h[r]).sum();
-            for c in k..Z {
-                let s = 2.0 * (k..N).map(|r| h[r] * a[r][c]).sum::<f64>() / hh;
-                for r in k..N {
-                    a[r][c] -= s * h[r];
-                }
-            }
-            let s = 2.0 * (k..N).map(|r| h[r] * b[r]).sum::<f64>() / hh;
-            for r in k..N {
-                b[r] -= s * h[r];
-            }
+        for k in 0..Z.min(N) {
+            reflect_column(&mut a, &mut b, k);
         }
         let mut r = [[0.0; Z]; Z];
         let mut qtb = [0.0; Z];

@@ -49,6 +49,7 @@ mod correction;
 mod damped_least_squares;
 mod detour;
 mod error;
+mod householder;
 mod interval;
 mod inverse;
 pub mod lu;
