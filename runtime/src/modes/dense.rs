@@ -11,9 +11,14 @@ pub(crate) fn solve<const N: usize>(a: &mut [[Complex; N]; N], b: &mut [Complex;
         return false;
     }
     for k in 0..N {
-        let p = (k..N)
-            .max_by(|&i, &j| a[i][k].abs_max().total_cmp(&a[j][k].abs_max()))
-            .unwrap_or(k);
+        // The partial pivot (the last of equal maxima, as `Iterator::max_by`), by a plain
+        // loop: `p` in k..N, which the no-panic proof can see.
+        let mut p = k;
+        for i in k + 1..N {
+            if a[i][k].abs_max().total_cmp(&a[p][k].abs_max()).is_ge() {
+                p = i;
+            }
+        }
         if !(a[p][k].abs_max() > 1e-13 * big) {
             return false;
         }

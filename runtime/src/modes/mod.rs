@@ -424,7 +424,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         let model = self.model();
         let mut ws = Workspace::new();
         let mut moved = self.starts;
-        for (index, v) in moved[..self.count].iter_mut().enumerate() {
+        for (index, v) in moved[..self.count()].iter_mut().enumerate() {
             let from = *v;
             let reached = [Settings::DEFAULT, Settings::CAREFUL].iter().any(|set| {
                 *v = from;
@@ -436,7 +436,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
                 return Err(ModesError::BadStart { index });
             }
         }
-        for index in 1..self.count {
+        for index in 1..self.count() {
             if contains(&model, &moved[..index], &moved[index], SAME) {
                 return Err(ModesError::BadStart { index });
             }
@@ -479,11 +479,15 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             }
             if !polish::polish(&model, &mut z, &p0, &mut ws, true)
                 || !(model.size(&z) <= 1e8)
-                || contains(&model, &me.starts[..me.count], &z, SAME)
+                || contains(&model, &me.starts[..me.count()], &z, SAME)
             {
                 return Err(ModesError::BadStart { index });
             }
-            me.starts[me.count] = z;
+            // There is room: no more starts than K, checked above.
+            let Some(slot) = me.starts.get_mut(me.count) else {
+                return Err(ModesError::Capacity { capacity: K });
+            };
+            *slot = z;
             me.count += 1;
         }
         Ok(me)

@@ -153,7 +153,10 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
             // Whether any path came back to p₀ on this loop.
             let mut came_round = false;
             while i < found.count && !done(&found) {
-                let mut v = out[i];
+                // i < count ≤ K: `get` only spells that out for the no-panic proof.
+                let Some(mut v) = out.get(i).copied() else {
+                    break;
+                };
                 let this = orbit[i];
                 i += 1;
                 if this == carried {
@@ -300,10 +303,10 @@ fn add<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     v: [Complex; N],
     ws: &mut Workspace<N>,
 ) -> bool {
-    if !(model.size(&v) <= 1e8) || contains(model, &out[..found.count], &v, SAME) {
+    if !(model.size(&v) <= 1e8) || contains(model, known(out, found), &v, SAME) {
         return false;
     }
-    if found.count == K {
+    if found.count >= K {
         found.overflow = true;
         return false;
     }
@@ -312,6 +315,14 @@ fn add<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     found.count += 1;
     close(model, p0, sym, out, orbit, found, first, ws);
     true
+}
+
+/// The roots found so far (`found.count` never exceeds K: [`add`] and [`close`] stop there).
+fn known<'a, const N: usize, const K: usize>(
+    out: &'a [[Complex; N]; K],
+    found: &Found,
+) -> &'a [[Complex; N]] {
+    &out[..found.count.min(K)]
 }
 
 /// Completes the orbit of root `first` (the last one known) under the symmetries: the images of
@@ -335,10 +346,10 @@ fn close<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
             let Some(w) = sym.apply(s, model, &out[j], p0, ws) else {
                 continue;
             };
-            if !(model.size(&w) <= 1e8) || contains(model, &out[..found.count], &w, SAME) {
+            if !(model.size(&w) <= 1e8) || contains(model, known(out, found), &w, SAME) {
                 continue;
             }
-            if found.count == K {
+            if found.count >= K {
                 found.overflow = true;
                 return;
             }

@@ -131,25 +131,42 @@ impl<const N: usize> Plan<N> {
                 }
             }
             let Some((r, c, _)) = best else { break };
+            // Each pivot retires a row, so there are at most N; the bounds below are what the
+            // construction guarantees, written so that the no-panic proof sees them too.
             let k = plan.statics;
+            if k >= N {
+                return Err(PlanError::BadPattern);
+            }
             plan.pivot[k] = (r as u8, c as u8);
             row_done[r] = true;
             col_done[c] = true;
-            for i in (0..N).filter(|&i| !row_done[i] && nz[i][c]) {
-                plan.rows[k][plan.n_rows[k] as usize] = i as u8;
+            // At most one slot per row (column) below the pivot: a zip cannot overrun.
+            for (slot, i) in plan.rows[k]
+                .iter_mut()
+                .zip((0..N).filter(|&i| !row_done[i] && nz[i][c]))
+            {
+                *slot = i as u8;
                 plan.n_rows[k] += 1;
             }
-            for j in (0..N).filter(|&j| !col_done[j] && nz[r][j]) {
-                plan.cols[k][plan.n_cols[k] as usize] = j as u8;
+            for (slot, j) in plan.cols[k]
+                .iter_mut()
+                .zip((0..N).filter(|&j| !col_done[j] && nz[r][j]))
+            {
+                *slot = j as u8;
                 plan.n_cols[k] += 1;
             }
             // Updated entries fill in and are no longer constant.
-            for ii in 0..plan.n_rows[k] as usize {
-                let i = plan.rows[k][ii] as usize;
-                for jj in 0..plan.n_cols[k] as usize {
-                    let j = plan.cols[k][jj] as usize;
+            let (rows, cols) = (plan.rows[k], plan.cols[k]);
+            for &i in rows.iter().take(plan.n_rows[k] as usize) {
+                let i = usize::from(i).min(N - 1);
+                for &j in cols.iter().take(plan.n_cols[k] as usize) {
+                    let j = usize::from(j).min(N - 1);
                     if !nz[i][j] {
-                        plan.fill[i][plan.n_fill[i] as usize] = j as u8;
+                        // Each entry fills in once: at most N per row.
+                        let Some(slot) = plan.fill[i].get_mut(usize::from(plan.n_fill[i])) else {
+                            return Err(PlanError::BadPattern);
+                        };
+                        *slot = j as u8;
                         plan.n_fill[i] += 1;
                     }
                     nz[i][j] = true;
@@ -158,23 +175,39 @@ impl<const N: usize> Plan<N> {
             }
             plan.statics += 1;
         }
-        let (mut nr, mut nc) = (0, 0);
-        for i in 0..N {
-            if !row_done[i] {
-                plan.rest_rows[nr] = i as u8;
-                nr += 1;
-            }
-            if !col_done[i] {
-                plan.rest_cols[nc] = i as u8;
-                nc += 1;
-            }
+        // The rows and columns left for the dense remainder (as many of each: every pivot
+        // retired one of both).
+        let mut nr = 0;
+        for (slot, i) in plan
+            .rest_rows
+            .iter_mut()
+            .zip((0..N).filter(|&i| !row_done[i]))
+        {
+            *slot = i as u8;
+            nr += 1;
+        }
+        for (slot, j) in plan
+            .rest_cols
+            .iter_mut()
+            .zip((0..N).filter(|&j| !col_done[j]))
+        {
+            *slot = j as u8;
         }
         plan.rest = nr;
-        for k in 0..plan.statics {
-            for k2 in k + 1..plan.statics {
+        let statics = plan.statics.min(N);
+        for k in 0..statics {
+            for k2 in k + 1..statics {
                 let c2 = plan.pivot[k2].1;
-                if plan.cols[k][..plan.n_cols[k] as usize].contains(&c2) {
-                    plan.later[k][plan.n_later[k] as usize] = k2 as u8;
+                if plan.cols[k]
+                    .iter()
+                    .take(plan.n_cols[k] as usize)
+                    .any(|&c| c == c2)
+                {
+                    // At most one per later pivot: fewer than N.
+                    let Some(slot) = plan.later[k].get_mut(usize::from(plan.n_later[k])) else {
+                        return Err(PlanError::BadPattern);
+                    };
+                    *slot = k2 as u8;
                     plan.n_later[k] += 1;
                 }
             }

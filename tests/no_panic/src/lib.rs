@@ -162,7 +162,7 @@ proven!(hexapod, RssHexapod, 18, 6);
 /// mechanism with the capacity its root count needs.
 pub mod modes {
     use super::*;
-    use linkage::modes::{AllModes, ModesError, Roots};
+    use linkage::modes::{AllModes, Complex, ModesError, ModesOptions, Roots};
 
     #[no_panic]
     pub fn rps(
@@ -171,6 +171,55 @@ pub mod modes {
         out: &mut Roots<9, 32>,
     ) -> Result<(), ModesError> {
         m.solve(x, out)
+    }
+
+    /// The start set by monodromy ([`AllModes::new`]): seeding, the loops, the symmetries'
+    /// images, the sparse factorisation's plan.
+    #[no_panic]
+    pub fn rps_new(
+        sys: Rps,
+        options: &ModesOptions,
+    ) -> Result<AllModes<Rps, 9, 3, 32>, ModesError> {
+        AllModes::new(sys, options)
+    }
+
+    /// Start solutions stored before ([`AllModes::from_starts`]), checked and refined.
+    #[no_panic]
+    pub fn rps_from_starts(
+        sys: Rps,
+        p0: [Complex; 3],
+        gamma: Complex,
+        starts: &[[Complex; 9]],
+        options: &ModesOptions,
+    ) -> Result<AllModes<Rps, 9, 3, 32>, ModesError> {
+        AllModes::from_starts(sys, p0, gamma, starts, options)
+    }
+
+    /// The start set moved near given inputs ([`AllModes::recenter`]).
+    #[no_panic]
+    pub fn rps_recenter(
+        m: &mut AllModes<Rps, 9, 3, 32>,
+        center: &[f64; 3],
+        spread: f64,
+        seed: u64,
+    ) -> Result<(), ModesError> {
+        m.recenter(center, spread, seed)
+    }
+
+    #[no_panic]
+    pub fn stewart_new(
+        sys: Stewart,
+        options: &ModesOptions,
+    ) -> Result<AllModes<Stewart, 18, 6, 64>, ModesError> {
+        AllModes::new(sys, options)
+    }
+
+    #[no_panic]
+    pub fn hexapod_new(
+        sys: RssHexapod,
+        options: &ModesOptions,
+    ) -> Result<AllModes<RssHexapod, 18, 6, 64>, ModesError> {
+        AllModes::new(sys, options)
     }
 
     #[no_panic]

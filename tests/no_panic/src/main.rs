@@ -3,7 +3,7 @@
 
 use core::hint::black_box;
 use core::mem::MaybeUninit;
-use linkage::modes::{AllModes, EndpointKind, ModesError, ModesOptions, Roots};
+use linkage::modes::{EndpointKind, ModesError, ModesOptions, Roots};
 use linkage::velocity::Wrench;
 use linkage::{Mechanism, Options, Pose, Tracker};
 use linkage_ffi::{status, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection};
@@ -271,13 +271,40 @@ fn c_interface() {
 /// bad input is an error.
 fn all_modes() {
     let options = ModesOptions::default();
-    let modes = AllModes::<Rps, 9, 3, 32>::new(Rps::new(), &options).expect("the 3-RPS's starts");
+    let modes = no_panic_proof::modes::rps_new(Rps::new(), &options).expect("the 3-RPS's starts");
+    let nan = black_box(ModesOptions {
+        confidence: f64::NAN,
+        ..options
+    });
+    assert_eq!(
+        no_panic_proof::modes::rps_new(Rps::new(), &nan).err(),
+        Some(ModesError::NonFinite)
+    );
     let mut roots = Box::new(Roots::<9, 32>::new());
     no_panic_proof::modes::rps(&modes, &black_box([150.0, 160.0, 155.0]), &mut roots)
         .expect("a 3-RPS query");
     assert!(roots.is_complete() && roots.count(EndpointKind::Real) > 0);
     let bad = no_panic_proof::modes::rps(&modes, &black_box([f64::NAN; 3]), &mut roots);
     assert_eq!(bad, Err(ModesError::NonFinite));
+    // The same starts stored and taken back; a start repeated is refused.
+    let starts: Vec<_> = (0..modes.start_count())
+        .filter_map(|i| modes.start(i))
+        .collect();
+    let (p0, gamma) = modes.base_point();
+    let again = no_panic_proof::modes::rps_from_starts(Rps::new(), *p0, gamma, &starts, &options)
+        .expect("the stored starts");
+    assert_eq!(again.start_count(), modes.start_count());
+    let twice = [starts[0], starts[0]];
+    assert!(
+        no_panic_proof::modes::rps_from_starts(Rps::new(), *p0, gamma, &twice, &options).is_err()
+    );
+    let mut moved = modes.clone();
+    no_panic_proof::modes::rps_recenter(&mut moved, &black_box([150.0, 160.0, 155.0]), 0.1, 7)
+        .expect("recentred");
+    assert_eq!(
+        no_panic_proof::modes::rps_recenter(&mut moved, &black_box([f64::NAN; 3]), 0.1, 7),
+        Err(ModesError::NonFinite)
+    );
 
     let sys = Stewart::new();
     let v = linkage::unknowns_from_pose(
@@ -287,7 +314,7 @@ fn all_modes() {
     let x = sys
         .inverse(&v, &[170.0; 6])
         .expect("the Stewart platform at home");
-    let modes = Box::new(AllModes::<Stewart, 18, 6, 64>::new(sys, &options).expect("starts"));
+    let modes = Box::new(no_panic_proof::modes::stewart_new(sys, &options).expect("starts"));
     let mut roots = Box::new(Roots::<18, 64>::new());
     no_panic_proof::modes::stewart(&modes, &black_box(x), &mut roots).expect("a query");
     let home = roots
@@ -300,7 +327,7 @@ fn all_modes() {
 
     let sys = RssHexapod::new();
     let s = sys.home_start().expect("the hexapod's start");
-    let modes = Box::new(AllModes::<RssHexapod, 18, 6, 64>::new(sys, &options).expect("starts"));
+    let modes = Box::new(no_panic_proof::modes::hexapod_new(sys, &options).expect("starts"));
     let mut roots = Box::new(Roots::<18, 64>::new());
     no_panic_proof::modes::hexapod(&modes, &black_box(*s.x()), &mut roots).expect("a query");
     assert!(roots
