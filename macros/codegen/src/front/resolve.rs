@@ -296,6 +296,11 @@ impl Mechanism {
             ),
             (Some(active), None) => match accepts.variables {
                 None => errors.push(active.span(), format!("an active `{letter}` pair is not modelled: make it `passive` and drive the chain with another pair")),
+                // A cylinder with one freedom driven is two pairs: say how to write them.
+                Some(_) if p.variables.len() == 1 && letter == "C" => errors.push(
+                    p.token.span(),
+                    format!("an active `C` pair has 2 joint variables (`active theta z`), found 1; to drive only one of its freedoms, declare its two pairs on one axis with a link between: the turn, `R(active {v}, axis = A -> B) - sleeve - P(passive, axis = S -> Sx)`, or the slide, `P(active {v}, axis = A -> B) - slider - R(passive, axis = S -> Sx)`", v = p.variables[0]),
+                ),
                 Some(n) if p.variables.len() != n => errors.push(
                     p.token.span(),
                     format!("an active `{letter}` pair has {n} joint variable{}, found {}", if n == 1 { "" } else { "s" }, p.variables.len()),
