@@ -157,9 +157,9 @@ impl<const N: usize> Plan<N> {
             }
             // Updated entries fill in and are no longer constant.
             let (rows, cols) = (plan.rows[k], plan.cols[k]);
-            for &i in rows.iter().take(plan.n_rows[k] as usize) {
+            for &i in head(&rows, plan.n_rows[k]) {
                 let i = usize::from(i).min(N - 1);
-                for &j in cols.iter().take(plan.n_cols[k] as usize) {
+                for &j in head(&cols, plan.n_cols[k]) {
                     let j = usize::from(j).min(N - 1);
                     if !nz[i][j] {
                         // Each entry fills in once: at most N per row.
@@ -198,11 +198,7 @@ impl<const N: usize> Plan<N> {
         for k in 0..statics {
             for k2 in k + 1..statics {
                 let c2 = plan.pivot[k2].1;
-                if plan.cols[k]
-                    .iter()
-                    .take(plan.n_cols[k] as usize)
-                    .any(|&c| c == c2)
-                {
+                if head(&plan.cols[k], plan.n_cols[k]).contains(&c2) {
                     // At most one per later pivot: fewer than N.
                     let Some(slot) = plan.later[k].get_mut(usize::from(plan.n_later[k])) else {
                         return Err(PlanError::BadPattern);
