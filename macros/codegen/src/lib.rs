@@ -6,24 +6,16 @@
 //! declaration) → [`mod@model`] (pairs per Table I, rigid links per Eq. 3, closed-form shapes,
 //! the general model; every phase's mistakes into one accumulator) → [`simplify`] (duplicates,
 //! rank at home) → [`expr`] (the symbolic IR every phase shares) → [`factor`] (the elimination
-//! plan for ∂F/∂v, with the pivot order of [`pivot_order`]) → [`emit`] → [`emit_factor`] →
-//! [`emit_lu`] (the Rust; every emitter writes expressions with [`emit_expr`], which depends on
-//! none of them).
+//! plan for ∂F/∂v, with the pivot order of [`factor::pivot_order`]) → [`emit`] (the Rust: the
+//! `Mechanism` impl in [`emit`] itself, one file per further part — [`emit::factor`] with
+//! [`emit::lu`], [`emit::inverse`], [`emit::turns`], … — every one writing expressions with
+//! [`emit::expr`], which depends on none of them).
 
 pub mod emit;
-pub mod emit_dependent;
-pub mod emit_expr;
-pub mod emit_factor;
-pub mod emit_inverse;
-pub mod emit_lu;
-pub mod emit_recipes;
-pub mod emit_symmetry;
-pub mod emit_turns;
 pub mod expr;
 pub mod factor;
 pub mod front;
 pub mod model;
-pub mod pivot_order;
 pub mod simplify;
 
 use proc_macro2::TokenStream;

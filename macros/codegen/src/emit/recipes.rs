@@ -2,7 +2,7 @@
 //! hand to the runtime's one interpreter (`linkage_geometry::recipe`), which the generator's
 //! home check runs too.
 
-use crate::emit_expr::lit;
+use crate::emit::expr::lit;
 use crate::model::{Auto, Model, PointRef, Recipe};
 use proc_macro2::TokenStream;
 use quote::quote;

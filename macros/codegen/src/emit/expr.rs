@@ -1,5 +1,5 @@
 //! Expressions as Rust tokens: the leaves every emitter shares ([`emit`](crate::emit) for the
-//! `Mechanism` impl, [`emit_factor`](crate::emit_factor) for the factorisation), so that both
+//! `Mechanism` impl, [`factor`](crate::emit::factor) for the factorisation), so that both
 //! depend on this module and neither on the other.
 //!
 //! The model's expressions are trees. Where an active pair turns a link that carries other

@@ -9,7 +9,7 @@
 //! wrist whose platform pivots leave their mutual distances). A solver that lands there has
 //! solved the kept equations and still answered wrongly; the runtime refuses such answers.
 
-use crate::emit_expr::{Arithmetic, Emitter};
+use crate::emit::expr::{Arithmetic, Emitter};
 use crate::expr::{Expr, Var};
 use crate::model::Model;
 use proc_macro2::TokenStream;

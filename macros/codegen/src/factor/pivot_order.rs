@@ -6,7 +6,7 @@
 //! structure costs: three-nonzero rows are eliminated first and only their entries are
 //! touched. The order is only as good as the sample is typical; at run time the emitted code
 //! checks the multipliers it forms against [`MAX_MULTIPLIER`] and falls back to partial
-//! pivoting when one is larger (see `emit_lu`).
+//! pivoting when one is larger (see `emit::lu`).
 
 /// A pivot is a candidate if it is at least this fraction of the largest entry of its column
 /// at the sample: its multipliers are then at most 1 / `THRESHOLD` there. Stricter than the

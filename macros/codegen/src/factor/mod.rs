@@ -6,7 +6,7 @@
 //! eliminating one never changes another, and the elimination is straight-line code with no
 //! pivoting decisions. What remains is the Schur complement on the other rows and columns
 //! (9×9 for the Stewart platform). Its rows and columns are put in a pivot order chosen here
-//! ([`crate::pivot_order`]), and [`Symbolic`] records where its LU factors have nonzeros in
+//! ([`pivot_order`]), and [`Symbolic`] records where its LU factors have nonzeros in
 //! that order, fill included, so that the emitted elimination touches only those.
 //!
 //! With S the chosen pivots (rows r_k, columns c_k, values p_k), R and C the other rows and
@@ -18,6 +18,8 @@
 //! derivative) is divided by it: B = diag(s) B', so det B = Π s · det B' and the solve divides
 //! that row's right-hand side by s, once, instead of multiplying s into every entry at every
 //! factorisation.
+
+pub mod pivot_order;
 
 use crate::expr::Expr;
 
@@ -144,7 +146,7 @@ pub fn plan(n: usize, jac: &[(usize, usize, Expr)], sample: Option<&[f64]>) -> P
             }
         }
     }
-    let order = crate::pivot_order::choose(&pattern, sample.map(|_| values.as_slice()));
+    let order = crate::factor::pivot_order::choose(&pattern, sample.map(|_| values.as_slice()));
     let rows: Vec<usize> = order.iter().map(|&(i, _)| rows[i]).collect();
     let cols: Vec<usize> = order.iter().map(|&(_, j)| cols[j]).collect();
     let initial = order

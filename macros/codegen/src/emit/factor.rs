@@ -1,5 +1,5 @@
 //! Emission of the factorisation planned in [`crate::factor`]: straight-line elimination of
-//! the static pivots, the Schur complement, its LU ([`crate::emit_lu`]), and the matching
+//! the static pivots, the Schur complement, its LU ([`crate::emit::lu`]), and the matching
 //! solve.
 //!
 //! The generated `Factor` is a flat `[f64; _]`: entry 0 says which factors of the complement
@@ -7,12 +7,12 @@
 //! multipliers and static-row entries that depend on (v, x) (those that depend on the geometry
 //! alone are read from the constants again in the solve), then the complement's factors.
 
-use crate::emit_expr::{lit, tokens, Arithmetic, Emitter};
-use crate::emit_lu::{self, Region};
+use crate::emit::expr::{lit, tokens, Arithmetic, Emitter};
+use crate::emit::lu::{self as emit_lu, Region};
 use crate::expr::{Expr, Var};
+use crate::factor::pivot_order::MAX_MULTIPLIER;
 use crate::factor::{count_ops, Plan};
 use crate::model::Model;
-use crate::pivot_order::MAX_MULTIPLIER;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use std::collections::HashMap;

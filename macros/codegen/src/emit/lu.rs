@@ -1,5 +1,5 @@
 //! Emission of the Schur complement's LU: the fast path unrolled, in the pivot order fixed at
-//! generation time ([`crate::pivot_order`]), touching only the nonzeros of [`Symbolic`]; and
+//! generation time ([`crate::factor::pivot_order`]), touching only the nonzeros of [`Symbolic`]; and
 //! the dense partial-pivoting fallback it hands over to when a multiplier exceeds
 //! [`MAX_MULTIPLIER`] (or a pivot is zero or not finite), a call of the runtime's LU kernel.
 //!
@@ -12,8 +12,8 @@
 //! whose pivot row has no other entry, an entry of U whose column has nothing below) is added
 //! to a sum whose finiteness is checked, so that no NaN can hide in the factors.
 
+use crate::factor::pivot_order::MAX_MULTIPLIER;
 use crate::factor::Symbolic;
-use crate::pivot_order::MAX_MULTIPLIER;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 

@@ -3,7 +3,7 @@
 //! through their centre's coordinates (`v[i] → 2 e − v[i]`). Nothing (the trait's defaults:
 //! no candidates) where no chain has one.
 
-use crate::emit_expr::{Arithmetic, Emitter};
+use crate::emit::expr::{Arithmetic, Emitter};
 use crate::model::Model;
 use proc_macro2::TokenStream;
 use quote::quote;

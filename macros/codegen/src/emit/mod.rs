@@ -1,7 +1,16 @@
 //! Emission: the model as plain, allocation-free, `no_std` Rust implementing
 //! `::linkage::Mechanism`. Only absolute paths are named, so the user's imports never matter.
 
-use crate::emit_expr::{lit, tokens, Arithmetic, Emitter};
+pub mod dependent;
+pub mod expr;
+pub mod factor;
+pub mod inverse;
+pub mod lu;
+pub mod recipes;
+pub mod symmetry;
+pub mod turns;
+
+use crate::emit::expr::{lit, tokens, Arithmetic, Emitter};
 use crate::expr::{Expr, Var};
 use crate::front::ast::Mechanism;
 use crate::model::{HomeOf, Inverse, Model, PointRef};
@@ -57,11 +66,11 @@ pub fn expand(
     );
     let point_names = model.points.iter().map(|p| p.name.as_str());
     let [f0, f1, f2] = model.frame;
-    let recipes = crate::emit_recipes::table(model);
+    let recipes = crate::emit::recipes::table(model);
     let na = model.auto_points.len();
 
-    let dependent_offset = crate::emit_dependent::dependent_offset(model);
-    let symmetry = crate::emit_symmetry::symmetry(model);
+    let dependent_offset = crate::emit::dependent::dependent_offset(model);
+    let symmetry = crate::emit::symmetry::symmetry(model);
     // ∂F/∂x's nonzeros, row by row in column order.
     let input_terms: Vec<Vec<(usize, Expr)>> = model
         .equations
@@ -75,7 +84,7 @@ pub fn expand(
         .collect();
     // Sines and cosines of inputs, where the kernels have any, evaluated once per fixed
     // inputs by `turns` and read from `t` by the residual and the factorisation.
-    let turned = crate::emit_turns::turned_inputs(
+    let turned = crate::emit::turns::turned_inputs(
         m,
         model
             .equations
@@ -169,7 +178,7 @@ pub fn expand(
         Inverse::None { inputs } => inputs.first().copied(),
         _ => None,
     });
-    let inverse_body = crate::emit_inverse::body(model, home.is_some());
+    let inverse_body = crate::emit::inverse::body(model, home.is_some());
     // A leg's length (input plus offset) must be positive.
     let ranges = model.inverses.iter().filter_map(|inv| match inv {
         Inverse::Distance { input, offset, .. } => {
@@ -191,7 +200,7 @@ pub fn expand(
         quote!(#[allow(unused_variables)])
     };
     let residual_fns = if turns {
-        let turns_body = crate::emit_turns::turns_body(&turned);
+        let turns_body = crate::emit::turns::turns_body(&turned);
         quote! {
             #[inline]
             fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
@@ -312,8 +321,8 @@ pub fn expand(
         Some(jac.iter().map(|(_, _, e)| e.eval(&r.v, &r.x, &c)).collect())
     });
     let plan = crate::factor::plan(n, &jac, sample.as_deref());
-    let (factor_type, factor_fns, factor_ops) = crate::emit_factor::factor(&plan, m, nc, turns);
-    let ops_doc = crate::emit_factor::operations_doc(model, &jac, &plan, factor_ops);
+    let (factor_type, factor_fns, factor_ops) = crate::emit::factor::factor(&plan, m, nc, turns);
+    let ops_doc = crate::emit::factor::operations_doc(model, &jac, &plan, factor_ops);
     let new_doc =
         format!("The mechanism with the geometry declared in `{name}`'s `mechanism!` block.");
     let _ = format_ident!("unused");
