@@ -508,8 +508,8 @@ fn revolute_orthoglides_have_sixteen_translating_modes() {
 }
 
 /// Every assembly mode of the revolute Orthoglide (hinges through the bars' pivots) by
-/// `AllModes`, default rule and seed. Measured 2026-11-24 (a scratch run, the same code):
-/// 800 roots of the square system in 680 s, the last of them found by a random seed (too slow
+/// `AllModes`, default rule and seed. Measured 2026-11-24 (a scratch run of the same code,
+/// then this test): 800 roots of the square system in 680 s and 723 s, the last of them found by a random seed (too slow
 /// for the default run or `LINKAGE_STRESS`). At three slides every path ends at a distinct
 /// nonsingular root: 16 real assembly modes, exactly the 16 translating modes above (the
 /// ball-jointed declaration's two sphere points, each leg's hinges either way round: the
