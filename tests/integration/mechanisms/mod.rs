@@ -16,6 +16,7 @@ mod home_by_inputs;
 mod linear_delta;
 mod motors;
 mod numerical_inverse;
+mod orthoglide;
 mod pan_tilt;
 mod partly_driven_cylinders;
 mod pcs;

@@ -1,10 +1,10 @@
 //! Mechanisms of the literature whose shapes the other files do not declare: the Watt I and
 //! Stephenson III six-bars (two loops, ternary links, chains between moving links), a planar
-//! 3-PRP driven at its base prismatics, the Agile Eye, and the Orthoglide (its parallelograms
-//! as ball-jointed rods). Each against a reference written here, apart from the library: a
-//! closed form where there is one, otherwise Newton's method on this file's own equations in
-//! joint angles (not the generated point equations); and every assembly mode `AllModes` finds
-//! against the same reference.
+//! 3-PRP driven at its base prismatics and the Agile Eye (the Orthoglide, with its
+//! parallelograms of revolute pairs, has `orthoglide.rs`). Each against a reference written
+//! here, apart from the library: a closed form where there is one, otherwise Newton's method on
+//! this file's own equations in joint angles (not the generated point equations); and every
+//! assembly mode `AllModes` finds against the same reference.
 
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
 use linkage::modes::{AllModes, Complex, EndpointKind, ModesOptions, Roots};
@@ -1051,118 +1051,5 @@ fn prp3_square_system_is_regular_where_the_mechanism_is() {
             det * det0 > 0.0,
             "det B changed sign at {x:?} (step {k} of 200)"
         );
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
-// The Orthoglide's architecture (Wenger & Chablat): three actuated prismatic joints along x,
-// y and z, each carriage joined to the translating platform by a parallelogram. Its
-// parallelograms are built of revolute pairs; here each is two ball-jointed rods (a linear
-// delta's), which gives the same translational kinematics. Rods of 200 mm, parallel to their
-// rails at home (the isotropic configuration), 50 mm apart. Dimensions ours.
-linkage::mechanism! {
-    /// The Orthoglide with ball-jointed parallelograms: carriages on orthogonal rails.
-    pub struct Orthoglide;
-    base {
-        Rx = [300.0, 0.0, 0.0], Rxe = [400.0, 0.0, 0.0],
-        Ry = [0.0, 300.0, 0.0], Rye = [0.0, 400.0, 0.0],
-        Rz = [0.0, 0.0, 300.0], Rze = [0.0, 0.0, 400.0],
-    }
-    platform {
-        Fx1 = [0.0, 25.0, 0.0], Fx2 = [0.0, -25.0, 0.0],
-        Fy1 = [0.0, 0.0, 25.0], Fy2 = [0.0, 0.0, -25.0],
-        Fz1 = [25.0, 0.0, 0.0], Fz2 = [-25.0, 0.0, 0.0],
-    }
-    link carriagex { Ex1 = [200.0, 25.0, 0.0], Ex2 = [200.0, -25.0, 0.0] }
-    link carriagey { Ey1 = [0.0, 200.0, 25.0], Ey2 = [0.0, 200.0, -25.0] }
-    link carriagez { Ez1 = [25.0, 0.0, 200.0], Ez2 = [-25.0, 0.0, 200.0] }
-    link rodx1 { length = 200.0 } link rodx2 { length = 200.0 }
-    link rody1 { length = 200.0 } link rody2 { length = 200.0 }
-    link rodz1 { length = 200.0 } link rodz2 { length = 200.0 }
-    chain legx = base - P(active rx, axis = Rx -> Rxe) - carriagex - S(Ex1) - rodx1 - S(Fx1) - platform;
-    chain legx2 = carriagex - S(Ex2) - rodx2 - S(Fx2) - platform;
-    chain legy = base - P(active ry, axis = Ry -> Rye) - carriagey - S(Ey1) - rody1 - S(Fy1) - platform;
-    chain legy2 = carriagey - S(Ey2) - rody2 - S(Fy2) - platform;
-    chain legz = base - P(active rz, axis = Rz -> Rze) - carriagez - S(Ez1) - rodz1 - S(Fz1) - platform;
-    chain legz2 = carriagez - S(Ez2) - rodz2 - S(Fz2) - platform;
-}
-
-/// The Orthoglide's platform position at carriage slides ρ, in closed form: each
-/// parallelogram keeps the platform's orientation, so the platform origin p lies on the sphere
-/// of radius 200 about (200 + ρᵢ) eᵢ; of the two points the three spheres share, the one on
-/// the side of the centres' plane where home is.
-fn orthoglide_closed_form(rho: [f64; 3]) -> Option<[f64; 3]> {
-    let c: [[f64; 3]; 3] = std::array::from_fn(|i| E[i].map(|e| e * (200.0 + rho[i])));
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let scale = |a: [f64; 3], k: f64| a.map(|x| x * k);
-    let d = dot3(sub(c[1], c[0]), sub(c[1], c[0])).sqrt();
-    let ex = scale(sub(c[1], c[0]), 1.0 / d);
-    let i = dot3(ex, sub(c[2], c[0]));
-    let ey_raw = sub(sub(c[2], c[0]), scale(ex, i));
-    let ey = scale(ey_raw, 1.0 / dot3(ey_raw, ey_raw).sqrt());
-    let ez = cross3(ex, ey);
-    let j = dot3(ey, sub(c[2], c[0]));
-    let x = d / 2.0;
-    let y = (i * i + j * j) / (2.0 * j) - i * x / j;
-    let z2 = 200.0f64.powi(2) - x * x - y * y;
-    if z2 < 0.0 {
-        return None;
-    }
-    let base: [f64; 3] = std::array::from_fn(|k| c[0][k] + x * ex[k] + y * ey[k]);
-    // Home (the origin) is on the side of the plane away from the normal ez points along
-    // when ez · (1, 1, 1) > 0.
-    let sign = if ez[0] + ez[1] + ez[2] > 0.0 {
-        -1.0
-    } else {
-        1.0
-    };
-    Some(std::array::from_fn(|k| base[k] + sign * z2.sqrt() * ez[k]))
-}
-
-fn orthoglide_matches<const N: usize>(o: &Orthoglide, v: &[f64; N], rho: [f64; 3], at: &str)
-where
-    Orthoglide: Mechanism<N, 3>,
-{
-    let truth = orthoglide_closed_form(rho).expect("the closed form has no solution");
-    let pose = pose_from_unknowns(o, v).unwrap();
-    super::identity_within(&pose.rotation, 1e-9);
-    let t = pose.translation;
-    assert!(
-        (0..3).all(|k| (t[k] - truth[k]).abs() < 1e-7),
-        "{at}: platform at {t:?}, closed form {truth:?}"
-    );
-    check_inverse(o, v, &rho, &Orthoglide::HOME_INPUTS, 1e-8);
-}
-
-#[test]
-fn orthoglide_translates_as_its_closed_form() {
-    let o = Orthoglide::new();
-    let line = mobility_line(Orthoglide::LISTING);
-    assert!(line.contains(" = 3 "), "{line}");
-    let start = o.home_start().unwrap();
-    check_jacobians(&o, start.v(), start.x());
-    check_factorization(&o, start.v(), start.x());
-    let home = orthoglide_closed_form([0.0; 3]).unwrap();
-    assert!(home.iter().all(|c| c.abs() < 1e-9), "{home:?}");
-    let mut rng = Rng::new(605);
-    for _ in 0..12 {
-        let rho = [0; 3].map(|_| rng.uniform(-60.0, 60.0));
-        let sol = arc_length(&o, &start, &rho, &GENERAL_MODEL).unwrap();
-        assert_eq!(sol.status, Status::Converged, "ρ = {rho:?}");
-        check_jacobians(&o, &sol.v, &rho);
-        orthoglide_matches(&o, &sol.v, rho, &format!("arc_length, ρ = {rho:?}"));
-    }
-    let mut tracker = Tracker::new(o.clone(), start, GENERAL_MODEL);
-    for k in 1..=40 {
-        let t = k as f64 * 0.157;
-        let rho = [
-            50.0 * t.sin(),
-            40.0 * (1.3 * t).sin(),
-            -45.0 * (0.7 * t).sin(),
-        ];
-        let sample = tracker
-            .update(&rho)
-            .unwrap_or_else(|e| panic!("tracker at {rho:?}: {e:?}"));
-        orthoglide_matches(&o, &sample.v, rho, &format!("tracker, ρ = {rho:?}"));
     }
 }
