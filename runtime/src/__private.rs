@@ -16,7 +16,7 @@ pub use linkage_geometry::{
     prismatic_rod_inverse, revolute_rod_inverse, rigid_coefficients,
 };
 
-pub use linkage_geometry::recipe;
+pub use linkage_geometry::{formula, recipe};
 
 /// The derived constants of a generated `from_geometry`: its recipe table evaluated on the slots
 /// `g` (one interpreter for every mechanism, rather than code emitted per constant).
@@ -54,6 +54,11 @@ pub fn set_named(
     name: &str,
     value: f64,
 ) -> Result<(), GeometryError> {
+    // A name that follows a parameter (a formula's slot has a name of its own) is refused
+    // first: `from_geometry` would overwrite it.
+    if followed.iter().any(|(n, _)| *n == name) {
+        return Err(missing(followed, |n| n == name));
+    }
     let i = names
         .iter()
         .position(|n| *n == name)
@@ -78,6 +83,9 @@ pub fn set_pivot(
             == Some(axis)
     };
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        if followed.iter().any(|(n, _)| named(n, axis)) {
+            return Err(missing(followed, |n| named(n, axis)));
+        }
         let i = names
             .iter()
             .position(|n| named(n, axis))

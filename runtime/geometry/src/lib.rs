@@ -5,6 +5,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+pub mod formula;
 pub mod math;
 pub mod recipe;
 

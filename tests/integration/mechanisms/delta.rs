@@ -8,12 +8,15 @@ use linkage_tests::{check_factorization, check_jacobians, Rng};
 
 macro_rules! delta {
     ($name:ident, $z:expr) => {
+        delta!($name, $z, 100.0);
+    };
+    ($name:ident, $z:expr, $rb:tt) => {
         linkage::mechanism! {
             /// A delta robot: cranks of 100 mm on tangent axes at radius 100 mm, parallelograms
             /// 60 mm wide of rods `rod`, a platform of radius 40 mm.
             pub struct $name;
             params {
-                rb = 100.0, ra = 100.0, rp = 40.0, hw = 30.0, h = 200.0,
+                rb = $rb, ra = 100.0, rp = 40.0, hw = 30.0, h = 200.0,
                 rod = sqrt((rb + ra - rp) * (rb + ra - rp) + h * h),
                 c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0),
             }
@@ -51,6 +54,8 @@ macro_rules! delta {
 
 delta!(Delta, -200.0);
 delta!(DeltaAbove, 200.0);
+// The same machine with a base 10 mm wider, declared so.
+delta!(DeltaWiderBase, -200.0, 110.0);
 
 linkage::mechanism! {
     /// The same delta with each crank split in two, one rod on each half, the halves driven by
@@ -272,13 +277,13 @@ fn a_pivot_coordinate_declared_as_a_parameter_names_the_parameter_to_set() {
     use linkage::GeometryError;
     let mut d = Delta::new();
     let kept = d.clone();
-    // E11 = [rb + ra, hw, 0.0]: its y is the parameter `hw`, which the other arms' pivots
-    // follow too; a rod's length is `rod`.
+    // E11 = [rb + ra, hw, 0.0]: its x follows `rb` (and `ra`), its y is the parameter `hw`,
+    // which the other arms' pivots follow too; a rod's length is `rod`.
     assert_eq!(
         d.set_pivot("arm1", "E11", [200.0, 35.0, 0.0]),
         Err(GeometryError::FollowsParameter {
-            name: "arm1.E11.y",
-            parameter: "hw"
+            name: "arm1.E11.x",
+            parameter: "rb"
         })
     );
     assert_eq!(
@@ -298,4 +303,68 @@ fn a_pivot_coordinate_declared_as_a_parameter_names_the_parameter_to_set() {
     // The parameter itself is set by its name.
     d.set_geometry("hw", 35.0).unwrap();
     assert_ne!(d, kept);
+}
+
+/// A coordinate declared as arithmetic on parameters follows them at run time: the delta's
+/// base, arms and platform are declared from `rb`, `ra`, `rp` and `hw` (`A2 = [rb * c2, rb * s2,
+/// 0.0]`, `E21 = [(rb + ra) * c2 - hw * s2, …]`). Set `rb` at run time, the delta is the one
+/// declared with that `rb`, bit for bit — every pivot declared from it moved, not only those
+/// declared as `rb` alone — and solves as that one does. (The rods' length `rod` is a parameter
+/// of its own: its declared value was computed from `rb`, but it is a dimension in its own
+/// right at run time, so it is set too.)
+#[test]
+fn coordinates_declared_from_parameters_follow_them_at_run_time() {
+    let wider = DeltaWiderBase::new();
+    let slot = |name: &str| {
+        Delta::GEOMETRY_NAMES
+            .iter()
+            .position(|n| *n == name)
+            .unwrap_or_else(|| panic!("no geometry value {name}"))
+    };
+    let mut d = Delta::new();
+    d.set_geometry("rb", 110.0).unwrap();
+    d.set_geometry("rod", wider.geometry()[slot("rod")])
+        .unwrap();
+    assert_eq!(Delta::GEOMETRY_NAMES, DeltaWiderBase::GEOMETRY_NAMES);
+    for (k, name) in Delta::GEOMETRY_NAMES.iter().enumerate() {
+        assert_eq!(d.geometry()[k], wider.geometry()[k], "{name}");
+    }
+    assert_eq!(d.constants(), wider.constants());
+    // A pivot declared from `rb` moved with it: at rb = 100 it was elsewhere.
+    let a2x = slot("base.A2.x");
+    assert!((Delta::new().geometry()[a2x] - d.geometry()[a2x]).abs() > 4.9);
+    // And it solves as the one declared so: the same configuration at the same cranks.
+    let start = d.home_start().unwrap();
+    let start_wider = wider.home_start().unwrap();
+    for q in [[0.1, -0.2, 0.3], [-0.3, 0.2, 0.1]] {
+        let a = arc_length(&d, &start, &q, &Options::TIGHT).unwrap();
+        let b = arc_length(&wider, &start_wider, &q, &Options::TIGHT).unwrap();
+        assert_eq!((a.status, b.status), (Status::Converged, Status::Converged));
+        assert!(linkage_tests::max_diff(&a.v, &b.v) < 1e-9, "at {q:?}");
+    }
+    // Such a coordinate is not set by itself (the formula would overwrite it): the error names
+    // the parameter it follows, and the mechanism is left as it was.
+    let kept = d.clone();
+    assert_eq!(
+        d.set_pivot("base", "A2", [90.0, 40.0, 0.0]),
+        Err(linkage::GeometryError::FollowsParameter {
+            name: "base.A2.x",
+            parameter: "rb"
+        })
+    );
+    assert_eq!(
+        d.set_geometry("arm2.E21.y", 1.0),
+        Err(linkage::GeometryError::FollowsParameter {
+            name: "arm2.E21.y",
+            parameter: "rb"
+        })
+    );
+    assert_eq!(d, kept);
+    // `from_geometry` computes them from the parameters, whatever the array held for them.
+    let mut g = *d.geometry();
+    g[a2x] = 0.0;
+    assert_eq!(Delta::from_geometry(g).unwrap(), d);
+    // A parameter that makes a formula non-finite is refused with the coordinate's name.
+    assert!(d.set_geometry("rb", 1e308).is_err());
+    assert_eq!(d, kept);
 }

@@ -46,7 +46,24 @@ pub fn expand(
         }
     });
     let defaults = model.slots.iter().map(|s| lit(s.default));
-    // Names with no slot of their own, so that setting one says which parameter to set.
+    // Slots declared as formulas of parameters, set from them before anything else (emitted
+    // only where there are some).
+    let formulas = (!model.formulas.is_empty()).then(|| {
+        let each = model.formulas.iter().map(|(slot, ops)| {
+            let ops = ops.iter().map(formula_op);
+            quote!(f::Formula { slot: #slot, ops: &[#(#ops),*] })
+        });
+        quote! {
+            let mut geometry = geometry;
+            use ::linkage::__private::formula as f;
+            const FORMULAS: &[f::Formula<'static>] = &[#(#each),*];
+            f::apply(FORMULAS, &mut geometry);
+        }
+    });
+    let formulas_doc = (!model.formulas.is_empty()).then(|| {
+        quote!(#[doc = " Values declared as arithmetic on parameters are computed from the parameters; what the array holds for them is not read."])
+    });
+    // Names not to be set by name, so that setting one says which parameter to set.
     let followed = model.followed.iter().map(|(n, p)| quote!((#n, #p)));
     let followed = quote!(&[#(#followed),*]);
     let constant_names = model.constants.iter().map(|c| c.name.as_str());
@@ -360,7 +377,9 @@ pub fn expand(
 
             /// The mechanism with other dimensions (e.g. from a calibration), in the order of
             /// [`Self::GEOMETRY_NAMES`]. Derived constants are recomputed.
+            #formulas_doc
             pub fn from_geometry(geometry: [f64; #ng]) -> ::core::result::Result<Self, ::linkage::GeometryError> {
+                #formulas
                 let mut k = 0;
                 while k < #ng {
                     if !geometry[k].is_finite() {
@@ -604,4 +623,30 @@ fn assignments<'e>(
         .collect();
     let lets = emitter.bindings();
     quote!(#lets #(#statements)*)
+}
+
+/// One step of a geometry formula, as the runtime's `formula::Op`.
+fn formula_op(op: &linkage_geometry::formula::Op) -> TokenStream {
+    use linkage_geometry::formula::Op;
+    // Within the `use … formula as f` that the emitted `from_geometry` opens.
+    let f = quote!(f::Op);
+    match *op {
+        Op::Num(x) => {
+            let x = lit(x);
+            quote!(#f::Num(#x))
+        }
+        Op::Slot(s) => quote!(#f::Slot(#s)),
+        Op::Neg => quote!(#f::Neg),
+        Op::Add => quote!(#f::Add),
+        Op::Sub => quote!(#f::Sub),
+        Op::Mul => quote!(#f::Mul),
+        Op::Div => quote!(#f::Div),
+        Op::Sqrt => quote!(#f::Sqrt),
+        Op::Sin => quote!(#f::Sin),
+        Op::Cos => quote!(#f::Cos),
+        Op::Tan => quote!(#f::Tan),
+        Op::Asin => quote!(#f::Asin),
+        Op::Acos => quote!(#f::Acos),
+        Op::Atan => quote!(#f::Atan),
+    }
 }

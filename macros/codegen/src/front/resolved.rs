@@ -8,16 +8,30 @@ use crate::front::ast::{ChainItem, Mechanism, PairDecl};
 pub use crate::front::ast::{LinkRole, PairKind};
 use crate::front::errors::Errors;
 use crate::front::ids::{ChainId, InputId, LinkId, PairId, ParamId, PivotId};
-use crate::front::value::Coord;
+use crate::front::value::{BinOp, Coord, Func, Term};
+use linkage_geometry::formula::{self, Op};
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;
 
-/// A number of the geometry: a literal, or a parameter (changeable at run time).
+/// A number of the geometry: a literal, a parameter, or a formula of parameters (the latter
+/// two follow the parameters when they change at run time).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Value {
     Literal(f64),
     Param(ParamId),
+    /// An index into [`Decl::formulas`].
+    Formula(usize),
+}
+
+/// A geometry value declared as arithmetic on parameters.
+pub struct Formula {
+    /// In postfix order, `Op::Slot(i)` reading parameter i.
+    pub ops: Vec<Op>,
+    /// Its value at the declared parameters, by the interpreter the runtime uses.
+    pub value: f64,
+    /// The first parameter it names (the one an error message points to).
+    pub first: ParamId,
 }
 
 pub struct Param {
@@ -99,6 +113,7 @@ pub struct Platform {
 pub struct Decl {
     pub name: Ident,
     pub params: Vec<Param>,
+    pub formulas: Vec<Formula>,
     pub links: Vec<Link>,
     pub pivots: Vec<Pivot>,
     pub inputs: Vec<Input>,
@@ -132,6 +147,7 @@ impl Decl {
         match v {
             Value::Literal(x) => x,
             Value::Param(p) => self.param(p).value,
+            Value::Formula(f) => self.formulas[f].value,
         }
     }
 
@@ -195,6 +211,7 @@ pub fn lower(m: &Mechanism, inputs: &[Ident], errors: &mut Errors) -> Option<Dec
     let mut out = Decl {
         name: m.name.clone(),
         params: Vec::new(),
+        formulas: Vec::new(),
         links: Vec::new(),
         pivots: Vec::new(),
         inputs: Vec::new(),
@@ -224,9 +241,40 @@ pub fn lower(m: &Mechanism, inputs: &[Ident], errors: &mut Errors) -> Option<Dec
         });
     }
     let mut ok = true;
+    let param_values: Vec<f64> = out.params.iter().map(|p| p.value).collect();
+    let mut formulas = Vec::new();
     let mut value = |c: &Coord, errors: &mut Errors| -> Value {
         match c {
             Coord::Literal(n) => Value::Literal(n.value),
+            Coord::Formula(f) => {
+                let (n, term) = &**f;
+                let mut ops = Vec::new();
+                let mut first = None;
+                postfix(term, &names.params, &mut ops, &mut first);
+                let value = formula::evaluate(&ops, &param_values);
+                let fits = formula::depth(&ops).is_some_and(|d| d <= formula::DEPTH);
+                match first {
+                    Some(first) if fits && value.is_finite() => {
+                        formulas.push(Formula { ops, value, first });
+                        Value::Formula(formulas.len() - 1)
+                    }
+                    _ => {
+                        errors.push(
+                            n.span,
+                            if fits {
+                                "a coordinate must be a finite number".to_string()
+                            } else {
+                                format!(
+                                    "expression too deeply nested (at most {} pending values)",
+                                    formula::DEPTH
+                                )
+                            },
+                        );
+                        ok = false;
+                        Value::Literal(f64::NAN)
+                    }
+                }
+            }
             Coord::Param(p) => match names.params.get(&p.to_string()) {
                 Some(&id) => Value::Param(id),
                 None => {
@@ -254,9 +302,11 @@ pub fn lower(m: &Mechanism, inputs: &[Ident], errors: &mut Errors) -> Option<Dec
         }
         let length = l.length.as_ref().map(|c| {
             let v = value(c, errors);
-            let n = match v {
-                Value::Literal(n) => n,
-                Value::Param(id) => out.params[id.index()].value,
+            let n = match (v, c) {
+                (Value::Param(id), _) => out.params[id.index()].value,
+                (_, Coord::Literal(n)) => n.value,
+                (_, Coord::Formula(f)) => f.0.value,
+                (_, Coord::Param(_)) => f64::NAN,
             };
             // A length enters the equations squared: a negative one would be taken for its
             // magnitude, silently.
@@ -370,7 +420,71 @@ pub fn lower(m: &Mechanism, inputs: &[Ident], errors: &mut Errors) -> Option<Dec
         }
         out.platform.home_inputs = Some((*span, by_input));
     }
+    out.formulas = formulas;
     ok.then_some(out)
+}
+
+/// `term` in postfix order, each parameter `Op::Slot` of its index; `first` the first one named.
+fn postfix(
+    term: &Term,
+    params: &HashMap<String, ParamId>,
+    ops: &mut Vec<Op>,
+    first: &mut Option<ParamId>,
+) {
+    // A part that names no parameter is one number, computed here by the interpreter the
+    // runtime uses (so the declared value and a run-time one agree to the bit).
+    if !term.has_param() {
+        let mut part = Vec::new();
+        postfix_all(term, params, &mut part, first);
+        ops.push(Op::Num(formula::evaluate(&part, &[])));
+        return;
+    }
+    postfix_all(term, params, ops, first);
+}
+
+fn postfix_all(
+    term: &Term,
+    params: &HashMap<String, ParamId>,
+    ops: &mut Vec<Op>,
+    first: &mut Option<ParamId>,
+) {
+    match term {
+        Term::Num(x) => ops.push(Op::Num(*x)),
+        Term::Param(p) => match params.get(&p.to_string()) {
+            Some(&id) => {
+                first.get_or_insert(id);
+                ops.push(Op::Slot(id.index()));
+            }
+            // The parser admits declared parameters only; NaN if one slipped through.
+            None => ops.push(Op::Num(f64::NAN)),
+        },
+        Term::Neg(a) => {
+            postfix(a, params, ops, first);
+            ops.push(Op::Neg);
+        }
+        Term::Bin(op, a, b) => {
+            postfix(a, params, ops, first);
+            postfix(b, params, ops, first);
+            ops.push(match op {
+                BinOp::Add => Op::Add,
+                BinOp::Sub => Op::Sub,
+                BinOp::Mul => Op::Mul,
+                BinOp::Div => Op::Div,
+            });
+        }
+        Term::Call(f, a) => {
+            postfix(a, params, ops, first);
+            ops.push(match f {
+                Func::Sqrt => Op::Sqrt,
+                Func::Sin => Op::Sin,
+                Func::Cos => Op::Cos,
+                Func::Tan => Op::Tan,
+                Func::Asin => Op::Asin,
+                Func::Acos => Op::Acos,
+                Func::Atan => Op::Atan,
+            });
+        }
+    }
 }
 
 fn lower_pair(

@@ -8,8 +8,10 @@
 //! ```
 //!
 //! A bare parameter name stays linked to its parameter (changing the parameter at run time
-//! moves the coordinate); any other expression is evaluated where it is declared, with the
-//! parameters' declared values.
+//! moves the coordinate), and so does an expression that names parameters: it is kept
+//! ([`Term`]) and the generated `from_geometry` evaluates it again. An expression of numbers
+//! alone is a number. A parameter's own value may be an expression of the ones before it; it
+//! is evaluated where it is declared (the parameters are independent at run time).
 
 use proc_macro2::Span;
 use syn::parse::ParseStream;
@@ -22,18 +24,97 @@ pub struct Number {
     pub span: Span,
 }
 
-/// A coordinate: a bare parameter (linked to it at run time) or a value.
+/// A coordinate: a bare parameter (linked to it at run time), a formula of parameters (kept,
+/// so that the coordinate follows them at run time; its value as declared), or a value.
 #[derive(Clone)]
 pub enum Coord {
     Literal(Number),
     Param(Ident),
+    /// Boxed: a coordinate is mostly a number, and pairs hold several.
+    Formula(Box<(Number, Term)>),
 }
 
 impl Coord {
     pub fn span(&self) -> Span {
         match self {
             Coord::Literal(n) => n.span,
+            Coord::Formula(f) => f.0.span,
             Coord::Param(i) => i.span(),
+        }
+    }
+}
+
+/// An expression as written.
+#[derive(Clone, Debug)]
+pub enum Term {
+    Num(f64),
+    Param(Ident),
+    Neg(Box<Term>),
+    Bin(BinOp, Box<Term>, Box<Term>),
+    Call(Func, Box<Term>),
+}
+
+#[derive(Clone, Copy, Debug)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub enum Func {
+    Sqrt,
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+}
+
+impl Term {
+    /// Its value, the parameters at their values in `scope` (every name in it is there: the
+    /// parser checked).
+    pub fn eval(&self, scope: &Scope) -> f64 {
+        match self {
+            Term::Num(x) => *x,
+            Term::Param(p) => scope
+                .iter()
+                .find(|(n, _)| p == n)
+                .map_or(f64::NAN, |(_, v)| *v),
+            Term::Neg(a) => -a.eval(scope),
+            Term::Bin(op, a, b) => {
+                let (a, b) = (a.eval(scope), b.eval(scope));
+                match op {
+                    BinOp::Add => a + b,
+                    BinOp::Sub => a - b,
+                    BinOp::Mul => a * b,
+                    BinOp::Div => a / b,
+                }
+            }
+            Term::Call(f, a) => {
+                let x = a.eval(scope);
+                match f {
+                    Func::Sqrt => x.sqrt(),
+                    Func::Sin => x.sin(),
+                    Func::Cos => x.cos(),
+                    Func::Tan => x.tan(),
+                    Func::Asin => x.asin(),
+                    Func::Acos => x.acos(),
+                    Func::Atan => x.atan(),
+                }
+            }
+        }
+    }
+
+    /// Whether it names a parameter.
+    pub fn has_param(&self) -> bool {
+        match self {
+            Term::Num(_) => false,
+            Term::Param(_) => true,
+            Term::Neg(a) | Term::Call(_, a) => a.has_param(),
+            Term::Bin(_, a, b) => a.has_param() || b.has_param(),
         }
     }
 }
@@ -41,7 +122,7 @@ impl Coord {
 /// The parameters declared so far, with their values.
 pub type Scope = [(String, f64)];
 
-/// A coordinate: a bare parameter, or a value.
+/// A coordinate: a bare parameter, a formula of parameters, or a value.
 pub fn coord(input: ParseStream, scope: &Scope) -> Result<Coord> {
     let bare = input.peek(Ident)
         && !input.peek2(token::Paren)
@@ -52,7 +133,12 @@ pub fn coord(input: ParseStream, scope: &Scope) -> Result<Coord> {
             return Ok(Coord::Param(input.parse()?));
         }
     }
-    Ok(Coord::Literal(value(input, scope)?))
+    let (number, term) = parsed(input, scope)?;
+    Ok(if term.has_param() {
+        Coord::Formula(Box::new((number, term)))
+    } else {
+        Coord::Literal(number)
+    })
 }
 
 fn is_end_after_ident(input: ParseStream) -> bool {
@@ -63,51 +149,59 @@ fn is_end_after_ident(input: ParseStream) -> bool {
 
 /// A finite value.
 pub fn value(input: ParseStream, scope: &Scope) -> Result<Number> {
+    parsed(input, scope).map(|(n, _)| n)
+}
+
+/// An expression and its value, which must be finite.
+fn parsed(input: ParseStream, scope: &Scope) -> Result<(Number, Term)> {
     let span = input.span();
-    let v = sum(input, scope)?;
+    let term = sum(input, scope)?;
+    let v = term.eval(scope);
     if !v.is_finite() {
         return Err(syn::Error::new(
             span,
             "a coordinate must be a finite number",
         ));
     }
-    Ok(Number { value: v, span })
+    Ok((Number { value: v, span }, term))
 }
 
-fn sum(input: ParseStream, scope: &Scope) -> Result<f64> {
+fn sum(input: ParseStream, scope: &Scope) -> Result<Term> {
     let mut v = product(input, scope)?;
     loop {
-        if input.peek(Token![+]) {
+        let op = if input.peek(Token![+]) {
             input.parse::<Token![+]>()?;
-            v += product(input, scope)?;
+            BinOp::Add
         } else if input.peek(Token![-]) && !input.peek(Token![->]) {
             input.parse::<Token![-]>()?;
-            v -= product(input, scope)?;
+            BinOp::Sub
         } else {
             return Ok(v);
-        }
+        };
+        v = Term::Bin(op, Box::new(v), Box::new(product(input, scope)?));
     }
 }
 
-fn product(input: ParseStream, scope: &Scope) -> Result<f64> {
+fn product(input: ParseStream, scope: &Scope) -> Result<Term> {
     let mut v = factor(input, scope)?;
     loop {
-        if input.peek(Token![*]) {
+        let op = if input.peek(Token![*]) {
             input.parse::<Token![*]>()?;
-            v *= factor(input, scope)?;
+            BinOp::Mul
         } else if input.peek(Token![/]) {
             input.parse::<Token![/]>()?;
-            v /= factor(input, scope)?;
+            BinOp::Div
         } else {
             return Ok(v);
-        }
+        };
+        v = Term::Bin(op, Box::new(v), Box::new(factor(input, scope)?));
     }
 }
 
-fn factor(input: ParseStream, scope: &Scope) -> Result<f64> {
+fn factor(input: ParseStream, scope: &Scope) -> Result<Term> {
     if input.peek(Token![-]) {
         input.parse::<Token![-]>()?;
-        return Ok(-factor(input, scope)?);
+        return Ok(Term::Neg(Box::new(factor(input, scope)?)));
     }
     if input.peek(token::Paren) {
         let inner;
@@ -119,10 +213,10 @@ fn factor(input: ParseStream, scope: &Scope) -> Result<f64> {
         return Ok(v);
     }
     if input.peek(LitFloat) {
-        return input.parse::<LitFloat>()?.base10_parse::<f64>();
+        return Ok(Term::Num(input.parse::<LitFloat>()?.base10_parse::<f64>()?));
     }
     if input.peek(LitInt) {
-        return input.parse::<LitInt>()?.base10_parse::<f64>();
+        return Ok(Term::Num(input.parse::<LitInt>()?.base10_parse::<f64>()?));
     }
     if input.peek(Ident) {
         let name: Ident = input.parse()?;
@@ -130,29 +224,28 @@ fn factor(input: ParseStream, scope: &Scope) -> Result<f64> {
             let arg;
             parenthesized!(arg in input);
             let x = sum(&arg, scope)?;
-            return function(&name, x);
+            return Ok(Term::Call(function(&name)?, Box::new(x)));
         }
         if name == "pi" {
-            return Ok(std::f64::consts::PI);
+            return Ok(Term::Num(std::f64::consts::PI));
         }
-        return scope
-            .iter()
-            .find(|(n, _)| name == n)
-            .map(|(_, v)| *v)
-            .ok_or_else(|| unknown(&name));
+        if !scope.iter().any(|(n, _)| name == n) {
+            return Err(unknown(&name));
+        }
+        return Ok(Term::Param(name));
     }
     Err(input.error("expected a number, a parameter name or an expression"))
 }
 
-fn function(name: &Ident, x: f64) -> Result<f64> {
+fn function(name: &Ident) -> Result<Func> {
     Ok(match name.to_string().as_str() {
-        "sqrt" => x.sqrt(),
-        "sin" => x.sin(),
-        "cos" => x.cos(),
-        "tan" => x.tan(),
-        "asin" => x.asin(),
-        "acos" => x.acos(),
-        "atan" => x.atan(),
+        "sqrt" => Func::Sqrt,
+        "sin" => Func::Sin,
+        "cos" => Func::Cos,
+        "tan" => Func::Tan,
+        "asin" => Func::Asin,
+        "acos" => Func::Acos,
+        "atan" => Func::Atan,
         other => {
             return Err(syn::Error::new(
                 name.span(),

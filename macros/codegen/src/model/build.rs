@@ -227,6 +227,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     let mut model = Model {
         name: d.name.clone(),
         followed,
+        formulas: b.formulas,
         slots: b.slots,
         constants: b.constants,
         unknowns: b.unknowns,

@@ -5,6 +5,7 @@ use crate::expr::{Expr, Vec3};
 use crate::front::ids::{LinkId, PairId, PivotId};
 use crate::front::resolved::{Decl, Value};
 use crate::model::{home_of, Auto, Constant, Inverse, PlatformPoint, PointRef, Recipe, Slot};
+use linkage_geometry::formula::Op;
 use std::collections::HashMap;
 
 /// A length-like slot that is not a pivot coordinate: a link's `length`, a pair's `offset` or
@@ -26,8 +27,11 @@ pub struct Builder<'d> {
     pivot_slots: Vec<[usize; 3]>,
     scalar_slots: HashMap<Scalar, usize>,
     /// Geometry names that follow a parameter (a pivot coordinate or a length declared as
-    /// one), with the parameter's slot: they have no slot of their own.
+    /// one, which has no slot of its own, or as a formula of parameters, whose slot the
+    /// formula sets), with the parameter's slot (a formula's first): not to be set by name.
     pub followed: Vec<(String, usize)>,
+    /// The slots declared as formulas of parameters, each with its formula over the slots.
+    pub formulas: Vec<(usize, Vec<Op>)>,
     pub constants: Vec<Constant>,
     pub unknowns: Vec<String>,
     /// The inputs' names, by `InputId`.
@@ -50,6 +54,7 @@ impl<'d> Builder<'d> {
             pivot_slots: Vec::new(),
             scalar_slots: HashMap::new(),
             followed: Vec::new(),
+            formulas: Vec::new(),
             constants: Vec::new(),
             unknowns: Vec::new(),
             inputs: decl.inputs.iter().map(|i| i.name.to_string()).collect(),
@@ -94,7 +99,26 @@ impl<'d> Builder<'d> {
                 self.followed.push((name, s));
                 s
             }
+            Value::Formula(f) => self.formula_slot(name, f),
         }
+    }
+
+    /// A slot of its own for formula `f`, which `from_geometry` sets from the parameters.
+    fn formula_slot(&mut self, name: String, f: usize) -> usize {
+        let formula = &self.decl.formulas[f];
+        let ops = formula
+            .ops
+            .iter()
+            .map(|op| match *op {
+                Op::Slot(p) => Op::Slot(self.param_slots[p]),
+                other => other,
+            })
+            .collect();
+        let first = self.param_slots[formula.first.index()];
+        let s = self.new_slot(name.clone(), formula.value);
+        self.followed.push((name, first));
+        self.formulas.push((s, ops));
+        s
     }
 
     fn new_slot(&mut self, name: String, default: f64) -> usize {
@@ -138,7 +162,9 @@ impl<'d> Builder<'d> {
         [0, 1, 2].map(|k| {
             let name = match p.coords[k] {
                 Value::Param(q) => self.decl.param(q).name.to_string(),
-                Value::Literal(_) => format!("{}_{}", ["x", "y", "z"][k], p.name),
+                Value::Literal(_) | Value::Formula(_) => {
+                    format!("{}_{}", ["x", "y", "z"][k], p.name)
+                }
             };
             self.constant(name, Recipe::Slot(slots[k]))
         })
@@ -158,11 +184,14 @@ impl<'d> Builder<'d> {
                 self.param_slots[p.index()],
                 self.decl.param(p).name.to_string(),
             ),
-            Value::Literal(x) => {
+            Value::Literal(_) | Value::Formula(_) => {
                 let slot = match self.scalar_slots.get(&key) {
                     Some(&s) => s,
                     None => {
-                        let s = self.new_slot(slot_name, x);
+                        let s = match v {
+                            Value::Formula(f) => self.formula_slot(slot_name, f),
+                            _ => self.new_slot(slot_name, self.decl.value(v)),
+                        };
                         self.scalar_slots.insert(key, s);
                         s
                     }

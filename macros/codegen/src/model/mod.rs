@@ -92,6 +92,9 @@ pub struct Model {
     /// Geometry names that follow a parameter, with the parameter's name (see
     /// [`Builder::followed`]).
     pub followed: Vec<(String, String)>,
+    /// The slots declared as formulas of parameters, with their formulas over the slots: the
+    /// generated `from_geometry` sets them before it derives anything.
+    pub formulas: Vec<(usize, Vec<linkage_geometry::formula::Op>)>,
     pub constants: Vec<Constant>,
     pub unknowns: Vec<String>,
     pub inputs: Vec<String>,
