@@ -73,7 +73,7 @@ fn misplaced<S: Mechanism<N, M>, const N: usize, const M: usize>(
 }
 
 /// Poses near home, far from it, and with the arm stretched (q2 near 0, the edge of its reach),
-/// four of them refused before the run's row weights were fixed: from the solved unknowns each
+/// four of them refused before (the integration tests' sweep): from the solved unknowns each
 /// is answered, in a few iterations, and the answer places the tool. What each costs, also
 /// from the platform's points alone, is printed
 /// (`cargo test -p linkage --lib inverse -- --nocapture`).
@@ -137,7 +137,7 @@ fn work_per_call_on_the_scara_with_a_wrist() {
         let back = back.unwrap_or_else(|e| panic!("{name}: {e:?}"));
         let off = misplaced(&s5, &start, &v, &back);
         assert!(off <= 1e-6, "{name}: the tool {off:e} mm off");
-        // Measured: 6 to 45 (before: 982 near home, 5 104 and a refusal stretched).
+        // Measured: 6 to 40 (before: 982 near home, 5 104 and a refusal stretched).
         assert!(iterations <= 100, "{name}: {iterations} iterations");
         let mut platform = v;
         platform[links..].fill(0.0);
@@ -212,8 +212,8 @@ fn work_on_a_random_sweep() {
         "[runs, iterations, damped solves, refused] of {cases}, from the unknowns and from the platform: {totals:?}"
     );
     // From the solved unknowns (as the integration tests' sweep asks) every pose is answered,
-    // in 37 iterations a call over 60 poses (45 over 200; before the row weights were fixed,
-    // 2 400 over 200, and 12 refused). From the platform's points alone some are still
+    // in 37 iterations a call over 60 poses (45 over 200; before the weights were fixed and
+    // the inputs fitted first, 2 400 over 200, and 12 refused). From the platform's points alone some are still
     // refused (7 of 60, 14 of 200, as many as before), and cost far more: printed, not bounded.
     assert_eq!(totals[0][3], 0, "refused from the unknowns");
     assert!(

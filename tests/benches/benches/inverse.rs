@@ -109,7 +109,7 @@ fn inverse(c: &mut Criterion) {
     let poses = [
         ("near home", [0.1, 0.2, 5.0, 0.1, 0.1]),
         ("far", [2.5, -2.0, -80.0, 2.8, 1.2]),
-        // Refused before the run's row weights were fixed (the tests' sweep, case 78).
+        // Refused before the inputs were fitted first and the weights fixed (the tests' sweep, case 78).
         (
             "stretched",
             [
