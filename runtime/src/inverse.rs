@@ -26,11 +26,13 @@
 //! fits better (the given v's, or the declared home's with each point moved as far as the
 //! platform point that carries it), then the other — each first fitting the inputs alone to
 //! the guess held whole (where v holds the links' points as solved, that is the answer, in a
-//! few iterations of a problem of M unknowns), then everything from there; then the platform
-//! followed from home to v
-//! along a straight path of its pose, by steps that halve where one fails and grow where they
-//! pass (a straight path can cross an inverse singularity, where no step of a fixed size
-//! holds) and, where they stall short of a singular v, v itself from the last pose reached
+//! few iterations of a problem of M unknowns), then everything from there; then, from the
+//! declared home, the inputs alone searched by Levenberg–Marquardt on where they place the
+//! platform, each iterate placed by continuation from the last (`by_the_inputs`: for a
+//! platform given by its points alone, whose links' points the guesses only guess); then the
+//! platform followed from home to v along a straight path of its pose, by steps that halve
+//! where one fails and grow where they pass (a straight path can cross an inverse
+//! singularity, where no step of a fixed size holds) and, where they stall short of a singular v, v itself from the last pose reached
 //! with more iterations (they converge only linearly there); or, for a platform that leaves
 //! its motion on a straight path, in 16 least-squares steps of which only the last must hold;
 //! last, the inputs that turn started a quarter, half and three quarters of a turn from the
@@ -180,6 +182,11 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
         }
     }
     if let Some((home_v, home_x)) = plan.home
+        && let Some(x) = by_the_inputs(&solver, v, (home_v, home_x), x0, tolerance)
+    {
+        return Ok(nearest(x));
+    }
+    if let Some((home_v, home_x)) = plan.home
         && let Some(x) = follow(&solver, v, home_v, home_x, &scale)
     {
         return Ok(nearest(x));
@@ -204,8 +211,11 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
     Err(unreachable)
 }
 
+mod by_the_inputs;
 #[cfg(test)]
 mod tests;
+
+use by_the_inputs::by_the_inputs;
 
 /// `d` brought into (−π, π].
 fn half_turn(d: f64) -> f64 {
