@@ -490,7 +490,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
                     let factor = if !rho.is_finite() || rho > 0.75 {
                         0.1
                     } else {
-                        (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0)
+                        // Written out: `powi` needs the standard library.
+                        let e = 2.0 * rho - 1.0;
+                        (1.0 - e * e * e).max(1.0 / 3.0)
                     };
                     mu = (mu * factor).max(1e-15);
                     nu = 2.0;
