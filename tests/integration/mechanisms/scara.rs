@@ -195,11 +195,13 @@ fn scara_with_a_wrist_against_the_product_of_exponentials() {
             }
         }
     }
-    // The numerical inverse does not find every configuration far from home (five inputs,
-    // Levenberg–Marquardt from the reference): counted, not hidden.
+    // From the solved unknowns every inverse is found; from the platform's points alone the
+    // numerical inverse does not find every configuration (five inputs, the links' points
+    // guessed): counted, not hidden. Measured [0, 0] (before the inputs were fitted first and
+    // the weights fixed, [0, 1]).
     eprintln!("scara with a wrist: inverse unreached at {unreached:?} of 60 (from the unknowns, from the platform); tool off by up to {worst:.1e} mm");
     assert!(
-        unreached[0] <= 2 && unreached[1] <= 3,
+        unreached[0] == 0 && unreached[1] <= 3,
         "{unreached:?} of 60"
     );
 }
