@@ -7,7 +7,7 @@ pub fn sq(x: f64) -> f64 {
     x * x
 }
 
-pub use crate::inverse::{Plan as InversePlan, solve as numerical_inverse};
+pub use crate::inverse::{Plan as InversePlan, closed_form_places, solve as numerical_inverse};
 pub use crate::lu::{fallback_factor, fallback_solve};
 pub use crate::math::{cos, sin};
 

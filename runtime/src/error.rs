@@ -11,8 +11,13 @@ pub enum InverseError {
     Unreachable { input: usize },
     /// Input `input` has no closed-form inverse for this chain.
     NoClosedForm { input: usize },
-    /// The pose or pivots contain NaN or infinite values.
+    /// The pose, the pivots or the reference contain NaN or infinite values, or the inputs
+    /// they give overflow.
     NonFinite,
+    /// The closed forms gave inputs, but the pivots given are not one placement of the
+    /// platform: with those inputs an equation on the platform's points fails (its pivots are
+    /// not a rigid body at this geometry, or one the closed forms do not read is elsewhere).
+    Inconsistent,
 }
 
 impl fmt::Display for InverseError {
@@ -25,6 +30,9 @@ impl fmt::Display for InverseError {
                 write!(f, "joint input {input} has no closed-form inverse")
             }
             InverseError::NonFinite => write!(f, "non-finite pose"),
+            InverseError::Inconsistent => {
+                write!(f, "the pivots are not one placement of the platform")
+            }
         }
     }
 }

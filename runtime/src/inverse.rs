@@ -150,9 +150,12 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
     if plan.held > N || Z + plan.held != M + N {
         return Err(unreachable);
     }
+    // The plan's indices are the generator's; `get` keeps a panic path out all the same.
     let nearest = |mut x: [f64; M]| {
         for &i in plan.turning {
-            x[i] = reference[i] + half_turn(x[i] - reference[i]);
+            if let (Some(xi), Some(&r)) = (x.get_mut(i), reference.get(i)) {
+                *xi = r + half_turn(*xi - r);
+            }
         }
         x
     };
@@ -198,7 +201,9 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
             for guess in guesses.iter().flatten() {
                 let (mut vv, mut x) = (*guess, *x0);
                 for &i in plan.turning {
-                    x[i] += shift;
+                    if let Some(xi) = x.get_mut(i) {
+                        *xi += shift;
+                    }
                 }
                 if solver
                     .levenberg_marquardt(&mut vv, &mut x, ITERATIONS)
@@ -213,10 +218,12 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
 }
 
 mod by_the_inputs;
+mod closed_form;
 #[cfg(test)]
 mod tests;
 
 use by_the_inputs::by_the_inputs;
+pub use closed_form::closed_form_places;
 
 /// `d` brought into (−π, π].
 fn half_turn(d: f64) -> f64 {
@@ -228,6 +235,20 @@ fn half_turn(d: f64) -> f64 {
         d += turn;
     }
     d
+}
+
+/// `dst[..to] = src[..to]` (all of it past N), with no panic path for the no-panic proof.
+fn copy_head<const N: usize>(dst: &mut [f64; N], src: &[f64; N], to: usize) {
+    for (d, s) in dst.iter_mut().zip(src).take(to) {
+        *d = *s;
+    }
+}
+
+/// `dst[from..] = src[from..]` (nothing past N), with no panic path.
+fn copy_tail<const N: usize>(dst: &mut [f64; N], src: &[f64; N], from: usize) {
+    for (d, s) in dst.iter_mut().zip(src).skip(from) {
+        *d = *s;
+    }
 }
 
 /// The starting unknowns, the better-fitting first: the given v, and (with a declared home
@@ -243,7 +264,7 @@ fn guesses<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
     };
     let k = S::POINTS.len();
     let mut other = *v;
-    other[plan.held..].copy_from_slice(&home_v[plan.held..]);
+    copy_tail(&mut other, home_v, plan.held);
     for &(first, carrier) in plan.carried {
         for a in 0..3 {
             let c = a * k + carrier;
@@ -297,7 +318,7 @@ fn follow<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
         let next = (t + h).min(1.0);
         let target = at(next);
         let (mut vt, mut xt) = (vv, x);
-        vt[..held].copy_from_slice(&target[..held]);
+        copy_head(&mut vt, &target, held);
         if solver
             .levenberg_marquardt(&mut vt, &mut xt, PATH_ITERATIONS)
             .within(scale(&vt))
@@ -319,7 +340,7 @@ fn follow<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
     // last pose reached, v itself with [`STALLED_ITERATIONS`].
     if t > 0.0 {
         let (mut vt, mut xt) = (vv, x);
-        vt[..held].copy_from_slice(&v[..held]);
+        copy_head(&mut vt, v, held);
         if solver
             .levenberg_marquardt(&mut vt, &mut xt, STALLED_ITERATIONS)
             .within(scale(&vt))
@@ -332,7 +353,7 @@ fn follow<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>(
     // the next one's start, and only the last must be exact.
     let (mut vv, mut x) = (*home_v, *home_x);
     for k in 1..=16 {
-        vv[..held].copy_from_slice(&at(k as f64 / 16.0)[..held]);
+        copy_head(&mut vv, &at(k as f64 / 16.0), held);
         let left = solver.levenberg_marquardt(&mut vv, &mut x, PATH_ITERATIONS);
         if k == 16 && left.within(scale(&vv)) {
             return Some(x);
@@ -391,9 +412,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
             self.sys.jacobian_dense(v, x, &mut b);
         }
         let mut j = [[0.0; Z]; N];
+        // Z = M + N − held: the inputs' columns, then the unknowns' after the platform's.
         for r in 0..N {
-            j[r][..M].copy_from_slice(&a[r]);
-            j[r][M..].copy_from_slice(&b[r][self.held..]);
+            for (d, s) in j[r].iter_mut().zip(&a[r]) {
+                *d = *s;
+            }
+            for (d, s) in j[r].iter_mut().skip(M).zip(b[r].iter().skip(self.held)) {
+                *d = *s;
+            }
         }
         j
     }
@@ -462,11 +488,12 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
                     continue;
                 };
                 let (mut vt, mut xt) = (*v, *x);
-                for p in 0..M {
-                    xt[p] += d[p];
+                // d = (Δx, Δv after the platform's): Z = M + N − held.
+                for (xp, dp) in xt.iter_mut().zip(&d) {
+                    *xp += dp;
                 }
-                for p in M..Z {
-                    vt[self.held + p - M] += d[p];
+                for (vp, dp) in vt.iter_mut().skip(self.held).zip(d.iter().skip(M)) {
+                    *vp += dp;
                 }
                 let mut ft = [0.0; N];
                 self.sys.residual(&vt, &xt, &mut ft);
@@ -479,7 +506,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<
                         left += (b[r] - ad) * (b[r] - ad);
                     }
                     let rho = (cost - trial) / (cost - left);
-                    let moved = xt.iter().chain(vt[self.held..].iter());
+                    let moved = xt.iter().chain(vt.iter().skip(self.held));
                     let negligible = d
                         .iter()
                         .zip(moved)
@@ -614,10 +641,28 @@ fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     f: &[f64; N],
 ) -> f64 {
+    let off = off_in(sys, v, x, f, &[false; N]);
+    // And the equations left out as dependent at home: platform pivots on another component
+    // of an over-constrained mechanism's square system are no placement of it.
+    let off = off.max(sys.dependent_offset(v, x));
+    if off.is_nan() { f64::INFINITY } else { off }
+}
+
+/// [`off_by`] over the equations not in `skip`, without the dependent ones.
+fn off_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    f: &[f64; N],
+    skip: &[bool; N],
+) -> f64 {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     let mut off = 0.0f64;
     for r in 0..N {
+        if skip[r] {
+            continue;
+        }
         let slope = b[r].iter().fold(0.0f64, |m, q| m.max(q.abs()));
         let here = if slope > 0.0 {
             f[r].abs() / slope
@@ -628,9 +673,6 @@ fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
         };
         off = off.max(here);
     }
-    // And the equations left out as dependent at home: platform pivots on another component
-    // of an over-constrained mechanism's square system are no placement of it.
-    off = off.max(sys.dependent_offset(v, x));
     if off.is_nan() { f64::INFINITY } else { off }
 }
 

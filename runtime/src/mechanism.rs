@@ -198,7 +198,15 @@ pub trait Mechanism<const N: usize, const M: usize> {
     /// `Err(j)` names the first input out of range.
     fn validate_inputs(&self, x: &[f64; M]) -> Result<(), usize>;
     /// Joint inputs that put the platform pivots at `v` (inverse kinematics); where a chain
-    /// has two solutions, the one nearest `reference`.
+    /// has two solutions, the one nearest `reference`. Where every chain has a closed form
+    /// (each reads one platform point), the inputs are returned only if with them every
+    /// equation on the platform's points alone holds to a thousandth of the scale
+    /// ([`InverseError::Inconsistent`] otherwise: the pivots are not one rigid placement, or a
+    /// point no closed form reads is elsewhere); a pose that close to the motion of a
+    /// mechanism of fewer freedoms gets the inputs for the points read, to be refined by
+    /// [`Start::new`](crate::Start::new). Otherwise the numerical inverse returns only inputs
+    /// that place the platform at `v` to 1e-9 of the scale. NaN, infinite or overflowing
+    /// values are [`InverseError::NonFinite`].
     fn inverse(&self, v: &[f64; N], reference: &[f64; M]) -> Result<[f64; M], InverseError>;
     /// How far `v` is from satisfying the equations the generator left out as dependent at
     /// home (the listing's "dependent at home, implied by the above and left out"): the

@@ -166,15 +166,16 @@ pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
         for j in i + 1..6 {
             for k in j + 1..6 {
                 let n = cross(sub(platform[j], platform[i]), sub(platform[k], platform[i]));
-                let a = dot(n, n).sqrt();
+                // The squared area: no square root in a no_std crate (`f64::sqrt` is std's).
+                let a = dot(n, n);
                 if a > best.0 {
                     best = (a, n, platform[i]);
                 }
             }
         }
     }
-    let (area, n, corner) = best;
-    if area == 0.0 {
+    let (area_sq, n, corner) = best;
+    if area_sq == 0.0 {
         return false;
     }
     // The platform's own size, not floored at 1 mm: a platform a micrometre across and 1e-9 mm
@@ -183,9 +184,12 @@ pub fn platform_is_coplanar(platform: &[[f64; 3]; 6]) -> bool {
         .iter()
         .flatten()
         .fold(0.0f64, |m, x| m.max(x.abs()));
-    platform
-        .iter()
-        .all(|p| (dot(n, sub(*p, corner)) / area).abs() <= 1e-9 * size)
+    // |n · (p − corner)| / |n| ≤ 1e-9 size, squared.
+    let bound = 1e-9 * size;
+    platform.iter().all(|p| {
+        let d = dot(n, sub(*p, corner));
+        d * d <= bound * bound * area_sq
+    })
 }
 
 /// Why no start configuration could be found.

@@ -68,6 +68,40 @@ pub fn check_inverse<S: Mechanism<N, M>, const N: usize, const M: usize>(
         "{} from the platform alone: {back:?} vs {x:?}",
         S::NAME
     );
+    // The platform's coordinates NaN, infinite, or so far out that the inputs overflow, and a
+    // NaN reference: an error, never inputs (a closed form gave a leg of NaN or ∞ as ok).
+    let held = 3 * S::POINTS.len();
+    for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY, 1e300] {
+        let mut off = *v;
+        for q in &mut off[..held] {
+            *q = bad;
+        }
+        let r = sys.inverse(&off, reference);
+        assert!(r.is_err(), "{}: the platform at {bad} gave {r:?}", S::NAME);
+    }
+    // The platform's last point moved away from its first by 2 % of the scale: no placement of
+    // a platform of two points or more (the closed forms, which read one point per input, gave
+    // the inputs for the points they read). Unknowns are by axis: v[a k + p].
+    let k = S::POINTS.len();
+    if k >= 2 {
+        let scale = 1.0 + v[..held].iter().fold(0.0f64, |m, q| m.max(q.abs()));
+        let d: [f64; 3] = std::array::from_fn(|a| v[a * k + k - 1] - v[a * k]);
+        let len = d.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let mut off = *v;
+        for a in 0..3 {
+            off[a * k + k - 1] += 0.02 * scale * d[a] / len;
+        }
+        let r = sys.inverse(&off, reference);
+        assert!(r.is_err(), "{}: the last point off gave {r:?}", S::NAME);
+    }
+    let mut nan = *reference;
+    nan[0] = f64::NAN;
+    assert_eq!(
+        sys.inverse(v, &nan),
+        Err(linkage::InverseError::NonFinite),
+        "{}: a NaN reference",
+        S::NAME
+    );
 }
 
 /// The `mobility:` line of a listing.

@@ -157,6 +157,59 @@ proven!(rps, Rps, 9, 3);
 proven!(stewart, Stewart, 18, 6);
 proven!(hexapod, RssHexapod, 18, 6);
 
+linkage::mechanism! {
+    /// A SCARA with a wrist that tilts the tool: its chain has no closed-form inverse, so
+    /// `inverse` is the numerical one (`linkage`'s inverse.rs).
+    pub struct ScaraWrist;
+    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
+    platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Q = [350.0, 30.0, -80.0] }
+    link arm1 { E = [200.0, 0.0, 0.0], Ez = [200.0, 0.0, 1.0] }
+    link arm2 { W = [350.0, 0.0, 0.0], Wz = [350.0, 0.0, 1.0] }
+    link quill { K = [360.0, 0.0, -20.0], Tz = [350.0, 0.0, -49.0] }
+    link wrist { Kw = [350.0, 20.0, -50.0] }
+    chain arm = base - R(active q1, axis = O -> Oz) - arm1 - R(active q2, axis = E -> Ez) - arm2
+        - P(active d, axis = W -> Wz) - quill - R(active q4, axis = T -> Tz) - wrist
+        - R(active q5, axis = T -> Tx) - platform;
+}
+
+/// Inverse kinematics: the closed forms (the 3-RPS's legs, the Stewart platform's, the
+/// hexapod's cranks) and the numerical inverse (the SCARA with a wrist).
+pub mod inverse {
+    use super::*;
+    use linkage::{InverseError, Mechanism};
+
+    #[no_panic]
+    pub fn rps(sys: &Rps, v: &[f64; 9], x0: &[f64; 3]) -> Result<[f64; 3], InverseError> {
+        sys.inverse(v, x0)
+    }
+
+    #[no_panic]
+    pub fn stewart(sys: &Stewart, v: &[f64; 18], x0: &[f64; 6]) -> Result<[f64; 6], InverseError> {
+        sys.inverse(v, x0)
+    }
+
+    #[no_panic]
+    pub fn hexapod(
+        sys: &RssHexapod,
+        v: &[f64; 18],
+        x0: &[f64; 6],
+    ) -> Result<[f64; 6], InverseError> {
+        sys.inverse(v, x0)
+    }
+
+    #[no_panic]
+    pub fn scara_wrist<const N: usize>(
+        sys: &ScaraWrist,
+        v: &[f64; N],
+        x0: &[f64; 5],
+    ) -> Result<[f64; 5], InverseError>
+    where
+        ScaraWrist: Mechanism<N, 5>,
+    {
+        sys.inverse(v, x0)
+    }
+}
+
 /// The all-modes query ([`AllModes::solve`](linkage::modes::AllModes::solve): every path from
 /// the start set to the target, the refills of failed paths, the real roots' refinement), each
 /// mechanism with the capacity its root count needs.

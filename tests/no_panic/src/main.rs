@@ -106,6 +106,7 @@ fn main() {
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
     c_interface();
     all_modes();
+    inverse();
     println!("no-panic proof: linked; every entry point ran on good and bad input");
 }
 
@@ -336,4 +337,43 @@ fn all_modes() {
         .any(|r| (0..18).all(|k| (r.v[k] - s.v()[k]).abs() < 1e-4)));
     let bad = no_panic_proof::modes::hexapod(&modes, &black_box([f64::NAN; 6]), &mut roots);
     assert_eq!(bad, Err(ModesError::NonFinite));
+}
+
+/// Inverse kinematics gives a solved pose's inputs back, and refuses a NaN pose.
+fn inverse() {
+    use no_panic_proof::{inverse, ScaraWrist};
+    let o = Options::TIGHT;
+    let sys = ScaraWrist::new();
+    let start = sys.home_start().expect("the SCARA's start");
+    let x = black_box([0.3, -0.4, 5.0, 0.2, 0.1]);
+    let sol = linkage::arc_length(&sys, &start, &x, &o).expect("a SCARA solve");
+    assert!(sol.is_ok(), "{:?}", sol.status);
+    let back = inverse::scara_wrist(&sys, &sol.v, start.x()).expect("its inputs");
+    assert!(
+        back.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-6),
+        "{back:?}"
+    );
+    let mut bad = sol.v;
+    bad[0] = f64::NAN;
+    assert!(inverse::scara_wrist(&sys, &black_box(bad), start.x()).is_err());
+
+    let rps = Rps::new();
+    let v = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    assert!(inverse::rps(&rps, &black_box(v), &[0.0; 3]).is_ok());
+    let mut bad = v;
+    bad[4] = f64::INFINITY;
+    let r = inverse::rps(&rps, &black_box(bad), &[0.0; 3]);
+    assert!(r.is_err(), "{r:?}");
+    let st = Stewart::new();
+    let v = linkage::unknowns_from_pose(
+        &st,
+        &Pose::from_euler(0.0, 0.0, 0.0, [58.971, -11.739, 159.011]),
+    );
+    assert!(inverse::stewart(&st, &black_box(v), &[170.0; 6]).is_ok());
+    assert!(inverse::stewart(&st, &black_box([f64::NAN; 18]), &[170.0; 6]).is_err());
+    let hex = RssHexapod::new();
+    let s = hex.home_start().expect("the hexapod's start");
+    let back = inverse::hexapod(&hex, &black_box(*s.v()), s.x()).expect("the hexapod at home");
+    assert!(back.iter().zip(s.x()).all(|(a, b)| (a - b).abs() < 1e-9));
+    assert!(inverse::hexapod(&hex, &black_box([f64::NAN; 18]), s.x()).is_err());
 }

@@ -20,15 +20,52 @@ pub fn body(model: &Model, has_home: bool) -> TokenStream {
         Inverse::None { inputs } => inputs.first().copied(),
         _ => None,
     });
+    let held = 3 * model.points.len();
     match numerical {
+        // Each closed form reads one point: the others must be where the inputs put them.
         None => quote! {
-            let c = &self.constants;
-            let mut out = *reference;
-            #(#steps)*
+            let out = self.closed_form_inputs(v, reference)?;
+            if !::linkage::__private::closed_form_places(self, v, &out, #held) {
+                return Err(::linkage::InverseError::Inconsistent);
+            }
             Ok(out)
         },
         Some(first) => numerical_body(model, has_home, first, &steps),
     }
+}
+
+/// Where every chain has a closed form: the inherent `closed_form_inputs`, the inputs they
+/// give (not checked against the points they do not read: `inverse` does that, while
+/// `home_start` leaves a home a calibration moved a little to `Start::new`, which refines it).
+pub fn closed_form_method(model: &Model) -> Option<TokenStream> {
+    if model
+        .inverses
+        .iter()
+        .any(|inv| matches!(inv, Inverse::None { inputs } if !inputs.is_empty()))
+    {
+        return None;
+    }
+    let steps = model.inverses.iter().map(|inv| closed_form(model, inv));
+    let (n, m) = (model.unknowns.len(), model.inputs.len());
+    // A NaN or infinite coordinate would give a NaN or infinite input (a leg's length is a
+    // distance), and so would a finite one far enough out: neither is an answer.
+    Some(quote! {
+        /// The inputs the chains' closed forms give for the pivots `v` (each reads one
+        /// platform point), the nearer branch to `reference`: the first step of `inverse`,
+        /// which also checks that they place the points the closed forms do not read.
+        fn closed_form_inputs(&self, v: &[f64; #n], reference: &[f64; #m]) -> ::core::result::Result<[f64; #m], ::linkage::InverseError> {
+            if !v.iter().chain(reference.iter()).all(|a| a.is_finite()) {
+                return Err(::linkage::InverseError::NonFinite);
+            }
+            let c = &self.constants;
+            let mut out = *reference;
+            #(#steps)*
+            if !out.iter().all(|a| a.is_finite()) {
+                return Err(::linkage::InverseError::NonFinite);
+            }
+            Ok(out)
+        }
+    })
 }
 
 fn numerical_body(

@@ -196,6 +196,7 @@ pub fn expand(
         _ => None,
     });
     let inverse_body = crate::emit::inverse::body(model, home.is_some());
+    let closed_form_method = crate::emit::inverse::closed_form_method(model);
     // A leg's length (input plus offset) must be positive.
     let ranges = model.inverses.iter().filter_map(|inv| match inv {
         Inverse::Distance { input, offset, .. } => {
@@ -281,9 +282,9 @@ pub fn expand(
             quote! {
                 let [yaw, pitch, roll, x, y, z] = Self::HOME;
                 let v = ::linkage::unknowns_from_pose(self, &::linkage::Pose::from_euler(yaw, pitch, roll, [x, y, z]));
-                let inputs = <Self as ::linkage::Mechanism<#n, #m>>::inverse(self, &v, &Self::HOME_INPUTS).map_err(|e| match e {
+                let inputs = self.closed_form_inputs(&v, &Self::HOME_INPUTS).map_err(|e| match e {
                     ::linkage::InverseError::Unreachable { input } | ::linkage::InverseError::NoClosedForm { input } => ::linkage::SolveError::InvalidInput { input },
-                    ::linkage::InverseError::NonFinite => ::linkage::SolveError::NonFinite,
+                    ::linkage::InverseError::NonFinite | ::linkage::InverseError::Inconsistent => ::linkage::SolveError::NonFinite,
                 })?;
                 ::linkage::Start::new(self, v, inputs)
             }
@@ -415,6 +416,8 @@ pub fn expand(
             }
 
             #home_items
+
+            #closed_form_method
 
             /// The moving links [`Self::link_pose`] reports on: the platform, then the named
             /// links between it and the base.
