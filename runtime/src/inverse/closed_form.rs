@@ -20,7 +20,7 @@ use crate::Mechanism;
 pub const CLOSED_FORM_ACCEPT: f64 = 1e-3;
 
 /// Whether inputs `x` place the platform at `v` (its first `held` coordinates): every
-/// equation whose unknowns are all the platform's holds to [`CLOSED_FORM_ACCEPT`] of the
+/// equation whose unknowns are all the platform's holds to `CLOSED_FORM_ACCEPT` of the
 /// scale, as a length (measured as the numerical inverse measures). Equations that read the
 /// links between are left out: a caller may give the platform alone.
 pub fn closed_form_places<S: Mechanism<N, M>, const N: usize, const M: usize>(
