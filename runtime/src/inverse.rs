@@ -641,28 +641,10 @@ fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
     f: &[f64; N],
 ) -> f64 {
-    let off = off_in(sys, v, x, f, &[false; N]);
-    // And the equations left out as dependent at home: platform pivots on another component
-    // of an over-constrained mechanism's square system are no placement of it.
-    let off = off.max(sys.dependent_offset(v, x));
-    if off.is_nan() { f64::INFINITY } else { off }
-}
-
-/// [`off_by`] over the equations not in `skip`, without the dependent ones.
-fn off_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-    f: &[f64; N],
-    skip: &[bool; N],
-) -> f64 {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
     let mut off = 0.0f64;
     for r in 0..N {
-        if skip[r] {
-            continue;
-        }
         let slope = b[r].iter().fold(0.0f64, |m, q| m.max(q.abs()));
         let here = if slope > 0.0 {
             f[r].abs() / slope
@@ -673,6 +655,9 @@ fn off_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
         };
         off = off.max(here);
     }
+    // And the equations left out as dependent at home: platform pivots on another component
+    // of an over-constrained mechanism's square system are no placement of it.
+    off = off.max(sys.dependent_offset(v, x));
     if off.is_nan() { f64::INFINITY } else { off }
 }
 

@@ -5,9 +5,6 @@
 //! others. So the inputs are returned only where every equation on the platform's points
 //! alone holds with them.
 
-use super::off_in;
-use crate::Mechanism;
-
 /// How far, relative to the scale (1 + the largest platform coordinate), the equations on the
 /// platform's points may be from holding with the closed forms' inputs: a thousandth. Far
 /// looser than the numerical inverse's [`ACCEPT`](super::ACCEPT), which must decide whether
@@ -19,32 +16,32 @@ use crate::Mechanism;
 /// forms give, as it always did.
 pub const CLOSED_FORM_ACCEPT: f64 = 1e-3;
 
-/// Whether inputs `x` place the platform at `v` (its first `held` coordinates): every
-/// equation whose unknowns are all the platform's holds to `CLOSED_FORM_ACCEPT` of the
-/// scale, as a length (measured as the numerical inverse measures). Equations that read the
+/// Whether the closed forms' inputs place the platform at `v` (its first `held`
+/// coordinates): F at them is `f`, ∂F/∂v's values `b`, and `rows` the equations whose
+/// unknowns are all the platform's, each with the indices of its values (the generator's
+/// list). Each must hold to `CLOSED_FORM_ACCEPT` of the scale, as a length: its residual
+/// over its largest derivative, as the numerical inverse measures. Equations that read the
 /// links between are left out: a caller may give the platform alone.
-pub fn closed_form_places<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
+pub fn closed_form_places<const N: usize>(
     v: &[f64; N],
-    x: &[f64; M],
     held: usize,
+    f: &[f64; N],
+    b: &[f64],
+    rows: &[(usize, &[usize])],
 ) -> bool {
-    // Rows that read a coordinate past the platform's, or none at all.
-    let mut skip = [true; N];
-    for &(r, _) in S::PATTERN {
-        if let Some(s) = skip.get_mut(r) {
-            *s = false;
-        }
-    }
-    for &(r, c) in S::PATTERN {
-        if c >= held
-            && let Some(s) = skip.get_mut(r)
-        {
-            *s = true;
-        }
-    }
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
     let scale = 1.0 + v.iter().take(held).fold(0.0f64, |m, q| m.max(q.abs()));
-    off_in(sys, v, x, &f, &skip) <= CLOSED_FORM_ACCEPT * scale
+    let bound = CLOSED_FORM_ACCEPT * scale;
+    rows.iter().all(|&(r, entries)| {
+        let slope = entries
+            .iter()
+            .filter_map(|&k| b.get(k))
+            .fold(0.0f64, |m, q| m.max(q.abs()));
+        let fr = f.get(r).copied().unwrap_or(f64::NAN);
+        // NaN anywhere fails; an equation no coordinate moves must hold exactly.
+        if slope > 0.0 {
+            fr.abs() <= bound * slope
+        } else {
+            fr == 0.0
+        }
+    })
 }

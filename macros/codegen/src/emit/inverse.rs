@@ -9,8 +9,8 @@ use crate::model::{Inverse, Model};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// The body of `Mechanism::inverse`.
-pub fn body(model: &Model, has_home: bool) -> TokenStream {
+/// The body of `Mechanism::inverse`; `pattern` is ∂F/∂v's, in the order of its values.
+pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenStream {
     let steps: Vec<TokenStream> = model
         .inverses
         .iter()
@@ -21,11 +21,24 @@ pub fn body(model: &Model, has_home: bool) -> TokenStream {
         _ => None,
     });
     let held = 3 * model.points.len();
+    let n = model.unknowns.len();
+    let nnz = pattern.len();
+    // The equations on the platform's points alone, each with the indices of its values.
+    let rows = (0..n).filter_map(|r| {
+        let entries: Vec<usize> = (0..nnz).filter(|&k| pattern[k].0 == r).collect();
+        let platform_only = !entries.is_empty() && entries.iter().all(|&k| pattern[k].1 < held);
+        platform_only.then(|| quote!((#r, &[#(#entries),*])))
+    });
     match numerical {
         // Each closed form reads one point: the others must be where the inputs put them.
         None => quote! {
             let out = self.closed_form_inputs(v, reference)?;
-            if !::linkage::__private::closed_form_places(self, v, &out, #held) {
+            const ROWS: &[(usize, &[usize])] = &[#(#rows),*];
+            let mut f = [0.0; #n];
+            self.residual(v, &out, &mut f);
+            let mut b = [0.0; #nnz];
+            self.jacobian(v, &out, &mut b);
+            if !::linkage::__private::closed_form_places(v, #held, &f, &b, ROWS) {
                 return Err(::linkage::InverseError::Inconsistent);
             }
             Ok(out)

@@ -195,7 +195,8 @@ pub fn expand(
         Inverse::None { inputs } => inputs.first().copied(),
         _ => None,
     });
-    let inverse_body = crate::emit::inverse::body(model, home.is_some());
+    let pattern_pairs: Vec<(usize, usize)> = jac.iter().map(|(r, c, _)| (*r, *c)).collect();
+    let inverse_body = crate::emit::inverse::body(model, home.is_some(), &pattern_pairs);
     let closed_form_method = crate::emit::inverse::closed_form_method(model);
     // A leg's length (input plus offset) must be positive.
     let ranges = model.inverses.iter().filter_map(|inv| match inv {
