@@ -8,42 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use linkage::{arc_length, Mechanism, Options, Start, Status};
 use std::hint::black_box;
 
-// The integration tests' declarations (`tests/integration/mechanisms/{pan_tilt,scara}.rs`),
-// again: the bench crate cannot reach a test binary's modules.
-linkage::mechanism! {
-    /// The tilt axis T→Tx is 50 above the base along the pan axis; Q is a camera point.
-    pub struct PanTilt;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    platform { T = [0.0, 0.0, 50.0], Tx = [10.0, 0.0, 50.0], Ty = [0.0, 10.0, 50.0], Q = [0.0, 50.0, 60.0] }
-    link yoke { }
-    chain head = base - R(active pan, axis = O -> Oz) - yoke - R(active tilt, axis = T -> Tx) - platform;
-}
-
-linkage::mechanism! {
-    /// A SCARA: shoulder, elbow, a vertical quill, the tool turning about it.
-    pub struct Scara;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Tz = [350.0, 0.0, -49.0] }
-    link arm1 { E = [200.0, 0.0, 0.0], Ez = [200.0, 0.0, 1.0] }
-    link arm2 { W = [350.0, 0.0, 0.0], Wz = [350.0, 0.0, 1.0] }
-    link quill { K = [360.0, 0.0, -20.0] }
-    chain arm = base - R(active q1, axis = O -> Oz) - arm1 - R(active q2, axis = E -> Ez) - arm2
-        - P(active d, axis = W -> Wz) - quill - R(active q4, axis = T -> Tz) - platform;
-}
-
-linkage::mechanism! {
-    /// The SCARA with a wrist that tilts the tool about T→Tx.
-    pub struct ScaraWrist;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Q = [350.0, 30.0, -80.0] }
-    link arm1 { E = [200.0, 0.0, 0.0], Ez = [200.0, 0.0, 1.0] }
-    link arm2 { W = [350.0, 0.0, 0.0], Wz = [350.0, 0.0, 1.0] }
-    link quill { K = [360.0, 0.0, -20.0], Tz = [350.0, 0.0, -49.0] }
-    link wrist { Kw = [350.0, 20.0, -50.0] }
-    chain arm = base - R(active q1, axis = O -> Oz) - arm1 - R(active q2, axis = E -> Ez) - arm2
-        - P(active d, axis = W -> Wz) - quill - R(active q4, axis = T -> Tz) - wrist
-        - R(active q5, axis = T -> Tx) - platform;
-}
+use linkage_serial_arms::{PanTilt, Scara, ScaraWrist};
 
 /// The unknowns at `x`, by continuation from home (the tests' tolerance).
 fn forward<S: Mechanism<N, M>, const N: usize, const M: usize>(

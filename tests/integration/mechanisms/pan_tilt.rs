@@ -1,19 +1,13 @@
 //! A serial pan-tilt head (two freedoms, one chain): a pan R about the base's vertical and a
 //! tilt R about a horizontal axis the platform carries. Against the rotation its conventions
-//! promise: Rz(pan)·Rx(tilt), the tilt axis turned with the yoke.
+//! promise: Rz(pan)·Rx(tilt), the tilt axis turned with the yoke. Declared in
+//! `examples/serial-arms`.
 
 use super::check_inverse;
 use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Pose, Status};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
-linkage::mechanism! {
-    /// The tilt axis T→Tx is 50 above the base along the pan axis; Q is a camera point.
-    pub struct PanTilt;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    platform { T = [0.0, 0.0, 50.0], Tx = [10.0, 0.0, 50.0], Ty = [0.0, 10.0, 50.0], Q = [0.0, 50.0, 60.0] }
-    link yoke { }
-    chain head = base - R(active pan, axis = O -> Oz) - yoke - R(active tilt, axis = T -> Tx) - platform;
-}
+pub use linkage_serial_arms::PanTilt;
 
 #[test]
 fn pan_tilt_has_two_freedoms_by_rank_and_exact_jacobians() {

@@ -2,41 +2,13 @@
 //! the same SCARA with a wrist that tilts the tool (R). Against the product of exponentials:
 //! each joint's motion about (or along) its axis as declared at home, composed from the tool
 //! back to the base — what the pairs' conventions promise (the link after a pair moves
-//! relative to the link before it, from home).
+//! relative to the link before it, from home). Declared in `examples/serial-arms`, which the
+//! inverse's benchmark and the no-panic proof share.
 
 use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Pose, Status};
 use linkage_tests::{check_factorization, check_jacobians, max_diff, Rng};
 
-linkage::mechanism! {
-    /// Shoulder at O, elbow at E (200 out), quill at W (350 out) sliding along +z, the tool
-    /// turning about the quill's axis through T.
-    pub struct Scara;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Tz = [350.0, 0.0, -49.0] }
-    link arm1 { E = [200.0, 0.0, 0.0], Ez = [200.0, 0.0, 1.0] }
-    link arm2 { W = [350.0, 0.0, 0.0], Wz = [350.0, 0.0, 1.0] }
-    // A pivot off the quill's axis, so that the quill's own turn (and with it the tool's
-    // angle relative to it) is defined.
-    link quill { K = [360.0, 0.0, -20.0] }
-    chain arm = base - R(active q1, axis = O -> Oz) - arm1 - R(active q2, axis = E -> Ez) - arm2
-        - P(active d, axis = W -> Wz) - quill - R(active q4, axis = T -> Tz) - platform;
-}
-
-linkage::mechanism! {
-    /// The SCARA with a wrist: after the quill's turn, the tool tilts about T→Tx.
-    pub struct ScaraWrist;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    // The quill's axis point Tz is the quill's (the wrist shares it), not the tool's: the tool
-    // tilts away from it.
-    platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Q = [350.0, 30.0, -80.0] }
-    link arm1 { E = [200.0, 0.0, 0.0], Ez = [200.0, 0.0, 1.0] }
-    link arm2 { W = [350.0, 0.0, 0.0], Wz = [350.0, 0.0, 1.0] }
-    link quill { K = [360.0, 0.0, -20.0], Tz = [350.0, 0.0, -49.0] }
-    link wrist { Kw = [350.0, 20.0, -50.0] }
-    chain arm = base - R(active q1, axis = O -> Oz) - arm1 - R(active q2, axis = E -> Ez) - arm2
-        - P(active d, axis = W -> Wz) - quill - R(active q4, axis = T -> Tz) - wrist
-        - R(active q5, axis = T -> Tx) - platform;
-}
+pub use linkage_serial_arms::{Scara, ScaraWrist};
 
 /// A turn by `angle` about the line through `centre` along `axis` ('z' or 'x').
 fn turn(p: [f64; 3], centre: [f64; 3], axis: char, angle: f64) -> [f64; 3] {

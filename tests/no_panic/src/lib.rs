@@ -157,20 +157,9 @@ proven!(rps, Rps, 9, 3);
 proven!(stewart, Stewart, 18, 6);
 proven!(hexapod, RssHexapod, 18, 6);
 
-linkage::mechanism! {
-    /// A SCARA with a wrist that tilts the tool: its chain has no closed-form inverse, so
-    /// `inverse` is the numerical one (`linkage`'s inverse.rs).
-    pub struct ScaraWrist;
-    base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
-    platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Q = [350.0, 30.0, -80.0] }
-    link arm1 { E = [200.0, 0.0, 0.0], Ez = [200.0, 0.0, 1.0] }
-    link arm2 { W = [350.0, 0.0, 0.0], Wz = [350.0, 0.0, 1.0] }
-    link quill { K = [360.0, 0.0, -20.0], Tz = [350.0, 0.0, -49.0] }
-    link wrist { Kw = [350.0, 20.0, -50.0] }
-    chain arm = base - R(active q1, axis = O -> Oz) - arm1 - R(active q2, axis = E -> Ez) - arm2
-        - P(active d, axis = W -> Wz) - quill - R(active q4, axis = T -> Tz) - wrist
-        - R(active q5, axis = T -> Tx) - platform;
-}
+/// A SCARA with a wrist that tilts the tool: its chain has no closed-form inverse, so
+/// `inverse` is the numerical one (`linkage`'s inverse.rs).
+pub use linkage_serial_arms::ScaraWrist;
 
 /// Inverse kinematics: the closed forms (the 3-RPS's legs, the Stewart platform's, the
 /// hexapod's cranks) and the numerical inverse (the SCARA with a wrist).
