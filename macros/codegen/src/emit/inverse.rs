@@ -9,17 +9,17 @@ use crate::model::{Inverse, Model};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// The body of `Mechanism::inverse`; `pattern` is ∂F/∂v's, in the order of its values.
-pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenStream {
-    let steps: Vec<TokenStream> = model
-        .inverses
-        .iter()
-        .map(|inv| closed_form(model, inv))
-        .collect();
-    let numerical = model.inverses.iter().find_map(|inv| match inv {
+/// The first input of a chain with no closed form, if there is one: then the inverse is
+/// numerical (and `home_start` starts from the declared configuration itself).
+pub fn numerical_input(model: &Model) -> Option<usize> {
+    model.inverses.iter().find_map(|inv| match inv {
         Inverse::None { inputs } => inputs.first().copied(),
         _ => None,
-    });
+    })
+}
+
+/// The body of `Mechanism::inverse`; `pattern` is ∂F/∂v's, in the order of its values.
+pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenStream {
     let held = 3 * model.points.len();
     let n = model.unknowns.len();
     let nnz = pattern.len();
@@ -29,7 +29,7 @@ pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenS
         let platform_only = !entries.is_empty() && entries.iter().all(|&k| pattern[k].1 < held);
         platform_only.then(|| quote!((#r, &[#(#entries),*])))
     });
-    match numerical {
+    match numerical_input(model) {
         // Each closed form reads one point: the others must be where the inputs put them.
         None => quote! {
             let out = self.closed_form_inputs(v, reference)?;
@@ -43,7 +43,7 @@ pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenS
             }
             Ok(out)
         },
-        Some(first) => numerical_body(model, has_home, first, &steps),
+        Some(first) => numerical_body(model, has_home, first),
     }
 }
 
@@ -51,11 +51,7 @@ pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenS
 /// give (not checked against the points they do not read: `inverse` does that, while
 /// `home_start` leaves a home a calibration moved a little to `Start::new`, which refines it).
 pub fn closed_form_method(model: &Model) -> Option<TokenStream> {
-    if model
-        .inverses
-        .iter()
-        .any(|inv| matches!(inv, Inverse::None { inputs } if !inputs.is_empty()))
-    {
+    if numerical_input(model).is_some() {
         return None;
     }
     let steps = model.inverses.iter().map(|inv| closed_form(model, inv));
@@ -81,12 +77,8 @@ pub fn closed_form_method(model: &Model) -> Option<TokenStream> {
     })
 }
 
-fn numerical_body(
-    model: &Model,
-    has_home: bool,
-    first: usize,
-    steps: &[TokenStream],
-) -> TokenStream {
+fn numerical_body(model: &Model, has_home: bool, first: usize) -> TokenStream {
+    let steps = model.inverses.iter().map(|inv| closed_form(model, inv));
     let n = model.unknowns.len();
     let m = model.inputs.len();
     let held = 3 * model.points.len();

@@ -191,10 +191,7 @@ pub fn expand(
     });
     // A chain without a closed-form inverse makes the inverse numerical, and `home_start` the
     // declared configuration itself.
-    let no_closed_form = model.inverses.iter().find_map(|inv| match inv {
-        Inverse::None { inputs } => inputs.first().copied(),
-        _ => None,
-    });
+    let no_closed_form = crate::emit::inverse::numerical_input(model);
     let pattern_pairs: Vec<(usize, usize)> = jac.iter().map(|(r, c, _)| (*r, *c)).collect();
     let inverse_body = crate::emit::inverse::body(model, home.is_some(), &pattern_pairs);
     let closed_form_method = crate::emit::inverse::closed_form_method(model);
