@@ -32,13 +32,22 @@ pub enum StepProof {
     /// `radius`; the root at the new sample is within `error_bound` of the given point in
     /// every coordinate (a proven bound, from the last piece's enclosure).
     Proven {
+        /// How many certificates cover the joint segment.
         pieces: u32,
+        /// The smallest radius of uniqueness among them, in the unknowns' units.
         radius: f64,
+        /// A proven bound on the distance from the given point to the root, in every
+        /// coordinate.
         error_bound: f64,
     },
     /// Not proven (which does not mean the branch changed): `reason` is why the last piece
     /// tried failed, after `pieces` pieces had passed.
-    Unproven { pieces: u32, reason: CertifyError },
+    Unproven {
+        /// How many pieces had been certified before the one that failed.
+        pieces: u32,
+        /// Why that piece failed.
+        reason: CertifyError,
+    },
 }
 
 impl StepProof {

@@ -19,6 +19,7 @@ use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 /// A solve that may have gone around a fold.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Detoured<const N: usize, const M: usize> {
+    /// The solve's result at the target, whichever way it went.
     pub solution: Solution<N>,
     /// The waypoint of the detour, if the straight segment was not the way: the solution is
     /// then the detour's, `Converged` or, where rounding near the singular surface stopped the

@@ -8,9 +8,15 @@ pub use linkage_geometry::GeometryError;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum InverseError {
     /// No joint value of input `input` places the chain's pivots there.
-    Unreachable { input: usize },
+    Unreachable {
+        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        input: usize,
+    },
     /// Input `input` has no closed-form inverse for this chain.
-    NoClosedForm { input: usize },
+    NoClosedForm {
+        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        input: usize,
+    },
     /// The pose, the pivots or the reference contain NaN or infinite values, or the inputs
     /// they give overflow.
     NonFinite,

@@ -9,7 +9,9 @@ use core::ops::{Add, Mul, Neg, Sub};
 /// A closed interval `[lo, hi]` of reals.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interval {
+    /// The lower bound.
     pub lo: f64,
+    /// The upper bound.
     pub hi: f64,
 }
 
@@ -33,10 +35,13 @@ impl Interval {
         }
     }
 
+    /// Whether both bounds are finite and in order (`lo ≤ hi`): an interval that means
+    /// something.
     pub fn is_finite(&self) -> bool {
         self.lo.is_finite() && self.hi.is_finite() && self.lo <= self.hi
     }
 
+    /// The midpoint, rounded (halves summed, so that it cannot overflow).
     pub fn mid(&self) -> f64 {
         0.5 * self.lo + 0.5 * self.hi
     }
@@ -69,10 +74,13 @@ impl Interval {
         self.lo < other.lo && other.hi < self.hi
     }
 
+    /// Whether `x` lies in the interval, bounds included.
     pub fn contains(&self, x: f64) -> bool {
         self.lo <= x && x <= self.hi
     }
 
+    /// `{x² : x ∈ self}`, rounded outward: tighter than `self * self`, which does not know
+    /// both factors are the same x (for `[−1, 2]`, `[0, 4]` instead of `[−2, 4]`).
     pub fn sq(self) -> Self {
         let (a, b) = (self.lo * self.lo, self.hi * self.hi);
         if self.lo <= 0.0 && self.hi >= 0.0 {

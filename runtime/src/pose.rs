@@ -6,7 +6,9 @@ use crate::math::{asin, atan2, cos, cross3, dot3, norm3, scale3, sin, sub3};
 /// A rigid transformation: `p_base = rotation · p_platform + translation`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose {
+    /// The platform's axes in the base frame (columns), row-major: `rotation[i][j]` is R_ij.
     pub rotation: [[f64; 3]; 3],
+    /// The platform origin in the base frame.
     pub translation: [f64; 3],
 }
 

@@ -8,9 +8,13 @@ use core::ops::{Add, Mul, Neg, Sub};
 pub trait Scalar:
     Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
 {
+    /// The number `x` (for an interval, the point `[x, x]`).
     fn from_f64(x: f64) -> Self;
+    /// `self²` (for an interval, of one variable: never negative).
     fn sq(self) -> Self;
+    /// The sine (for an interval, an enclosure of the sines over it).
     fn sin(self) -> Self;
+    /// The cosine (as [`Scalar::sin`]).
     fn cos(self) -> Self;
 }
 

@@ -21,21 +21,36 @@ pub enum Status {
     /// The straight joint-space path from the start to the target turns back in λ at this λ:
     /// it leaves the valid joint space through a fold (a direct singularity). Continuing
     /// along the curve would lead to another assembly mode.
-    Fold { lambda: f64 },
+    Fold {
+        /// Where on the path: λ is 0 at the start and 1 at the target.
+        lambda: f64,
+    },
     /// The sign of det B differs from the start's: the result lies across a singular
     /// surface, on another branch. Also where an equation left out as dependent at home
     /// fails at the result ([`Mechanism::dependent_offset`](crate::Mechanism::dependent_offset)):
     /// another component of an over-constrained mechanism's square system.
     BranchChanged,
     /// Newton did not converge within the iteration limit, or its iterates overflowed.
-    NotConverged { residual_norm: f64 },
+    NotConverged {
+        /// ‖F(v, x)‖ at the returned v.
+        residual_norm: f64,
+    },
     /// Newton stopped improving at the floor rounding sets near a singularity before the
     /// requested tolerance was met: `achieved` is the error estimate (‖B⁻¹F‖) at the result.
-    ToleranceNotMet { achieved: f64 },
+    ToleranceNotMet {
+        /// The error estimate reached, above the tolerance.
+        achieved: f64,
+    },
     /// The step size fell below its minimum before reaching λ = 1.
-    StepTooSmall { lambda: f64 },
+    StepTooSmall {
+        /// Where on the path: λ is 0 at the start and 1 at the target.
+        lambda: f64,
+    },
     /// B (or the bordered matrix) became singular and the method cannot go on.
-    Singular { lambda: f64 },
+    Singular {
+        /// Where on the path: λ is 0 at the start and 1 at the target.
+        lambda: f64,
+    },
 }
 
 impl Status {
@@ -100,10 +115,13 @@ impl fmt::Display for Status {
 pub struct Solution<const N: usize> {
     /// The pivot coordinates reached (the last accepted point unless converged).
     pub v: [f64; N],
+    /// How the solve ended; only [`Status::Converged`] is ok ([`Solution::is_ok`]).
     pub status: Status,
     /// How far along the homotopy the method got (1 when converged).
     pub lambda: f64,
+    /// Continuation steps accepted (0 for the methods that follow no path).
     pub steps_accepted: u32,
+    /// Continuation steps rejected and retried shorter.
     pub steps_rejected: u32,
     /// Newton corrections computed, chord (simplified Newton) corrections included: those
     /// reuse the last factorisation (NR takes one where it saves a factorisation).
@@ -130,13 +148,23 @@ pub enum SolveError {
     /// overflow at it.
     NonFinite,
     /// An [`Options`] value is out of range: `reason` says which and why.
-    InvalidOptions { reason: &'static str },
+    InvalidOptions {
+        /// Which option, and the range it must lie in.
+        reason: &'static str,
+    },
     /// Joint input `input` is out of its physical range (e.g. a negative leg length).
-    InvalidInput { input: usize },
+    InvalidInput {
+        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        input: usize,
+    },
     /// B is singular at the start configuration.
     SingularStart,
     /// The start configuration does not satisfy F(v0, x0) = 0.
-    InconsistentStart { residual_norm: f64 },
+    InconsistentStart {
+        /// The start's own Newton correction ‖B⁻¹F(v0, x0)‖, or ‖F(v0, x0)‖ where it was
+        /// judged on the residual.
+        residual_norm: f64,
+    },
 }
 
 impl SolveError {

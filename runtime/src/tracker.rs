@@ -34,6 +34,7 @@ const FLOOR_BAND: f64 = 10.0;
 /// One tracked sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample<const N: usize> {
+    /// The pivot coordinates at the sample, on the start's branch.
     pub v: [f64; N],
     /// |det B| / |det B at the start|: how far from a direct singularity (0 at one).
     pub proximity: f64,
@@ -57,7 +58,9 @@ pub enum TrackError {
     /// proven to keep the branch ([`StepProof::Unproven`](crate::StepProof::Unproven) says
     /// after how many pieces and why). Not a statement that the branch changed.
     Unproven {
+        /// How many pieces had been certified before the one that failed.
         pieces: u32,
+        /// Why that piece failed.
         reason: crate::CertifyError,
     },
 }
@@ -175,6 +178,10 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
+    /// A tracker of `sys` (owned: a controller keeps one per machine) on the branch of `start`,
+    /// solving every sample to `options`. Nothing is checked here: a start made for another
+    /// geometry, or options out of range, are refused at the first [`Tracker::update`] as
+    /// [`TrackError::Input`], and the tracker stays at the start.
     pub fn new(sys: S, start: Start<N, M>, options: Options) -> Self {
         // A start made for another geometry is refused at the first sample, like bad options.
         let options_checked = options
@@ -244,6 +251,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         (&self.v, &self.x)
     }
 
+    /// The mechanism tracked.
     pub fn mechanism(&self) -> &S {
         &self.sys
     }

@@ -6,25 +6,33 @@ use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 /// `re + i·im`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Complex {
+    /// The real part.
     pub re: f64,
+    /// The imaginary part.
     pub im: f64,
 }
 
 impl Complex {
+    /// 0.
     pub const ZERO: Complex = Complex { re: 0.0, im: 0.0 };
+    /// 1.
     pub const ONE: Complex = Complex { re: 1.0, im: 0.0 };
+    /// The imaginary unit.
     pub const I: Complex = Complex { re: 0.0, im: 1.0 };
 
+    /// `re + i·im`.
     #[inline(always)]
     pub const fn new(re: f64, im: f64) -> Self {
         Complex { re, im }
     }
 
+    /// The real number `re`.
     #[inline(always)]
     pub const fn real(re: f64) -> Self {
         Complex { re, im: 0.0 }
     }
 
+    /// The complex conjugate.
     #[inline(always)]
     pub fn conj(self) -> Self {
         Complex::new(self.re, -self.im)
@@ -49,6 +57,7 @@ impl Complex {
         self.re.abs().max(self.im.abs())
     }
 
+    /// `s · z` for a real `s`.
     #[inline(always)]
     pub fn scale(self, s: f64) -> Self {
         Complex::new(self.re * s, self.im * s)
@@ -67,6 +76,7 @@ impl Complex {
         Complex::new(a / d, -b / d)
     }
 
+    /// Whether both parts are finite.
     #[inline(always)]
     pub fn is_finite(self) -> bool {
         self.re.is_finite() && self.im.is_finite()

@@ -83,20 +83,32 @@ pub enum ModesError {
     /// An input or option is NaN or infinite.
     NonFinite,
     /// Input `input` is out of its range (e.g. a negative leg length).
-    InvalidInput { input: usize },
+    InvalidInput {
+        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        input: usize,
+    },
     /// The seeding reached solutions of F(v, x) = 0, and ∂F/∂v was singular at every one: the
     /// geometry is architecture-singular (or has a self-motion everywhere), so the family has
     /// no isolated roots to count.
     Degenerate,
     /// No seeding attempt converged onto F(v, x) = 0 at all (from random complex placements
     /// and inputs): nothing is known about the geometry, only that no start was found.
-    Unseeded { attempts: usize },
+    Unseeded {
+        /// The seeding attempts made.
+        attempts: usize,
+    },
     /// Monodromy found more than `K` solutions.
-    Capacity { capacity: usize },
+    Capacity {
+        /// `K`, the most solutions the set holds.
+        capacity: usize,
+    },
     /// More than 255 unknowns.
     TooLarge,
     /// A given start solution is not a nonsingular root at the given parameters.
-    BadStart { index: usize },
+    BadStart {
+        /// The start's index in the slice given.
+        index: usize,
+    },
 }
 
 impl core::fmt::Display for ModesError {

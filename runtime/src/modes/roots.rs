@@ -34,6 +34,7 @@ pub struct Endpoint<const N: usize> {
     pub v: [Complex; N],
     /// The same point in the tracker's coordinates (accurate also far out).
     pub(crate) z: [Complex; N],
+    /// What the endpoint is: a real or complex root, or why the path gave none.
     pub kind: EndpointKind,
     /// Steps the tracker took (over both attempts if the path was retracked).
     pub steps: usize,

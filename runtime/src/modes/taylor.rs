@@ -10,8 +10,10 @@ use core::ops::{Add, Mul, Neg, Sub};
 pub struct Series<const K: usize>(pub [Complex; K]);
 
 impl<const K: usize> Series<K> {
+    /// The zero series.
     pub const ZERO: Self = Series([Complex::ZERO; K]);
 
+    /// The constant series `c`.
     #[inline(always)]
     pub fn constant(c: Complex) -> Self {
         let mut s = Self::ZERO;
