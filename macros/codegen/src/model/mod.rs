@@ -14,6 +14,7 @@ pub mod mobility;
 pub mod reference;
 pub mod rigid;
 pub mod shapes;
+pub mod turn;
 
 pub use build::build;
 pub use builder::Builder;

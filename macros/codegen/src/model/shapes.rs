@@ -18,7 +18,7 @@ use crate::expr::{self, Expr, Vec3};
 use crate::front::ids::{ChainId, InputId, LinkId, PivotId};
 use crate::front::resolved::{Decl, LinkRole, Pair, PairKind, Value};
 use crate::model::builder::Scalar;
-use crate::model::{is_point_joint, Builder, Inverse, PointRef, Recipe};
+use crate::model::{is_point_joint, turn, Builder, Inverse, PointRef, Recipe};
 use syn::Error;
 
 /// A platform pivot a chain ends on: its id and its place among the platform's pivots.
@@ -433,12 +433,7 @@ pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> 
                     let u = part(b, 6, "u");
                     let w = part(b, 9, "w");
                     let th = Expr::Input(inputs[0]);
-                    let cos = Expr::Cos(Box::new(th.clone()));
-                    let sin = Expr::Sin(Box::new(th.clone()));
-                    let mut t = expr::vadd(
-                        &o,
-                        &expr::vadd(&expr::vscale(&cos, &u), &expr::vscale(&sin, &w)),
-                    );
+                    let mut t = turn::turned(&o, &u, &w, &th);
                     let inv = match kind {
                         PairKind::R => Inverse::RevoluteRod {
                             input: inputs[0],
@@ -464,12 +459,7 @@ pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> 
                             *lead,
                             format!("lead_{chain}"),
                         );
-                        let rise = Expr::Product(vec![
-                            Expr::Num(1.0 / (2.0 * std::f64::consts::PI)),
-                            lead,
-                            th,
-                        ])
-                        .simplify();
+                        let rise = turn::helical_rise(lead, th);
                         t = expr::vadd(&t, &expr::vscale(&rise, &e));
                     }
                     if kind == PairKind::C {

@@ -7,7 +7,7 @@ use super::{err, PointId, Topology};
 use crate::expr::{self, Expr, Vec3};
 use crate::front::resolved::{Pair, PairKind};
 use crate::model::builder::Scalar;
-use crate::model::{Builder, PointRef, Recipe};
+use crate::model::{turn, Builder, PointRef, Recipe};
 use syn::Error;
 
 /// Point `q` of a link placed by `pair` from the base, in closed form.
@@ -89,12 +89,7 @@ pub fn placed(
             let u = part(b, 6, "u");
             let w = part(b, 9, "w");
             let th = Expr::Input(inputs[0]);
-            let cos = Expr::Cos(Box::new(th.clone()));
-            let sin = Expr::Sin(Box::new(th.clone()));
-            let mut t = expr::vadd(
-                &o,
-                &expr::vadd(&expr::vscale(&cos, &u), &expr::vscale(&sin, &w)),
-            );
+            let mut t = turn::turned(&o, &u, &w, &th);
             if kind == PairKind::H || kind == PairKind::C {
                 let e = part(b, 0, "e");
                 let rise = if kind == PairKind::H {
@@ -107,12 +102,7 @@ pub fn placed(
                         lead,
                         format!("lead_{q}"),
                     );
-                    Expr::Product(vec![
-                        Expr::Num(1.0 / (2.0 * std::f64::consts::PI)),
-                        lead,
-                        th,
-                    ])
-                    .simplify()
+                    turn::helical_rise(lead, th)
                 } else {
                     Expr::Input(inputs[1])
                 };
