@@ -161,8 +161,8 @@ pub enum SolveError {
     SingularStart,
     /// The start configuration does not satisfy F(v0, x0) = 0.
     InconsistentStart {
-        /// The start's own Newton correction ‖B⁻¹F(v0, x0)‖, or ‖F(v0, x0)‖ where it was
-        /// judged on the residual.
+        /// ‖F(v0, x0)‖ at the start as given (the refusal itself judges its Newton
+        /// correction, a length).
         residual_norm: f64,
     },
 }
