@@ -153,8 +153,15 @@ fn closed_form(model: &Model, inv: &Inverse) -> TokenStream {
         } => {
             let g = point(*q);
             let (o, u, w) = (consts3(*o), consts3(*u), consts3(*w));
-            quote!(out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
-                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
+            // An angle is returned within half a turn of its reference: a reference too
+            // large for that would round the angle found away.
+            quote! {
+                if !#p::turn_reference_ok(reference[#input]) {
+                    return Err(::linkage::InverseError::FarReference { input: #input });
+                }
+                out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
+                    .ok_or(::linkage::InverseError::Unreachable { input: #input })?;
+            }
         }
         Inverse::PrismaticRod {
             input,
