@@ -38,7 +38,8 @@
 //! its motion on a straight path, in 16 least-squares steps of which only the last must hold;
 //! last, the inputs that turn started a quarter, half and three quarters of a turn from the
 //! reference. An input the equations hold only through its sine and cosine is returned within
-//! half a turn of the reference.
+//! half a turn of the reference (the generated caller refuses a reference too far out for
+//! that, `InverseError::FarReference`).
 
 use core::cell::Cell;
 
@@ -47,7 +48,6 @@ use crate::lu::Lu;
 use crate::math::sqrt;
 use crate::pose::{Pose, pose_from_unknowns, unknowns_from_pose};
 use crate::{InverseError, Mechanism};
-use linkage_geometry::turn_reference_ok;
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the given platform
 /// may be from the mechanism's motion and the answer's pivots from satisfying the equations.
@@ -144,16 +144,6 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
 ) -> Result<[f64; M], InverseError> {
     if !v.iter().chain(reference).chain(x0).all(|a| a.is_finite()) {
         return Err(InverseError::NonFinite);
-    }
-    // An angle is returned within half a turn of its reference: past the limit the sum would
-    // round the angle found away (the inputs found at 0 came back as 1e300 for a reference of
-    // 1e300, placing nothing where v is).
-    if let Some(&input) = plan
-        .turning
-        .iter()
-        .find(|&&i| reference.get(i).is_some_and(|&r| !turn_reference_ok(r)))
-    {
-        return Err(InverseError::FarReference { input });
     }
     let unreachable = InverseError::Unreachable {
         input: plan.unsolved,
