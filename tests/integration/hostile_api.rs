@@ -771,6 +771,85 @@ fn all_modes_at_hostile_inputs_options_and_centres() {
     }
 }
 
+/// A stored start set made of hostile values is refused, typed; `Start::new` at hostile
+/// points is a typed error or a start that holds; a left-out equation's offset at NaN is
+/// infinitely far, never small.
+#[test]
+fn stored_starts_and_starts_from_hostile_values() {
+    use linkage::modes::{AllModes, Complex, ModesError, ModesOptions};
+    let o = ModesOptions::default();
+    let modes = AllModes::<_, 9, 3, 32>::new(Rps3::new(), &o).unwrap();
+    let (p0, gamma) = (*modes.base_point().0, modes.base_point().1);
+    let starts: Vec<[Complex; 9]> = (0..modes.start_count())
+        .map(|i| modes.start(i).unwrap())
+        .collect();
+    for bad in HOSTILE {
+        let z = Complex::real(bad);
+        let tries = [
+            (p0.map(|_| z), gamma, starts.clone()),
+            (p0, z, starts.clone()),
+            (p0, gamma, vec![[z; 9]]),
+            (p0, gamma, {
+                let mut s = starts.clone();
+                s[1][4] = z;
+                s
+            }),
+        ];
+        for (k, (p, g, s)) in tries.into_iter().enumerate() {
+            let r = guard(|| AllModes::<_, 9, 3, 32>::from_starts(Rps3::new(), p, g, &s, &o))
+                .unwrap_or_else(|e| panic!("try {k} at {bad:e}: {e}"));
+            match r {
+                Ok(m) => assert!(
+                    m.start_count() == starts.len(),
+                    "try {k} at {bad:e}: accepted {} starts",
+                    m.start_count()
+                ),
+                Err(ModesError::NonFinite | ModesError::BadStart { .. }) => {}
+                Err(e) => panic!("try {k} at {bad:e}: {e:?}"),
+            }
+        }
+    }
+    let delta = Delta::new();
+    let start = delta.home_start().unwrap();
+    let five_bar = RootFiveBar::new();
+    let home = five_bar.home_start().unwrap();
+    assert_eq!(
+        five_bar.dependent_offset(&[f64::NAN; 3], home.x()),
+        f64::INFINITY
+    );
+    assert_eq!(five_bar.dependent_offset(home.v(), home.x()), 0.0);
+    for bad in HOSTILE {
+        // The error estimate never calls a point far off a root (or not finite) near one, and
+        // det B of a non-finite point is 0.
+        let off = start.v().map(|q| q + bad);
+        let estimate = linkage::error_estimate(&delta, &off, start.x());
+        if !bad.is_finite() || bad.abs() >= 1e17 {
+            assert!(!(estimate < 1.0), "{bad:e}: error estimate {estimate:e}");
+        }
+        if !bad.is_finite() {
+            assert_eq!(linkage::det_b(&delta, &off, start.x()), 0.0, "{bad:e}");
+        }
+        for v in [
+            [bad; 18],
+            start.v().map(|q| q + bad),
+            start.v().map(|q| q * bad),
+        ] {
+            for x in [*start.x(), [bad; 3]] {
+                match guard(|| Start::new(&delta, v, x)).unwrap() {
+                    Ok(s) => assert!(holds(&delta, s.v(), s.x()), "{bad:e}: {v:?} {x:?}"),
+                    Err(
+                        SolveError::NonFinite
+                        | SolveError::InconsistentStart { .. }
+                        | SolveError::SingularStart
+                        | SolveError::InvalidInput { .. },
+                    ) => {}
+                    Err(e) => panic!("{bad:e}: {e:?}"),
+                }
+            }
+        }
+    }
+}
+
 /// `set_pivot` and `set_geometry` with hostile values: a typed error and the mechanism
 /// unchanged, or a mechanism whose `home_start` is a typed error or a start that holds.
 #[test]
