@@ -13,9 +13,9 @@
 
 use linkage::velocity::{self, Twist, VelocityError, Wrench};
 use linkage::{
-    arc_length, arc_length_detour, certify, newton_homotopy, newton_raphson, pose_from_unknowns,
-    unknowns_from_pose, CertifyError, GeometryError, InverseError, Mechanism, NewtonRaphson,
-    Options, Pose, Solution, SolveError, Start, Status, TrackError, Tracker,
+    arc_length, arc_length_certified, arc_length_detour, certify, newton_homotopy, newton_raphson,
+    pose_from_unknowns, unknowns_from_pose, CertifyError, GeometryError, InverseError, Mechanism,
+    NewtonRaphson, Options, Pose, Solution, SolveError, Start, Status, TrackError, Tracker,
 };
 use linkage_examples::rps::Rps3;
 use linkage_serial_arms::{PanTilt, Scara};
@@ -503,6 +503,21 @@ fn solvers_keep_their_promises<S: Mechanism<N, M> + Clone, const N: usize, const
                 &x,
                 &o,
                 guard(|| arc_length_detour(sys, start, &x, &o).map(|d| d.solution)),
+            );
+            let certified = guard(|| arc_length_certified(sys, start, &x, &o));
+            if let Ok(Ok((sol, proof))) = &certified {
+                assert!(
+                    proof.is_none() || sol.is_ok(),
+                    "{at}: a proof of a solve that is not ok: {proof:?}"
+                );
+            }
+            judge(
+                &format!("{at} certified PH"),
+                sys,
+                start,
+                &x,
+                &o,
+                certified.map(|r| r.map(|(sol, _)| sol)),
             );
             for certified in [false, true] {
                 let r = guard(|| {
