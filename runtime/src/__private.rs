@@ -13,7 +13,7 @@ pub use crate::math::{cos, sin};
 
 pub use linkage_geometry::{
     along, axis_frame, collinear_coefficients, distance, normal_point, place,
-    prismatic_rod_inverse, revolute_rod_inverse, rigid_coefficients,
+    prismatic_rod_inverse, revolute_rod_inverse, rigid_coefficients, turn_reference_ok,
 };
 
 pub use linkage_geometry::{formula, recipe};
@@ -30,6 +30,42 @@ pub fn derive_constants(
     // Finite values whose squares overflow (a platform of 1e200 mm: the squared distances
     // between its pivots): say so rather than build equations of infinities.
     if out.iter().all(|c| c.is_finite()) {
+        Ok(())
+    } else {
+        Err(GeometryError::Overflow)
+    }
+}
+
+/// The checks of a generated `from_geometry` on its values `g` (named `names`, the formulas'
+/// slots already computed): every value finite — one set directly named first, since a
+/// formula of a NaN parameter is NaN too and the parameter is what to set; then a formula's
+/// slot, named with the parameter it follows (`sqrt` of a parameter set negative) — and every
+/// square finite (the equations are of degree 2 in the geometry as well: a rod of 1e300 was
+/// accepted, and every solve from it then failed).
+pub fn check_values(
+    names: &[&'static str],
+    followed: &[(&'static str, &'static str)],
+    g: &[f64],
+) -> Result<(), GeometryError> {
+    let follows = |k: usize| {
+        names
+            .get(k)
+            .and_then(|n| followed.iter().find(|(f, _)| f == n))
+    };
+    for (k, x) in g.iter().enumerate() {
+        if !x.is_finite() && follows(k).is_none() {
+            let name = names.get(k).copied().unwrap_or("");
+            return Err(GeometryError::NonFinite { name });
+        }
+    }
+    for (k, x) in g.iter().enumerate() {
+        if !x.is_finite()
+            && let Some(&(name, parameter)) = follows(k)
+        {
+            return Err(GeometryError::FormulaNotFinite { name, parameter });
+        }
+    }
+    if g.iter().all(|x| (x * x).is_finite()) {
         Ok(())
     } else {
         Err(GeometryError::Overflow)

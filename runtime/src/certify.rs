@@ -52,7 +52,8 @@ pub struct Certificate<const N: usize> {
 /// Why no certificate was found. Not a statement that none exists.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CertifyError {
-    /// A value is NaN or infinite.
+    /// A value is NaN or infinite, or a coordinate so large (1e100 or more) that the interval
+    /// bounds would overflow.
     NonFinite,
     /// B is singular (to working precision) at the point.
     Singular,
@@ -175,12 +176,14 @@ fn rows<S: Mechanism<N, M>, const N: usize, const M: usize>(
     half_width: &[f64; M],
     yt: &mut [[f64; N]; N],
 ) -> Result<Rows<N>, CertifyError> {
-    approximate_inverse(sys, c, x_mid, yt).ok_or(CertifyError::Singular)?;
-    // R: a power of two at least the largest coordinate (so r = ρR is exact).
+    // R: a power of two at least the largest coordinate (so r = ρR is exact). Checked before
+    // B is factored: a point too far out for the bounds is that, not a singular B (a delta at
+    // 1e300 was refused as `Singular`, a pan-tilt head there as `NonFinite`).
     let scale = c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     if !(scale < 1e100) {
         return Err(CertifyError::NonFinite);
     }
+    approximate_inverse(sys, c, x_mid, yt).ok_or(CertifyError::Singular)?;
     let reach = libm::exp2(libm::ceil(libm::log2(scale)));
     // F(c, P), and B over every box c ± ρR with inputs P. Non-finite values need no check
     // here: they make the rows' coefficients NaN or infinite, and the test fails on them.

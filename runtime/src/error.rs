@@ -24,6 +24,10 @@ pub enum InverseError {
     /// platform: with those inputs an equation on the platform's points fails (its pivots are
     /// not a rigid body at this geometry, or one the closed forms do not read is elsewhere).
     Inconsistent,
+    /// Input `input` is an angle, returned within half a turn of its reference, and the
+    /// reference is too large for that (beyond 2¹⁶ rad, about 10 400 turns): a double near it
+    /// no longer holds the angle found. Give a reference within a few turns.
+    FarReference { input: usize },
 }
 
 impl fmt::Display for InverseError {
@@ -39,6 +43,10 @@ impl fmt::Display for InverseError {
             InverseError::Inconsistent => {
                 write!(f, "the pivots are not one placement of the platform")
             }
+            InverseError::FarReference { input } => write!(
+                f,
+                "the reference of joint input {input} is too many turns out to return an angle near it"
+            ),
         }
     }
 }

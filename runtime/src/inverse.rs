@@ -38,7 +38,8 @@
 //! its motion on a straight path, in 16 least-squares steps of which only the last must hold;
 //! last, the inputs that turn started a quarter, half and three quarters of a turn from the
 //! reference. An input the equations hold only through its sine and cosine is returned within
-//! half a turn of the reference.
+//! half a turn of the reference (the generated caller refuses a reference too far out for
+//! that, `InverseError::FarReference`).
 
 use core::cell::Cell;
 

@@ -8,6 +8,7 @@ mod certify_adversarial;
 mod cli_regressions;
 mod file_readers_robustness;
 mod generated_systems;
+mod hostile_api;
 mod jacobians;
 mod mechanisms;
 mod modes;

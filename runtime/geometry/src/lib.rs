@@ -20,8 +20,8 @@ pub enum GeometryError {
     NonFinite { name: &'static str },
     /// No geometry value or pivot has this name.
     UnknownName,
-    /// The values are finite, but constants derived from them (squared distances) overflow:
-    /// the geometry is too large to compute with in f64.
+    /// The values are finite, but their squares or constants derived from them (squared
+    /// distances) overflow: the geometry is too large to compute with in f64.
     Overflow,
     /// The geometry value `name` (a pivot coordinate or a length) was declared as the
     /// parameter `parameter` and follows it: set the parameter instead.
@@ -38,6 +38,13 @@ pub enum GeometryError {
     DegenerateAxis,
     /// A link's length is zero or negative.
     NonPositiveLength { name: &'static str },
+    /// The geometry value `name`, declared as arithmetic on the parameters (the first it
+    /// reads: `parameter`), is not finite at their values: a square root of a negative, an
+    /// `asin` or `acos` out of [−1, 1], a division by zero.
+    FormulaNotFinite {
+        name: &'static str,
+        parameter: &'static str,
+    },
 }
 
 impl fmt::Display for GeometryError {
@@ -47,7 +54,7 @@ impl fmt::Display for GeometryError {
             GeometryError::UnknownName => write!(f, "no geometry value or pivot has that name"),
             GeometryError::Overflow => write!(
                 f,
-                "the geometry is too large: constants derived from it overflow"
+                "the geometry is too large: its squares or constants derived from it overflow"
             ),
             GeometryError::FollowsParameter { name, parameter } => write!(
                 f,
@@ -59,6 +66,10 @@ impl fmt::Display for GeometryError {
                 "a platform pivot is off the frame's plane but the system uses the coplanar form"
             ),
             GeometryError::DegenerateAxis => write!(f, "a pair axis is given by coincident points"),
+            GeometryError::FormulaNotFinite { name, parameter } => write!(
+                f,
+                "{name}, declared from the parameter {parameter}, is not finite at the parameters' values"
+            ),
             GeometryError::NonPositiveLength { name } => {
                 write!(
                     f,
@@ -216,7 +227,21 @@ pub fn axis_frame(a: [f64; 3], b: [f64; 3], q: [f64; 3]) -> Result<[f64; 12], Ge
     ])
 }
 
-/// The angle θ nearest `reference` with `‖g − (o + u cos θ + w sin θ)‖ = length`.
+/// The largest reference, in magnitude, near which an angle is returned within half a turn
+/// (2¹⁶ rad, about 10 400 turns): there a double still holds an angle to 1.5e-11 rad, a
+/// thousandth of the inverse's acceptance at a lever arm of the mechanism's scale. Past it the
+/// sum `reference + d` rounds the angle away (at 1e17 rad to a multiple of 16 rad), so that an
+/// input "near the reference" would no longer be the angle found.
+pub const TURN_REFERENCE_LIMIT: f64 = 65536.0;
+
+/// Whether an angle within half a turn of `reference` is still the angle found (finite and
+/// within [`TURN_REFERENCE_LIMIT`]).
+pub fn turn_reference_ok(reference: f64) -> bool {
+    reference.abs() <= TURN_REFERENCE_LIMIT
+}
+
+/// The angle θ nearest `reference` with `‖g − (o + u cos θ + w sin θ)‖ = length`, within half
+/// a turn of it (exactly so only for a reference that [`turn_reference_ok`] accepts).
 pub fn revolute_rod_inverse(
     g: [f64; 3],
     o: [f64; 3],

@@ -273,17 +273,27 @@ fn rates_with<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !xdot.iter().all(|c| c.is_finite()) {
         return Err(VelocityError::NonFinite);
     }
-    let mut out = [0.0; N];
-    sys.input_derivative(v, x, xdot, &mut out);
-    sys.solve(fac, &mut out);
-    for o in out.iter_mut() {
-        *o = -*o;
-    }
+    let solved = |xdot: &[f64; M]| {
+        let mut out = [0.0; N];
+        sys.input_derivative(v, x, xdot, &mut out);
+        sys.solve(fac, &mut out);
+        for o in out.iter_mut() {
+            *o = -*o;
+        }
+        out
+    };
+    let out = solved(xdot);
     if out.iter().all(|c| c.is_finite()) {
-        Ok(out)
+        return Ok(out);
+    }
+    // Finite rates and a factorisation that passed: either the rates are so large that the
+    // pivots' overflow (1e308 of each), or B is singular to rounding. The rates scaled to a
+    // largest of 1 tell which (a B that passed gave `Singular` for both).
+    let largest = xdot.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+    let unit = xdot.map(|r| r / largest);
+    if largest > 1.0 && solved(&unit).iter().all(|c| c.is_finite()) {
+        Err(VelocityError::NonFinite)
     } else {
-        // Finite inputs and a factorisation that passed: only a B singular to rounding gives
-        // an overflowing solve.
         Err(VelocityError::Singular)
     }
 }

@@ -91,7 +91,9 @@ fn numerical_body(model: &Model, has_home: bool, first: usize) -> TokenStream {
         .zip(&model.carried_by)
         .filter_map(|((_, _, first), by)| by.map(|pp| quote!((#first, #pp))));
     // Inputs that turn: F holds them only through sin and cos.
-    let turning = (0..m).filter(|&i| model.equations.iter().all(|f| f.only_turns(i)));
+    let turning: Vec<usize> = (0..m)
+        .filter(|&i| model.equations.iter().all(|f| f.only_turns(i)))
+        .collect();
     let home = if has_home {
         quote!(Some((&Self::HOME_V, &Self::HOME_INPUTS)))
     } else {
@@ -101,6 +103,16 @@ fn numerical_body(model: &Model, has_home: bool, first: usize) -> TokenStream {
         if !v.iter().chain(reference.iter()).all(|a| a.is_finite()) {
             return Err(::linkage::InverseError::NonFinite);
         }
+        // An angle is returned within half a turn of its reference: past the limit the sum
+        // would round the angle found away (a pan-tilt head's angles found at 0 came back as
+        // 1e300 for a reference of 1e300, placing nothing where v is). Checked here: in the
+        // runtime's solver the same check cost the no-panic proof its link (the optimiser
+        // then kept a panic path there it had removed).
+        #(
+            if !::linkage::__private::turn_reference_ok(reference[#turning]) {
+                return Err(::linkage::InverseError::FarReference { input: #turning });
+            }
+        )*
         let c = &self.constants;
         // The chains with a closed form give their inputs; the rest start at the reference.
         let mut out = *reference;
@@ -153,8 +165,15 @@ fn closed_form(model: &Model, inv: &Inverse) -> TokenStream {
         } => {
             let g = point(*q);
             let (o, u, w) = (consts3(*o), consts3(*u), consts3(*w));
-            quote!(out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
-                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
+            // An angle is returned within half a turn of its reference: a reference too
+            // large for that would round the angle found away.
+            quote! {
+                if !#p::turn_reference_ok(reference[#input]) {
+                    return Err(::linkage::InverseError::FarReference { input: #input });
+                }
+                out[#input] = #p::revolute_rod_inverse(#g, #o, #u, #w, c[#length], reference[#input])
+                    .ok_or(::linkage::InverseError::Unreachable { input: #input })?;
+            }
         }
         Inverse::PrismaticRod {
             input,

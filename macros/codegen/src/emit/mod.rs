@@ -274,14 +274,21 @@ pub fn expand(
         let pose = r.pose.map(lit);
         let x0 = r.x.iter().map(|x| lit(*x));
         let v0 = r.v.iter().map(|x| lit(*x));
-        // Without a closed-form inverse the start is the declared configuration itself,
-        // refined by `Start::new` (which also follows a geometry changed at run time a little).
-        let start = if model.general_home_inputs.is_empty() && no_closed_form.is_none() {
+        // Where every chain has a closed form and the pose alone places every unknown (no
+        // points of links between), the start is the home pose with the inputs the closed
+        // forms give for the current geometry (a delta's cranks: its base set 1 mm wider made
+        // the declared configuration inconsistent, and `home_start` refused it). Otherwise it
+        // is the declared configuration itself, refined by `Start::new` (which also follows a
+        // geometry changed at run time a little).
+        let pose_places_all = model.unknowns.len() == 3 * model.points.len();
+        let start = if (model.general_home_inputs.is_empty() || pose_places_all)
+            && no_closed_form.is_none()
+        {
             quote! {
                 let [yaw, pitch, roll, x, y, z] = Self::HOME;
                 let v = ::linkage::unknowns_from_pose(self, &::linkage::Pose::from_euler(yaw, pitch, roll, [x, y, z]));
                 let inputs = self.closed_form_inputs(&v, &Self::HOME_INPUTS).map_err(|e| match e {
-                    ::linkage::InverseError::Unreachable { input } | ::linkage::InverseError::NoClosedForm { input } => ::linkage::SolveError::InvalidInput { input },
+                    ::linkage::InverseError::Unreachable { input } | ::linkage::InverseError::NoClosedForm { input } | ::linkage::InverseError::FarReference { input } => ::linkage::SolveError::InvalidInput { input },
                     ::linkage::InverseError::NonFinite | ::linkage::InverseError::Inconsistent => ::linkage::SolveError::NonFinite,
                 })?;
                 ::linkage::Start::new(self, v, inputs)
@@ -301,7 +308,10 @@ pub fn expand(
             /// Every unknown at [`Self::HOME`], on the declared geometry.
             pub const HOME_V: [f64; #n] = [#(#v0),*];
 
-            /// The start configuration at [`Self::HOME`] for the current geometry.
+            /// The start configuration at [`Self::HOME`] for the current geometry: the home
+            /// pose with the inputs the closed forms give where every chain has one and the
+            /// pose places every unknown, otherwise the declared configuration refined by
+            /// `linkage::Start::new` (which follows a small change of geometry).
             pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
                 #start
             }
@@ -379,13 +389,9 @@ pub fn expand(
             #formulas_doc
             pub fn from_geometry(geometry: [f64; #ng]) -> ::core::result::Result<Self, ::linkage::GeometryError> {
                 #formulas
-                let mut k = 0;
-                while k < #ng {
-                    if !geometry[k].is_finite() {
-                        return Err(::linkage::GeometryError::NonFinite { name: Self::GEOMETRY_NAMES[k] });
-                    }
-                    k += 1;
-                }
+                // Finite values whose squares are finite, a formula's NaN named with its
+                // parameter.
+                ::linkage::__private::check_values(&Self::GEOMETRY_NAMES, #followed, &geometry)?;
                 #(#positive_checks)*
                 use ::linkage::__private::recipe;
                 const RECIPES: recipe::Recipes<'static> = #recipes;
