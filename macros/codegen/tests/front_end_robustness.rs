@@ -5,22 +5,9 @@
 
 use proc_macro2::{TokenStream, TokenTree};
 
-/// SplitMix64, the sequence of `linkage_tests::Rng` (which this crate cannot depend on: the
-/// tests crate depends on it through the macro).
-struct Rng(u64);
+mod common;
 
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-}
+use common::Rng;
 
 const DECLARATION: &str = r#"
     pub struct M;

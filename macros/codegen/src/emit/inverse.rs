@@ -181,11 +181,21 @@ fn closed_form(model: &Model, inv: &Inverse) -> TokenStream {
             c0,
             e,
             length,
+            offset,
         } => {
             let g = point(*q);
             let (c0, e) = (consts3(*c0), consts3(*e));
-            quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input])
-                .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
+            match offset {
+                None => {
+                    quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input])
+                    .ok_or(::linkage::InverseError::Unreachable { input: #input })?;)
+                }
+                // The root is a slide; the input reads it plus the offset.
+                Some(o) => {
+                    quote!(out[#input] = #p::prismatic_rod_inverse(#g, #c0, #e, c[#length], reference[#input] - c[#o])
+                    .ok_or(::linkage::InverseError::Unreachable { input: #input })? + c[#o];)
+                }
+            }
         }
         Inverse::None { .. } => quote!(),
     }

@@ -70,13 +70,14 @@ pub enum Inverse {
         w: [usize; 3],
         length: usize,
     },
-    /// `‖P − (c0 + x e)‖ = length`, root nearest the reference.
+    /// `‖P − (c0 + (x − offset) e)‖ = length`, root nearest the reference.
     PrismaticRod {
         input: usize,
         point: usize,
         c0: [usize; 3],
         e: [usize; 3],
         length: usize,
+        offset: Option<usize>,
     },
     /// No closed form: the input is left at the reference value and reported as such.
     None { inputs: Vec<usize> },

@@ -132,7 +132,10 @@ pub fn configuration(model: &Model, pose: [f64; 6]) -> Result<Configuration, Str
                 c0,
                 e,
                 length,
+                offset,
             } => {
+                // The slide nearest the declared configuration's, read with the offset.
+                let offset = offset.map_or(0.0, |o| c[o]);
                 x[*input] =
                     geo::prismatic_rod_inverse(at(*p), consts(*c0), consts(*e), c[*length], 0.0)
                         .ok_or_else(|| {
@@ -140,7 +143,8 @@ pub fn configuration(model: &Model, pose: [f64; 6]) -> Result<Configuration, Str
                                 "no value of `{}` reaches the `home` pose",
                                 model.inputs[*input]
                             )
-                        })?;
+                        })?
+                        + offset;
             }
             Inverse::None { inputs } => {
                 if let Some(i) = inputs.iter().find(|i| !general(i)) {

@@ -246,15 +246,11 @@ fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
                 return Err(Some(Error::new(driver.token.span(), format!("chain `{}` needs a declared link after its driving pair, holding the centre of the next joint", chain.name))));
             };
             let tip = center(d, s1, c).map_err(Some)?;
+            // The joint's centre declared on the link after it (which the front end allows:
+            // a centre is on either link it joins) is no crank's tip: the general model takes
+            // the chain. (It was refused, "`C` is not a pivot of link `crank`".)
             if !on(link, tip) {
-                return Err(Some(Error::new(
-                    s1.centre.map_or(s1.token.span(), |t| t.span),
-                    format!(
-                        "`{}` is not a pivot of link `{}`",
-                        d.pivot(tip).name,
-                        d.link(link).name
-                    ),
-                )));
+                return Err(unsupported());
             }
             match with_length(intermediate(2)) {
                 Some((rod, length)) => Ok(Shape::Driven {
@@ -290,16 +286,40 @@ fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
                 )));
             };
             let input = single_variable(slider, &chain.name).map_err(Some)?;
+            let platform = platform_center(s)?;
+            // The plane through the hinge's first point, perpendicular to it, holds the leg
+            // only where the declared leg is square to the hinge; an oblique leg sweeps a
+            // cone, which the general model takes (its slide carried by the hinge's link).
+            if !square_to_hinge(d, [ax_a.id, ax_b.id], platform.id) {
+                return Err(unsupported());
+            }
             Ok(Shape::Swing {
                 hinge,
                 axis: [ax_a.id, ax_b.id],
                 slider,
                 input,
-                platform: platform_center(s)?,
+                platform,
             })
         }
         _ => Err(unsupported()),
     }
+}
+
+/// Whether the leg from the hinge's first axis point to the platform pivot `g` is
+/// perpendicular to the hinge's axis at the declared configuration (the platform at its
+/// declared `home`, or at the base frame), to a cosine of 1e-4: declarations written to five
+/// digits (86.603 for 50√3) keep their closed form, as they kept assembling at home before.
+fn square_to_hinge(d: &Decl, [a, b]: [PivotId; 2], g: PivotId) -> bool {
+    let (pa, pb, local) = (d.point(a), d.point(b), d.point(g));
+    let [yaw, pitch, roll, tx, ty, tz] = d.platform.home.map_or([0.0; 6], |(_, h)| h);
+    let r = linkage_geometry::rotation(yaw, pitch, roll);
+    let pg: [f64; 3] =
+        [0, 1, 2].map(|i| (0..3).map(|j| r[i][j] * local[j]).sum::<f64>() + [tx, ty, tz][i]);
+    let e = [0, 1, 2].map(|i| pb[i] - pa[i]);
+    let leg = [0, 1, 2].map(|i| pg[i] - pa[i]);
+    let dot: f64 = (0..3).map(|i| e[i] * leg[i]).sum();
+    let norm = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    dot.abs() <= 1e-4 * norm(e) * norm(leg)
 }
 
 /// The one input of an active slider.
@@ -418,13 +438,29 @@ pub fn model(b: &mut Builder, c: ChainId, shape: &Shape, p: usize, k: usize) -> 
                 PairKind::P => {
                     let e = part(b, 0, "e");
                     let c0e = b.pivot_constants(*tip);
-                    let t = expr::vadd(&c0e, &expr::vscale(&Expr::Input(inputs[0]), &e));
+                    // The input is the slide from the declared configuration plus the offset
+                    // (the README's P with an axis); the offset was left out here, so that the
+                    // input read the bare slide.
+                    let offset = driver.offset.map(|o| {
+                        b.scalar_constant(
+                            Scalar::Offset(driver.id),
+                            format!("{chain}.offset"),
+                            o,
+                            format!("offset_{chain}"),
+                        )
+                    });
+                    let slide = match &offset {
+                        Some(off) => Expr::minus(Expr::Input(inputs[0]), off.clone()),
+                        None => Expr::Input(inputs[0]),
+                    };
+                    let t = expr::vadd(&c0e, &expr::vscale(&slide, &e));
                     let inv = Inverse::PrismaticRod {
                         input: inputs[0],
                         point: p,
                         c0: c0e.each_ref().map(Builder::constant_index),
                         e: e.each_ref().map(Builder::constant_index),
                         length: Builder::constant_index(&l),
+                        offset: offset.as_ref().map(Builder::constant_index),
                     };
                     (t, inv)
                 }

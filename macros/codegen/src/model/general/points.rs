@@ -31,6 +31,8 @@ pub enum Addition {
     /// A cylindrical pair's slider's own copy of an end of the rail's axis (0: its origin, 1:
     /// its tip `axis`).
     Copy { axis: PointId, end: usize },
+    /// The rail's own point where a slide's axis origin, declared on the slider, is at home.
+    RailOrigin { origin: PointId },
 }
 
 pub struct Points {

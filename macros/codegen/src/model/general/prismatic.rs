@@ -63,6 +63,16 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
         ));
     }
     let (origin, towards) = axis_ends(topo, k)?;
+    let (rail, slider) = (topo.joints[k].before, topo.joints[k].after);
+    // An axis declared on the slider: its origin moves with the slider, so the rail carries a
+    // point of its own where that origin is at home. (Taken as the rail's, the slider's origin
+    // held the slide at zero: a passive slide lost its freedom, an active one its input.)
+    let rail_origin =
+        (!topo.links[rail].holds(origin) && topo.links[slider].holds(origin)).then(|| {
+            let name = format!("{}_rail", topo.name(origin));
+            let home = topo.home(origin);
+            topo.points.add(Addition::RailOrigin { origin }, name, home)
+        });
     let tip = b.auto_point(Auto::Along {
         origin: topo.home(origin),
         toward: topo.home(towards),
@@ -81,10 +91,11 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
     let at = topo
         .points
         .add(Addition::AxisTip { origin, towards }, ends.clone(), tip);
-    let rail = topo.joints[k].before;
+    let origin = rail_origin.unwrap_or(origin);
     topo.add_member(rail, origin);
     topo.add_member(rail, at);
     topo.joints[k].added.push(at);
+    topo.joints[k].added.extend(rail_origin);
     if cylinder {
         // The slider's own two points on the axis, where the rail's are at home.
         let slider = topo.joints[k].after;
@@ -113,6 +124,8 @@ pub fn equations(
     let Some(&tip) = j.added.first() else {
         return Ok(());
     };
+    // The rail's own origin, where the axis is declared on the slider (see `add_points`).
+    let origin = j.added.get(1).copied().unwrap_or(origin);
     let (rail, slider) = (&topo.links[j.before], &topo.links[j.after]);
     let homes: HashMap<PointId, Vector3<f64>> = rail
         .members

@@ -1,0 +1,558 @@
+//! Random mechanisms of lower pairs against an independent screw-theory oracle.
+//!
+//! The generator (`random_mechanisms/generator.rs`) declares mechanisms nobody wrote by hand:
+//! 6-DOF platforms on six chains of six freedoms (closed-form legs S-P-S, U-P-S, R-S-S, P-S-S,
+//! and general chains of R, P, C, H, S, U with the active pair anywhere, some starting at a
+//! link of an earlier chain), 3-DOF platforms on three chains of five (R-P-S legs, square or
+//! oblique to their hinges, and general chains), chains with two actives or an active S or U,
+//! and serial arms of active pairs only. For each one the model must answer with a model or
+//! an error, never a panic (and so must three token-level mutants of its text); where it gives
+//! a model, and the declared home passes the macro's check, the oracle
+//! (`random_mechanisms/screws.rs`: twists from the README's pair table, loop closure by least
+//! squares) must agree with it at home on the mobility and on every platform pivot's velocity
+//! for random input rates; F(v0, x0) must vanish there, the platform's pivots be where the
+//! declaration puts them, and every input read where the README puts its zero.
+//!
+//! `cargo test -p linkage-codegen --test random_mechanisms -- --nocapture` prints the counts;
+//! `LINKAGE_STRESS=N` runs 250·N mechanisms instead of 16 (the generator's library is built
+//! unoptimised in the test profile: about a second a mechanism). A failure prints its seed and
+//! the declaration; `LINKAGE_SEED=S` runs that one alone and shows a refusal's declaration.
+
+mod common;
+#[path = "random_mechanisms/generator.rs"]
+mod generator;
+#[path = "random_mechanisms/model_side.rs"]
+mod model_side;
+#[path = "random_mechanisms/screws.rs"]
+mod screws;
+
+use common::Rng;
+use generator::{norm, sub, Mech, PLATFORM};
+use std::collections::BTreeMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+fn sweep() -> Vec<u64> {
+    if let Some(seed) = std::env::var("LINKAGE_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        return vec![seed];
+    }
+    let n = match std::env::var("LINKAGE_STRESS")
+        .ok()
+        .and_then(|s| s.parse::<u64>().ok())
+    {
+        Some(k) => 250 * k.max(1),
+        None => 16,
+    };
+    (0..n).map(|i| 0x5C4E_0000 + i).collect()
+}
+
+/// What happened to each generated mechanism.
+#[derive(Default)]
+struct Counts {
+    generated: usize,
+    accepted: BTreeMap<String, usize>,
+    refused: BTreeMap<String, usize>,
+    /// Refused although the oracle finds the mechanism regular at home, by message.
+    refused_regular: BTreeMap<String, Vec<u64>>,
+    checked: usize,
+    /// Accepted, but too near a singularity (by the oracle) to compare velocities.
+    near_singular: usize,
+    /// In the mechanisms checked: chains that start at a declared link, active pairs whose
+    /// link before is not the base.
+    from_links: usize,
+    inner_actives: usize,
+    shapes: BTreeMap<String, usize>,
+    mutants: usize,
+    mutants_refused: usize,
+    failures: Vec<String>,
+}
+
+/// A message with its names and numbers blanked, to count messages of one kind together.
+fn kind_of(message: &str) -> String {
+    let mut out = String::new();
+    let mut in_tick = false;
+    for ch in message.chars() {
+        if ch == '`' {
+            in_tick = !in_tick;
+            if in_tick {
+                out.push_str("`…`");
+            }
+            continue;
+        }
+        if in_tick {
+            continue;
+        }
+        if ch.is_ascii_digit() || ch == '.' || ch == '-' || ch == 'e' && out.ends_with('#') {
+            if !out.ends_with('#') {
+                out.push('#');
+            }
+            continue;
+        }
+        out.push(ch);
+    }
+    out.chars().take(160).collect()
+}
+
+fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
+    p.downcast_ref::<String>()
+        .cloned()
+        .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_default()
+}
+
+#[test]
+fn random_mechanisms_agree_with_screw_theory_at_home() {
+    let mut counts = Counts::default();
+    for seed in sweep() {
+        let mech = generator::generate(seed);
+        let text = generator::render(&mech);
+        counts.generated += 1;
+        for c in &mech.chains {
+            *counts.shapes.entry(c.shape.clone()).or_default() += 1;
+        }
+        if let Err(f) = check(seed, &mech, &text, &mut counts) {
+            counts.failures.push(format!(
+                "seed {seed} ({}): {f}\n--- declaration ---\n{text}",
+                mech.family
+            ));
+        }
+        mutants(seed, &text, &mut counts);
+    }
+    let accepted: usize = counts.accepted.values().sum();
+    let refused: usize = counts.refused.values().sum();
+    eprintln!(
+        "random mechanisms: {} generated, {accepted} accepted, {refused} refused, {} checked against the oracle",
+        counts.generated, counts.checked
+    );
+    eprintln!(
+        "accepted by family: {:?}; near a singularity, not compared: {}",
+        counts.accepted, counts.near_singular
+    );
+    eprintln!(
+        "checked: {} chains start at a declared link, {} active pairs are not on the base",
+        counts.from_links, counts.inner_actives
+    );
+    eprintln!("refused by message:");
+    for (m, n) in &counts.refused {
+        eprintln!("  {n:4}  {m}");
+    }
+    eprintln!("refused although the oracle finds them regular at home:");
+    for (m, seeds) in &counts.refused_regular {
+        eprintln!(
+            "  {:4}  {m}  (seeds {:?})",
+            seeds.len(),
+            &seeds[..seeds.len().min(5)]
+        );
+    }
+    eprintln!("chain shapes ({} kinds):", counts.shapes.len());
+    let mut shapes: Vec<_> = counts.shapes.iter().collect();
+    shapes.sort_by_key(|(_, n)| std::cmp::Reverse(**n));
+    for (s, n) in shapes.iter().take(25) {
+        eprintln!("  {n:4}  {s}");
+    }
+    eprintln!(
+        "malformed mutants: {} parsed, {} refused (the rest a model), none panicked",
+        counts.mutants, counts.mutants_refused
+    );
+    if !counts.failures.is_empty() {
+        for f in counts.failures.iter().take(5) {
+            eprintln!("\nFAILURE {f}");
+        }
+        panic!(
+            "{} of {} random mechanisms disagree with the oracle (the first five above)",
+            counts.failures.len(),
+            counts.generated
+        );
+    }
+    // Enough gets through to mean something.
+    assert!(
+        counts.checked * 2 > counts.generated,
+        "only {} checked",
+        counts.checked
+    );
+}
+
+/// The model against the oracle for one mechanism; `Err` describes a disagreement.
+fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), String> {
+    let tokens: proc_macro2::TokenStream =
+        text.parse().map_err(|e| format!("does not lex: {e}"))?;
+    let built = catch_unwind(AssertUnwindSafe(|| linkage_codegen::model(tokens)))
+        .map_err(|p| format!("the model panicked: {}", panic_text(&*p)))?;
+    let closure = screws::closure(mech);
+    let verdict = screws::verdict(&closure);
+    let inputs = mech.inputs.len();
+    let regular =
+        verdict.mobility == inputs && verdict.platform_free < 1e-6 && verdict.condition > 1e-4;
+    // What the oracle makes of a mechanism the model refuses, next to the refusal's message.
+    let view = if regular {
+        "oracle: regular".to_string()
+    } else if verdict.mobility != inputs {
+        format!("oracle: mobility {} for {inputs} inputs", verdict.mobility)
+    } else if verdict.platform_free >= 1e-6 {
+        "oracle: the inputs leave the platform free".to_string()
+    } else {
+        "oracle: near a singularity".to_string()
+    };
+    let model = match built {
+        Err(e) => {
+            let kind = kind_of(&e.to_string());
+            *counts
+                .refused
+                .entry(format!("[{view}] {kind}"))
+                .or_default() += 1;
+            if regular {
+                counts.refused_regular.entry(kind).or_default().push(seed);
+            }
+            // Run alone (`LINKAGE_SEED`), a refusal shows its declaration and the oracle's view.
+            if std::env::var("LINKAGE_SEED").is_ok() {
+                eprintln!(
+                    "{text}\n{e}\noracle: mobility {} (idle {}), platform free {:.1e}, condition {:.1e}",
+                    verdict.mobility, verdict.idle, verdict.platform_free, verdict.condition
+                );
+            }
+            return Ok(());
+        }
+        Ok(m) => m,
+    };
+    // The macro checks the declared `home` next (`reference::check`): that F vanishes there
+    // and ∂F/∂v is regular.
+    let span = proc_macro2::Span::call_site();
+    if let Err(e) = linkage_codegen::model::reference::check(&model, (span, model.home_pose)) {
+        let kind = kind_of(&e.to_string());
+        *counts
+            .refused
+            .entry(format!("[{view}] {kind}"))
+            .or_default() += 1;
+        if regular {
+            counts.refused_regular.entry(kind).or_default().push(seed);
+        }
+        return Ok(());
+    }
+    *counts.accepted.entry(mech.family.to_string()).or_default() += 1;
+    // The oracle's mobility: the model accepted the inputs as one per freedom.
+    if verdict.mobility != inputs || verdict.platform_free > 1e-6 {
+        return Err(format!(
+            "the model accepts {} inputs; the oracle counts mobility {} (idle {}), platform free {:.1e}",
+            model.inputs.len(),
+            verdict.mobility,
+            verdict.idle,
+            verdict.platform_free
+        ));
+    }
+    let mut names = model.inputs.clone();
+    names.sort();
+    let mut declared = mech.inputs.clone();
+    declared.sort();
+    if names != declared {
+        return Err(format!("inputs {:?}, declared {declared:?}", model.inputs));
+    }
+    // Near a singularity the first-order answer is ill-determined on both sides: counted,
+    // not compared.
+    if verdict.condition < 1e-7 {
+        counts.near_singular += 1;
+        return Ok(());
+    }
+    let home = model_side::home(&model)?;
+    if !(home.residual < 1e-9) {
+        return Err(format!(
+            "F(v0, x0) = {:.3e} of the scale² at home",
+            home.residual
+        ));
+    }
+    // Every input at home where the README's pair table puts its zero.
+    for (i, name) in model.inputs.iter().enumerate() {
+        let want = home_input(mech, name);
+        if !((home.x[i] - want).abs() <= 1e-9 * (1.0 + want.abs())) {
+            return Err(format!(
+                "input {name} at home is {} in the model, {want} by the README",
+                home.x[i]
+            ));
+        }
+    }
+    let mut rng = Rng::new(seed ^ 0xA5A5);
+    for _ in 0..2 {
+        // Rates in the declared order, then in the model's.
+        let xdot: Vec<f64> = mech
+            .inputs
+            .iter()
+            .map(|_| generator::uniform(&mut rng, -1.0, 1.0))
+            .collect();
+        let model_xdot: Vec<f64> = model
+            .inputs
+            .iter()
+            .map(|n| xdot[mech.inputs.iter().position(|d| d == n).unwrap()])
+            .collect();
+        let (twist, residual) = screws::platform_twist(&closure, &xdot)?;
+        // What rounding allows: relative 1e-9 at a well-conditioned configuration, more as it
+        // nears a singularity (the oracle's condition is its smallest singular value over its
+        // largest, lengths in units of 100 mm).
+        let slack = (1e-9 / verdict.condition).max(1e-8);
+        if residual > slack {
+            return Err(format!(
+                "the oracle's loop closure has residual {residual:.1e} (condition {:.1e})",
+                verdict.condition
+            ));
+        }
+        let rates = model_side::platform_rates(&model, &home, &model_xdot)?;
+        let expected: Vec<_> = rates
+            .iter()
+            .map(|(name, _, _)| {
+                let p = mech
+                    .pivots
+                    .iter()
+                    .find(|p| p.name == *name && p.link == PLATFORM)
+                    .ok_or(format!(
+                        "the model's platform point {name} is not a declared platform pivot"
+                    ))?;
+                Ok((p.at, screws::point_velocity(&twist, p.at)))
+            })
+            .collect::<Result<_, String>>()?;
+        let size = expected.iter().map(|(_, v)| norm(*v)).fold(1e-3, f64::max);
+        let tol = slack * size;
+        for ((name, at, got), (home_at, want)) in rates.iter().zip(&expected) {
+            if norm(sub(*at, *home_at)) > 1e-9 * (1.0 + norm(*home_at)) {
+                return Err(format!(
+                    "platform point {name} at home: model {at:?}, declared {home_at:?}"
+                ));
+            }
+            if !(norm(sub(*got, *want)) <= tol) {
+                return Err(format!(
+                    "velocity of {name} for ẋ = {xdot:?} ({:?}): model {got:?}, oracle {want:?} (|Δ| = {:.3e}, tolerance {tol:.1e}, condition {:.1e})",
+                    mech.inputs,
+                    norm(sub(*got, *want)),
+                    verdict.condition
+                ));
+            }
+        }
+    }
+    counts.checked += 1;
+    for c in &mech.chains {
+        counts.from_links += usize::from(c.links[0] != Some(generator::BASE));
+        for (k, j) in c.joints.iter().enumerate() {
+            let inner = c.links[k] != Some(generator::BASE);
+            counts.inner_actives += usize::from(inner && !j.inputs.is_empty());
+        }
+    }
+    Ok(())
+}
+
+/// An input's value at the declared configuration, by the README's pair table: every angle
+/// 0; a slide with an axis its offset (or 0); a leg between two joint centres their distance
+/// less its offset.
+fn home_input(mech: &Mech, name: &str) -> f64 {
+    for (ci, chain) in mech.chains.iter().enumerate() {
+        for (k, j) in chain.joints.iter().enumerate() {
+            if !j.inputs.iter().any(|i| i == name) {
+                continue;
+            }
+            return match (j.kind, j.axis) {
+                (generator::Kind::P, Some(_)) => j.offset.unwrap_or(0.0),
+                (generator::Kind::P, None) => {
+                    let [from, to] = screws::leg_ends(mech, ci, k);
+                    norm(sub(to, from)) - j.offset.unwrap_or(0.0)
+                }
+                _ => 0.0,
+            };
+        }
+    }
+    panic!("no pair declares input {name}")
+}
+
+/// A few random token edits of the declaration: the model answers each with a model or an
+/// error, never a panic.
+fn mutants(seed: u64, text: &str, counts: &mut Counts) {
+    let tokens: Vec<String> = text
+        .split_whitespace()
+        .flat_map(|w| {
+            // Split punctuation off so that edits can hit it.
+            let mut parts = Vec::new();
+            let mut cur = String::new();
+            for ch in w.chars() {
+                if "[](){},;=".contains(ch) {
+                    if !cur.is_empty() {
+                        parts.push(std::mem::take(&mut cur));
+                    }
+                    parts.push(ch.to_string());
+                } else {
+                    cur.push(ch);
+                }
+            }
+            if !cur.is_empty() {
+                parts.push(cur);
+            }
+            parts
+        })
+        .collect();
+    let vocabulary = [
+        "-", "->", ",", ";", "=", "base", "platform", "S", "P", "R", "H", "C", "U", "active",
+        "passive", "axis", "0.0", "-1e3", "1e400", "length", "lead", "offset", "chain", "link",
+        "[", "]", "(", ")", "shared", "home", "0",
+    ];
+    let mut rng = Rng::new(seed ^ 0x00D1_5EA5);
+    for _ in 0..3 {
+        let mut t = tokens.clone();
+        for _ in 0..1 + rng.next_u64() % 3 {
+            let i = (rng.next_u64() as usize) % t.len();
+            let word = vocabulary[(rng.next_u64() as usize) % vocabulary.len()].to_string();
+            match rng.next_u64() % 4 {
+                0 => {
+                    t.remove(i);
+                }
+                1 => t.insert(i, word),
+                2 => t[i] = word,
+                _ => {
+                    // Another token of the declaration: a pivot, link or input in the wrong place.
+                    let j = (rng.next_u64() as usize) % t.len();
+                    t[i] = t[j].clone();
+                }
+            }
+        }
+        let Ok(ts) = t.join(" ").parse::<proc_macro2::TokenStream>() else {
+            continue;
+        };
+        counts.mutants += 1;
+        match catch_unwind(AssertUnwindSafe(|| linkage_codegen::model(ts))) {
+            Ok(Ok(_)) => {}
+            Ok(Err(_)) => counts.mutants_refused += 1,
+            Err(p) => counts.failures.push(format!(
+                "seed {seed}: the model panicked on a mutant: {}\n--- mutant ---\n{}",
+                panic_text(&*p),
+                t.join(" ")
+            )),
+        }
+    }
+}
+
+/// The model of a declaration that must be accepted as the macro accepts it: modelled, and
+/// assembled and regular at its declared `home`.
+fn accepted(text: &str) -> linkage_codegen::model::Model {
+    let model = linkage_codegen::model(text.parse().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    let span = proc_macro2::Span::call_site();
+    if let Err(e) = linkage_codegen::model::reference::check(&model, (span, model.home_pose)) {
+        panic!("{e}");
+    }
+    model
+}
+
+/// A slide whose axis is declared on the slider (here the platform) rather than on the rail.
+/// The model took the slider's axis origin for the rail's, which held the slide at zero: with
+/// the slide active it counted one freedom too few and refused the mechanism; with it passive
+/// it accepted a mechanism of two freedoms as one of one input. Found by the sweep (seed
+/// 1548615834, a serial P-H-P).
+#[test]
+fn a_slide_whose_axis_is_declared_on_the_slider_keeps_its_freedom() {
+    let declare = |last: &str| {
+        format!(
+            "pub struct M;
+            base {{ b0 = [0.0, 0.0, 0.0], b1 = [1.0, 0.0, 0.0], b2 = [0.0, 1.0, 0.0] }}
+            platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 100.0]) {{ g0 = [0.0, 0.0, 0.0], g1 = [0.0, 0.0, 10.0], g2 = [10.0, 0.0, 0.0], g3 = [0.0, 10.0, 0.0] }}
+            link l1 {{ k0 = [0.0, 0.0, 50.0], k1 = [0.0, 10.0, 50.0], k2 = [10.0, 0.0, 50.0] }}
+            chain c = base - P(active d0, axis = b0 -> b1) - l1 - {last} - platform;"
+        )
+    };
+    let model = accepted(&declare("P(active d1, axis = g0 -> g1)"));
+    assert_eq!(model.inputs, ["d0", "d1"]);
+    // The second slide moves the platform along g0 -> g1 (up), the first along b0 -> b1.
+    let home = model_side::home(&model).unwrap();
+    for (xdot, want) in [([0.0, 1.0], [0.0, 0.0, 1.0]), ([1.0, 0.0], [1.0, 0.0, 0.0])] {
+        for (name, _, got) in model_side::platform_rates(&model, &home, &xdot).unwrap() {
+            assert!(
+                norm(sub(got, want)) < 1e-12,
+                "{name}: {got:?}, want {want:?}"
+            );
+        }
+    }
+    // Passive, the slide is a freedom no input drives.
+    let e = linkage_codegen::model(declare("P(passive, axis = g0 -> g1)").parse().unwrap())
+        .err()
+        .expect("one input for two freedoms");
+    assert!(
+        e.to_string()
+            .contains("1 active joint variable but mobility 2"),
+        "{e}"
+    );
+}
+
+/// An R-P-S leg whose hinge is not square to the leg sweeps a cone: the closed form (a plane
+/// through the hinge's point, square to it) does not hold it, and the declared home failed to
+/// assemble ("cannot be assembled at its `home` pose"). Such a leg goes to the general model.
+/// Found by the sweep (three-dof family).
+#[test]
+fn an_r_p_s_leg_oblique_to_its_hinge_is_modelled() {
+    let model = accepted(
+        "pub struct Rps;
+        base {
+            A1 = [0.0, 100.0, 0.0], B1 = [-10.0, 100.0, 3.0],
+            A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+            A3 = [86.603, -50.0, 0.0], B3 = [91.603, -41.340, 0.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
+            G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0],
+        }
+        chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+        chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+        chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;",
+    );
+    assert_eq!(model.inputs, ["L1", "L2", "L3"]);
+    // Legs 2 and 3 are the README's, square to their hinges to five digits (4e-8 of the
+    // scale² here); leg 1's cone holds exactly.
+    let home = model_side::home(&model).unwrap();
+    assert!(home.residual < 1e-7, "{}", home.residual);
+}
+
+/// A crank driven from the base whose ball joint's centre is declared on the link after it
+/// (the front end allows a centre on either link a pair joins): the closed-form crank-and-rod
+/// shape refused it ("`C1` is not a pivot of link `arm1`") instead of leaving the chain to the
+/// general model. Found by the sweep (seed 1548615732).
+#[test]
+fn a_crank_whose_ball_joint_is_declared_on_the_rod_is_modelled() {
+    let model = accepted(
+        "pub struct Tripod;
+        base {
+            A1 = [100.0, 0.0, 0.0], B1 = [100.0, 1.0, 0.0],
+            A2 = [-50.0, 86.6, 0.0], B2 = [-50.866, 86.1, 0.0],
+            A3 = [-50.0, -86.6, 0.0], B3 = [-49.134, -87.1, 0.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 10.0, -5.0, -150.0]) { P = [0.0, 0.0, 0.0] }
+        link arm1 { } link arm2 { } link arm3 { }
+        link rod1 { C1 = [150.0, 0.0, 0.0] }
+        link rod2 { C2 = [-75.0, 129.9, 0.0] }
+        link rod3 { C3 = [-75.0, -129.9, 0.0] }
+        chain c1 = base - R(active q1, axis = A1 -> B1) - arm1 - S(C1) - rod1 - S(P) - platform;
+        chain c2 = base - R(active q2, axis = A2 -> B2) - arm2 - S(C2) - rod2 - S(P) - platform;
+        chain c3 = base - R(active q3, axis = A3 -> B3) - arm3 - S(C3) - rod3 - S(P) - platform;",
+    );
+    assert_eq!(model.inputs, ["q1", "q2", "q3"]);
+    let home = model_side::home(&model).unwrap();
+    assert!(home.residual < 1e-12, "{}", home.residual);
+}
+
+/// A carriage on a rail driving a rod (P-S-S) with an `offset`: the input is the slide from the
+/// declared configuration plus the offset (the README's P with an axis), so 60 at home here.
+/// The closed form left the offset out: the input read the bare slide, 0 at home. Found by the
+/// sweep (a hexapod with a P-S-S leg whose carriage another chain starts at, which then failed
+/// to assemble at home).
+#[test]
+fn a_carriage_driving_a_rod_reads_its_offset() {
+    let model = accepted(
+        "pub struct M;
+        base {
+            A1 = [100.0, 0.0, 0.0], B1 = [100.0, 0.0, 1.0], A2 = [-50.0, 86.6, 0.0], A3 = [-50.0, -86.6, 0.0],
+            A4 = [0.0, 100.0, 0.0], A5 = [0.0, -100.0, 0.0], A6 = [-100.0, 0.0, 0.0],
+        }
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 100.0]) { G1 = [50.0, 0.0, 0.0], G2 = [-25.0, 43.3, 0.0], G3 = [-25.0, -43.3, 0.0] }
+        link carriage { C1 = [100.0, 0.0, 90.0] }
+        link rod { length = 50.99019513592785 }
+        chain c1 = base - P(active d1, axis = A1 -> B1, offset = 60.0) - carriage - S(C1) - rod - S(G1) - platform;
+        chain c2 = base - S(A2) - P(active d2) - S(G2) - platform;
+        chain c3 = base - S(A3) - P(active d3) - S(G3) - platform;
+        chain c4 = base - S(A4) - P(active d4) - S(G1) - platform;
+        chain c5 = base - S(A5) - P(active d5) - S(G2) - platform;
+        chain c6 = base - S(A6) - P(active d6) - S(G3) - platform;",
+    );
+    let home = model_side::home(&model).unwrap();
+    assert!((home.x[0] - 60.0).abs() < 1e-9, "{:?}", home.x);
+    assert!(home.residual < 1e-12, "{}", home.residual);
+}

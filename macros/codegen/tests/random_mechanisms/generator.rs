@@ -1,0 +1,751 @@
+//! Random valid declarations of mechanisms of lower pairs, seeded and deterministic: a base, a
+//! platform at a random home pose, and chains of random pairs at random axes and pivots whose
+//! freedoms give a known mobility (Grübler–Kutzbach on a tree of chains: each chain of f
+//! freedoms from a link already placed takes 6 − f from the platform's 6). The declaration is
+//! kept as data (for the oracle, which reads it and nothing of the model) and rendered as text
+//! (for the model, and for a failure's message).
+
+use crate::common::Rng;
+use std::fmt::Write as _;
+
+pub type V3 = [f64; 3];
+
+pub fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+pub fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub fn scale(s: f64, a: V3) -> V3 {
+    [s * a[0], s * a[1], s * a[2]]
+}
+pub fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+pub fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+pub fn unit(a: V3) -> V3 {
+    scale(1.0 / norm(a), a)
+}
+
+/// Rz(yaw)·Ry(pitch)·Rx(roll), the README's `home`.
+pub fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
+    let (cy, sy) = (yaw.cos(), yaw.sin());
+    let (cp, sp) = (pitch.cos(), pitch.sin());
+    let (cr, sr) = (roll.cos(), roll.sin());
+    [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Kind {
+    R,
+    P,
+    C,
+    H,
+    S,
+    U,
+}
+
+impl Kind {
+    pub fn freedoms(self) -> usize {
+        match self {
+            Kind::R | Kind::P | Kind::H => 1,
+            Kind::C | Kind::U => 2,
+            Kind::S => 3,
+        }
+    }
+}
+
+/// Index of the base and the platform in [`Mech::links`].
+pub const BASE: usize = 0;
+pub const PLATFORM: usize = 1;
+
+pub struct Pivot {
+    pub name: String,
+    /// Base-frame position at home (a platform pivot is declared in the platform's frame).
+    pub at: V3,
+    pub link: usize,
+}
+
+pub struct Link {
+    pub name: String,
+    pub length: Option<f64>,
+}
+
+pub struct Joint {
+    pub kind: Kind,
+    /// Its joint variables, in the README's order (`active θ z`, `active a b`, `active yaw
+    /// pitch roll`); empty for a passive pair.
+    pub inputs: Vec<String>,
+    pub centre: Option<usize>,
+    pub axis: Option<(usize, usize)>,
+    pub offset: Option<f64>,
+    pub lead: Option<f64>,
+}
+
+pub struct Chain {
+    pub name: String,
+    /// The links between and around its pairs: `None` for an unnamed one.
+    pub links: Vec<Option<usize>>,
+    pub joints: Vec<Joint>,
+    /// A short name of its shape, for the counts: `S-P-S`, `R-C-U-S`, …
+    pub shape: String,
+}
+
+pub struct Mech {
+    pub family: &'static str,
+    pub links: Vec<Link>,
+    pub pivots: Vec<Pivot>,
+    pub chains: Vec<Chain>,
+    pub home: [f64; 6],
+    /// Every joint variable, once.
+    pub inputs: Vec<String>,
+}
+
+/// Uniform in [lo, hi).
+pub fn uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+    lo + (hi - lo) * (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn pick<T: Copy>(rng: &mut Rng, items: &[T]) -> T {
+    items[(rng.next_u64() % items.len() as u64) as usize]
+}
+
+fn chance(rng: &mut Rng, p: f64) -> bool {
+    uniform(rng, 0.0, 1.0) < p
+}
+
+fn random_unit(rng: &mut Rng) -> V3 {
+    loop {
+        let v = [
+            uniform(rng, -1.0, 1.0),
+            uniform(rng, -1.0, 1.0),
+            uniform(rng, -1.0, 1.0),
+        ];
+        let n = norm(v);
+        if (0.2..=1.0).contains(&n) {
+            return scale(1.0 / n, v);
+        }
+    }
+}
+
+fn shuffle<T>(rng: &mut Rng, items: &mut [T]) {
+    for i in (1..items.len()).rev() {
+        let j = (rng.next_u64() % (i as u64 + 1)) as usize;
+        items.swap(i, j);
+    }
+}
+
+impl Mech {
+    fn new(family: &'static str, rng: &mut Rng) -> Mech {
+        let home = [
+            uniform(rng, -0.4, 0.4),
+            uniform(rng, -0.3, 0.3),
+            uniform(rng, -0.3, 0.3),
+            uniform(rng, -30.0, 30.0),
+            uniform(rng, -30.0, 30.0),
+            uniform(rng, 160.0, 240.0),
+        ];
+        Mech {
+            family,
+            links: vec![
+                Link {
+                    name: "base".into(),
+                    length: None,
+                },
+                Link {
+                    name: "platform".into(),
+                    length: None,
+                },
+            ],
+            pivots: Vec::new(),
+            chains: Vec::new(),
+            home,
+            inputs: Vec::new(),
+        }
+    }
+
+    fn pivot(&mut self, link: usize, at: V3) -> usize {
+        let prefix = match link {
+            BASE => "b",
+            PLATFORM => "g",
+            _ => "k",
+        };
+        self.pivots.push(Pivot {
+            name: format!("{prefix}{}", self.pivots.len()),
+            at,
+            link,
+        });
+        self.pivots.len() - 1
+    }
+
+    fn link(&mut self, name: String, length: Option<f64>) -> usize {
+        self.links.push(Link { name, length });
+        self.links.len() - 1
+    }
+
+    fn input(&mut self, prefix: &str) -> String {
+        let name = format!("{prefix}{}", self.inputs.len());
+        self.inputs.push(name.clone());
+        name
+    }
+
+    fn inputs_of(&mut self, kind: Kind) -> Vec<String> {
+        match kind {
+            Kind::R | Kind::H => vec![self.input("q")],
+            Kind::P => vec![self.input("d")],
+            Kind::C => vec![self.input("t"), self.input("z")],
+            Kind::U => vec![self.input("a"), self.input("b")],
+            Kind::S => vec![self.input("yaw"), self.input("pitch"), self.input("roll")],
+        }
+    }
+
+    /// The platform's pose at home: a base-frame point's coordinates in the platform's frame.
+    fn platform_local(&self, world: V3) -> V3 {
+        let [yaw, pitch, roll, tx, ty, tz] = self.home;
+        let r = rotation(yaw, pitch, roll);
+        let d = sub(world, [tx, ty, tz]);
+        [0, 1, 2].map(|j| (0..3).map(|i| r[i][j] * d[i]).sum())
+    }
+
+    fn platform_world(&self, local: V3) -> V3 {
+        let [yaw, pitch, roll, tx, ty, tz] = self.home;
+        let r = rotation(yaw, pitch, roll);
+        [0, 1, 2].map(|i| dot(r[i], local) + [tx, ty, tz][i])
+    }
+
+    fn random_base_point(&self, rng: &mut Rng) -> V3 {
+        let a = uniform(rng, 0.0, std::f64::consts::TAU);
+        let r = uniform(rng, 110.0, 180.0);
+        [r * a.cos(), r * a.sin(), uniform(rng, -10.0, 10.0)]
+    }
+
+    fn random_platform_point(&self, rng: &mut Rng) -> V3 {
+        let a = uniform(rng, 0.0, std::f64::consts::TAU);
+        let r = uniform(rng, 40.0, 80.0);
+        self.platform_world([r * a.cos(), r * a.sin(), uniform(rng, -10.0, 10.0)])
+    }
+}
+
+/// The pairs of a general chain of `freedoms`, with one active pair for each entry of
+/// `actives` (its number of joint variables), in a random order such that the chain is
+/// generically of full rank and within the README's contract: no two S in a row (a rod's idle
+/// spin), at most two slides (P, C), and a U followed by an S or U (the README defines its
+/// second axis by the next joint's centre).
+fn general_pairs(rng: &mut Rng, freedoms: usize, actives: &[usize]) -> Vec<(Kind, bool)> {
+    loop {
+        let mut seq: Vec<(Kind, bool)> = actives
+            .iter()
+            .map(|&a| {
+                let kind = match a {
+                    1 => pick(rng, &[Kind::R, Kind::P, Kind::H]),
+                    2 => pick(rng, &[Kind::U, Kind::C]),
+                    _ => Kind::S,
+                };
+                (kind, true)
+            })
+            .collect();
+        let mut rest = freedoms - actives.iter().sum::<usize>();
+        while rest > 0 {
+            let kind = pick(rng, &[Kind::R, Kind::R, Kind::P, Kind::C, Kind::U, Kind::S]);
+            if kind.freedoms() <= rest {
+                seq.push((kind, false));
+                rest -= kind.freedoms();
+            }
+        }
+        shuffle(rng, &mut seq);
+        let slides = seq
+            .iter()
+            .filter(|(k, _)| matches!(k, Kind::P | Kind::C))
+            .count();
+        let spins = seq
+            .windows(2)
+            .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S);
+        // The README's U at a chain's end turns its second axis towards "the farthest pivot
+        // of the link after it", which the model reads over every point that link carries
+        // (an R axis of another chain, a passive C's copies of its axis): not generated.
+        let loose_u = seq.last().is_some_and(|p| p.0 == Kind::U)
+            || seq
+                .windows(2)
+                .any(|w| w[0].0 == Kind::U && !matches!(w[1].0, Kind::S | Kind::U));
+        if slides <= 2 && !spins && !loose_u {
+            return seq;
+        }
+    }
+}
+
+/// A general chain: every link between its pairs declared, each pair's pivots on one of the
+/// links it joins, joint locations scattered about the line from `start` to the platform.
+fn general_chain(
+    m: &mut Mech,
+    rng: &mut Rng,
+    from: usize,
+    start: V3,
+    pairs: &[(Kind, bool)],
+) -> Chain {
+    let c = m.chains.len();
+    let n = pairs.len();
+    let end = m.random_platform_point(rng);
+    let span = norm(sub(end, start));
+    let mut links = vec![Some(from)];
+    for k in 1..n {
+        links.push(Some(m.link(format!("l{c}_{k}"), None)));
+    }
+    links.push(Some(PLATFORM));
+    let mut joints = Vec::new();
+    for (k, &(kind, active)) in pairs.iter().enumerate() {
+        let (before, after) = (links[k].unwrap(), links[k + 1].unwrap());
+        let at = if k == 0 {
+            start
+        } else if k + 1 == n {
+            end
+        } else {
+            let t = k as f64 / (n - 1) as f64;
+            let line = add(start, scale(t, sub(end, start)));
+            add(line, scale(0.3 * span, random_unit(rng)))
+        };
+        // Pivots at the chain's ends mostly on the base (or the link it starts at) and the
+        // platform, sometimes on the link beyond; in between on either link.
+        let owner = |rng: &mut Rng| {
+            let p = if k == 0 {
+                0.2
+            } else if k + 1 == n {
+                0.8
+            } else {
+                0.5
+            };
+            if chance(rng, p) {
+                after
+            } else {
+                before
+            }
+        };
+        let inputs = if active {
+            m.inputs_of(kind)
+        } else {
+            Vec::new()
+        };
+        let mut joint = Joint {
+            kind,
+            inputs,
+            centre: None,
+            axis: None,
+            offset: None,
+            lead: None,
+        };
+        match kind {
+            Kind::S => {
+                let o = owner(rng);
+                joint.centre = Some(m.pivot(o, at));
+            }
+            Kind::U => {
+                // The first axis on the link before (the README's case); the centre on either
+                // link, the axis's first point at the centre or elsewhere on the axis.
+                let u = random_unit(rng);
+                let o = owner(rng);
+                let centre = m.pivot(o, at);
+                let first = if o == before && chance(rng, 0.5) {
+                    centre
+                } else {
+                    m.pivot(before, add(at, scale(uniform(rng, -30.0, -8.0), u)))
+                };
+                let second = m.pivot(before, add(at, scale(uniform(rng, 10.0, 30.0), u)));
+                joint.centre = Some(centre);
+                joint.axis = Some((first, second));
+            }
+            Kind::R | Kind::P | Kind::C | Kind::H => {
+                let u = random_unit(rng);
+                let o = owner(rng);
+                let a = add(at, scale(uniform(rng, -10.0, 10.0), u));
+                let first = m.pivot(o, a);
+                let second = m.pivot(o, add(a, scale(uniform(rng, 15.0, 40.0), u)));
+                joint.axis = Some((first, second));
+                if kind == Kind::H {
+                    joint.lead = Some(uniform(rng, 2.0, 12.0));
+                }
+                if kind == Kind::P && active && chance(rng, 0.5) {
+                    joint.offset = Some(uniform(rng, -40.0, 40.0));
+                }
+            }
+        }
+        joints.push(joint);
+    }
+    let shape = pairs
+        .iter()
+        .map(|(k, a)| format!("{k:?}{}", if *a { "*" } else { "" }))
+        .collect::<Vec<_>>()
+        .join("-");
+    Chain {
+        name: format!("c{c}"),
+        links,
+        joints,
+        shape,
+    }
+}
+
+/// The closed-form legs: S-P-S, U-P-S, R-S-S (a crank and a rod), P-S-S (a carriage and a
+/// rod), and for a 3-DOF platform R-P-S.
+fn classic_chain(m: &mut Mech, rng: &mut Rng, five: bool) -> Chain {
+    let c = m.chains.len();
+    let start = m.random_base_point(rng);
+    let end = m.random_platform_point(rng);
+    let g = m.pivot(PLATFORM, end);
+    let passive = |kind| Joint {
+        kind,
+        inputs: Vec::new(),
+        centre: None,
+        axis: None,
+        offset: None,
+        lead: None,
+    };
+    let slide = |m: &mut Mech, rng: &mut Rng| Joint {
+        inputs: m.inputs_of(Kind::P),
+        offset: chance(rng, 0.5).then(|| uniform(rng, -40.0, 40.0)),
+        ..passive(Kind::P)
+    };
+    let end_s = Joint {
+        centre: Some(g),
+        ..passive(Kind::S)
+    };
+    let which = if five {
+        "R-P*-S"
+    } else {
+        pick(rng, &["S-P*-S", "U-P*-S", "R*-S-S", "P*-S-S"])
+    };
+    let (links, joints) = match which {
+        "S-P*-S" => {
+            let a = m.pivot(BASE, start);
+            let first = Joint {
+                centre: Some(a),
+                ..passive(Kind::S)
+            };
+            (
+                vec![Some(BASE), None, None, Some(PLATFORM)],
+                vec![first, slide(m, rng), end_s],
+            )
+        }
+        "U-P*-S" => {
+            let a = m.pivot(BASE, start);
+            let aa = m.pivot(BASE, add(start, scale(20.0, random_unit(rng))));
+            let first = Joint {
+                centre: Some(a),
+                axis: Some((a, aa)),
+                ..passive(Kind::U)
+            };
+            (
+                vec![Some(BASE), None, None, Some(PLATFORM)],
+                vec![first, slide(m, rng), end_s],
+            )
+        }
+        "R-P*-S" => {
+            // The hinge square to the leg (a 3-RPS), or oblique to it (the leg sweeps a cone).
+            let leg = unit(sub(end, start));
+            let r = random_unit(rng);
+            let square = unit(sub(r, scale(dot(r, leg), leg)));
+            let u = if chance(rng, 0.7) {
+                square
+            } else {
+                unit(add(square, scale(uniform(rng, -0.6, 0.6), leg)))
+            };
+            let a = m.pivot(BASE, start);
+            let b = m.pivot(BASE, add(start, scale(20.0, u)));
+            let first = Joint {
+                axis: Some((a, b)),
+                ..passive(Kind::R)
+            };
+            (
+                vec![Some(BASE), None, None, Some(PLATFORM)],
+                vec![first, slide(m, rng), end_s],
+            )
+        }
+        _ => {
+            let rotary = which == "R*-S-S";
+            let u = random_unit(rng);
+            let a = m.pivot(BASE, start);
+            let b = m.pivot(BASE, add(start, scale(25.0, u)));
+            let kind = if rotary { Kind::R } else { Kind::P };
+            let first = Joint {
+                axis: Some((a, b)),
+                inputs: m.inputs_of(kind),
+                offset: (!rotary && chance(rng, 0.5)).then(|| uniform(rng, -40.0, 40.0)),
+                ..passive(kind)
+            };
+            // The crank's (or carriage's) ball joint a crank's length off the axis, towards the
+            // platform.
+            let towards = sub(end, start);
+            let off = unit(sub(towards, scale(dot(towards, u), u)));
+            let e = add(
+                add(start, scale(uniform(rng, 10.0, 40.0), u)),
+                scale(
+                    uniform(rng, 40.0, 70.0),
+                    unit(add(off, scale(0.5, random_unit(rng)))),
+                ),
+            );
+            let crank = m.link(format!("crank{c}"), None);
+            let ce = m.pivot(crank, e);
+            let rod = m.link(format!("rod{c}"), Some(norm(sub(end, e))));
+            let middle = Joint {
+                centre: Some(ce),
+                ..passive(Kind::S)
+            };
+            (
+                vec![Some(BASE), Some(crank), Some(rod), Some(PLATFORM)],
+                vec![first, middle, end_s],
+            )
+        }
+    };
+    Chain {
+        name: format!("c{c}"),
+        links,
+        joints,
+        shape: which.to_string(),
+    }
+}
+
+/// Declared pivots of a link that is the link before an active pair (the README: its turn
+/// must be defined) or the rail of a slide between moving links (the model asks for a point
+/// off the rail's axis, to carry the slider's points off it): at least three off one line,
+/// adding pivots near it where they are not.
+fn locate_links_before_actives(m: &mut Mech, rng: &mut Rng) {
+    let mut needed = Vec::new();
+    for chain in &m.chains {
+        for (k, j) in chain.joints.iter().enumerate() {
+            let rail = matches!(j.kind, Kind::P | Kind::C);
+            if let (true, Some(l)) = (!j.inputs.is_empty() || rail, chain.links[k]) {
+                if l != BASE && l != PLATFORM && !needed.contains(&l) {
+                    needed.push(l);
+                }
+            }
+        }
+    }
+    for l in needed {
+        loop {
+            let pts: Vec<V3> = m
+                .pivots
+                .iter()
+                .filter(|p| p.link == l)
+                .map(|p| p.at)
+                .collect();
+            if spans_a_plane(&pts) {
+                break;
+            }
+            let near = pts.first().copied().unwrap_or([0.0, 0.0, 100.0]);
+            m.pivot(
+                l,
+                add(near, scale(uniform(rng, 15.0, 30.0), random_unit(rng))),
+            );
+        }
+    }
+}
+
+/// Whether some three of the points span a triangle of fair size (sides ≳ 5, not flat).
+fn spans_a_plane(pts: &[V3]) -> bool {
+    pts.iter().enumerate().any(|(i, a)| {
+        pts[i + 1..].iter().enumerate().any(|(j, b)| {
+            pts[i + j + 2..].iter().any(|c| {
+                let area = norm(cross(sub(*b, *a), sub(*c, *a)));
+                let longest = [norm(sub(*b, *a)), norm(sub(*c, *a)), norm(sub(*c, *b))]
+                    .into_iter()
+                    .fold(0.0, f64::max);
+                area > 0.2 * longest * longest && longest > 5.0
+            })
+        })
+    })
+}
+
+/// Whether every two pivots are apart (no coincident points by chance).
+fn pivots_apart(m: &Mech) -> bool {
+    m.pivots.iter().enumerate().all(|(i, a)| {
+        m.pivots[i + 1..]
+            .iter()
+            .all(|b| norm(sub(a.at, b.at)) > 4.0)
+    })
+}
+
+/// One random mechanism from `seed`, its family decided by the seed too.
+pub fn generate(seed: u64) -> Mech {
+    let mut rng = Rng::new(seed);
+    loop {
+        let family = pick(
+            &mut rng,
+            &[
+                "hexapod",
+                "hexapod",
+                "three-dof",
+                "two-actives",
+                "mixed-actives",
+                "serial",
+            ],
+        );
+        let mut m = Mech::new(family, &mut rng);
+        // Each entry: a chain's freedoms and its actives' variable counts.
+        let plan: Vec<(usize, Vec<usize>)> = match family {
+            "hexapod" => (0..6).map(|_| (6, vec![1])).collect(),
+            "three-dof" => (0..3).map(|_| (5, vec![1])).collect(),
+            "two-actives" => (0..3)
+                .map(|_| (6, pick(&mut rng, &[&[2][..], &[1, 1]]).to_vec()))
+                .collect(),
+            "mixed-actives" => {
+                let mut p = vec![(6, vec![3]), (6, vec![2]), (6, vec![1])];
+                shuffle(&mut rng, &mut p);
+                p
+            }
+            _ => {
+                let f = pick(&mut rng, &[3, 4, 5, 6]);
+                let mut actives = Vec::new();
+                let mut rest = f;
+                while rest > 0 {
+                    let a = pick(&mut rng, &[1, 1, 1, 2, 3]);
+                    if a <= rest {
+                        actives.push(a);
+                        rest -= a;
+                    }
+                }
+                vec![(f, actives)]
+            }
+        };
+        for (f, actives) in plan {
+            let classic = actives == [1]
+                && (family == "hexapod" || family == "three-dof")
+                && chance(&mut rng, 0.5);
+            let chain = if classic {
+                classic_chain(&mut m, &mut rng, f == 5)
+            } else {
+                // Some chains start at a declared link of an earlier chain (a link placed
+                // already, as the second rod of a delta's parallelogram starts at the crank).
+                let placed: Vec<usize> = (2..m.links.len())
+                    .filter(|&l| m.links[l].length.is_none())
+                    .collect();
+                let pairs = general_pairs(&mut rng, f, &actives);
+                let (from, start) = if !placed.is_empty() && chance(&mut rng, 0.3) {
+                    let l = pick(&mut rng, &placed);
+                    let on: Vec<V3> = m
+                        .pivots
+                        .iter()
+                        .filter(|p| p.link == l)
+                        .map(|p| p.at)
+                        .collect();
+                    let near = on.first().copied().unwrap_or(m.random_base_point(&mut rng));
+                    (
+                        l,
+                        add(
+                            near,
+                            scale(uniform(&mut rng, 20.0, 40.0), random_unit(&mut rng)),
+                        ),
+                    )
+                } else {
+                    (BASE, m.random_base_point(&mut rng))
+                };
+                general_chain(&mut m, &mut rng, from, start, &pairs)
+            };
+            m.chains.push(chain);
+        }
+        // A platform of fewer than three pivots off one line gets more (its frame).
+        while !spans_a_plane(
+            &m.pivots
+                .iter()
+                .filter(|p| p.link == PLATFORM)
+                .map(|p| p.at)
+                .collect::<Vec<_>>(),
+        ) {
+            let p = m.random_platform_point(&mut rng);
+            m.pivot(PLATFORM, p);
+        }
+        locate_links_before_actives(&mut m, &mut rng);
+        if pivots_apart(&m) {
+            return m;
+        }
+    }
+}
+
+fn number(x: f64) -> String {
+    format!("{x:?}")
+}
+
+fn point(x: V3) -> String {
+    format!("[{}, {}, {}]", number(x[0]), number(x[1]), number(x[2]))
+}
+
+/// The declaration as `mechanism!` takes it.
+pub fn render(m: &Mech) -> String {
+    let mut s = String::from("pub struct Random;\n");
+    let pivots_of = |l: usize| -> String {
+        m.pivots
+            .iter()
+            .filter(|p| p.link == l)
+            .map(|p| {
+                let at = if l == PLATFORM {
+                    m.platform_local(p.at)
+                } else {
+                    p.at
+                };
+                format!("{} = {}", p.name, point(at))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let _ = writeln!(s, "base {{ {} }}", pivots_of(BASE));
+    let h = m.home;
+    let _ = writeln!(
+        s,
+        "platform(home = [{}]) {{ {} }}",
+        h.map(number).join(", "),
+        pivots_of(PLATFORM)
+    );
+    for (l, link) in m.links.iter().enumerate().skip(2) {
+        match link.length {
+            Some(len) => {
+                let _ = writeln!(s, "link {} {{ length = {} }}", link.name, number(len));
+            }
+            None => {
+                let _ = writeln!(s, "link {} {{ {} }}", link.name, pivots_of(l));
+            }
+        }
+    }
+    for chain in &m.chains {
+        let mut items = vec![m.links[chain.links[0].unwrap()].name.clone()];
+        for (k, j) in chain.joints.iter().enumerate() {
+            let mut args = Vec::new();
+            if let Some(c) = j.centre {
+                args.push(m.pivots[c].name.clone());
+            }
+            if j.inputs.is_empty() {
+                if !matches!(j.kind, Kind::S | Kind::U) {
+                    args.push("passive".into());
+                }
+            } else {
+                args.push(format!("active {}", j.inputs.join(" ")));
+            }
+            if let Some((a, b)) = j.axis {
+                args.push(format!(
+                    "axis = {} -> {}",
+                    m.pivots[a].name, m.pivots[b].name
+                ));
+            }
+            if let Some(o) = j.offset {
+                args.push(format!("offset = {}", number(o)));
+            }
+            if let Some(p) = j.lead {
+                args.push(format!("lead = {}", number(p)));
+            }
+            items.push(format!("{:?}({})", j.kind, args.join(", ")));
+            if let Some(l) = chain.links[k + 1] {
+                items.push(m.links[l].name.clone());
+            }
+        }
+        let _ = writeln!(s, "chain {} = {};", chain.name, items.join(" - "));
+    }
+    s
+}

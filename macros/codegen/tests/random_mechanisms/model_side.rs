@@ -1,0 +1,104 @@
+//! The model's first-order kinematics at its home configuration: v̇ = −B⁻¹ (∂F/∂x) ẋ with
+//! B = ∂F/∂v, evaluated where the generated `from_geometry` and `home_start` put the
+//! configuration (`model::reference::configuration`).
+
+use crate::generator::V3;
+use linkage_codegen::expr::{Expr, Var};
+use linkage_codegen::model::{reference, Model};
+use nalgebra::{DMatrix, DVector};
+
+pub struct Home {
+    pub v: Vec<f64>,
+    pub x: Vec<f64>,
+    pub c: Vec<f64>,
+    /// The largest |F_i(v0, x0)| over the squared length scale of (v0, x0).
+    pub residual: f64,
+}
+
+pub fn home(model: &Model) -> Result<Home, String> {
+    let (v, x, c) = reference::configuration(model, model.home_pose)?;
+    let scale = v.iter().chain(&x).fold(1.0f64, |m, a| m.max(a.abs()));
+    let residual = model
+        .equations
+        .iter()
+        .map(|f| f.eval(&v, &x, &c).abs())
+        .fold(0.0, f64::max)
+        / (scale * scale);
+    Ok(Home { v, x, c, residual })
+}
+
+/// Each platform point of the model: its name, its home position and its velocity for input
+/// rates `xdot` (in the model's input order).
+pub fn platform_rates(
+    model: &Model,
+    h: &Home,
+    xdot: &[f64],
+) -> Result<Vec<(String, V3, V3)>, String> {
+    let (n, m) = (model.unknowns.len(), model.inputs.len());
+    if model.equations.len() != n {
+        return Err(format!(
+            "{} equations for {n} unknowns",
+            model.equations.len()
+        ));
+    }
+    // ∂F/∂v by central differences of a whole unit: F is of degree ≤ 2 in v, so they are
+    // exact up to rounding (and far cheaper than the symbolic derivatives in a debug build);
+    // ∂F/∂x symbolically (the inputs enter through sines and cosines).
+    let mut b = DMatrix::zeros(n, n);
+    let users = unknowns_used(model);
+    let mut v = h.v.clone();
+    for c in 0..n {
+        for &r in &users[c] {
+            let f = &model.equations[r];
+            v[c] = h.v[c] + 1.0;
+            let plus = f.eval(&v, &h.x, &h.c);
+            v[c] = h.v[c] - 1.0;
+            let minus = f.eval(&v, &h.x, &h.c);
+            v[c] = h.v[c];
+            b[(r, c)] = (plus - minus) / 2.0;
+        }
+    }
+    let mut fx = DMatrix::zeros(n, m);
+    for (r, f) in model.equations.iter().enumerate() {
+        for c in 0..m {
+            if f.depends_on(Var::Input(c)) {
+                fx[(r, c)] = f.derivative(Var::Input(c)).eval(&h.v, &h.x, &h.c);
+            }
+        }
+    }
+    let rhs = -(fx * DVector::from_column_slice(xdot));
+    let vdot = b.lu().solve(&rhs).ok_or("∂F/∂v is singular at home")?;
+    Ok(model
+        .points
+        .iter()
+        .enumerate()
+        .map(|(p, pt)| {
+            let at = [0, 1, 2].map(|a| h.v[model.unknown(p, a)]);
+            let rate = [0, 1, 2].map(|a| vdot[model.unknown(p, a)]);
+            (pt.name.clone(), at, rate)
+        })
+        .collect())
+}
+
+/// For each unknown, the equations that mention it.
+fn unknowns_used(model: &Model) -> Vec<Vec<usize>> {
+    fn walk(e: &Expr, out: &mut Vec<usize>) {
+        match e {
+            Expr::Unknown(i) => out.push(*i),
+            Expr::Num(_) | Expr::Input(_) | Expr::Constant(_) => {}
+            Expr::Sum(ts) | Expr::Product(ts) => ts.iter().for_each(|t| walk(t, out)),
+            Expr::Square(t) | Expr::Sin(t) | Expr::Cos(t) => walk(t, out),
+        }
+    }
+    let mut users = vec![Vec::new(); model.unknowns.len()];
+    for (r, f) in model.equations.iter().enumerate() {
+        let mut seen = Vec::new();
+        walk(f, &mut seen);
+        seen.sort_unstable();
+        seen.dedup();
+        for u in seen {
+            users[u].push(r);
+        }
+    }
+    users
+}
