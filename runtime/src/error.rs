@@ -27,7 +27,10 @@ pub enum InverseError {
     /// Input `input` is an angle, returned within half a turn of its reference, and the
     /// reference is too large for that (beyond 2¹⁶ rad, about 10 400 turns): a double near it
     /// no longer holds the angle found. Give a reference within a few turns.
-    FarReference { input: usize },
+    FarReference {
+        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        input: usize,
+    },
 }
 
 impl fmt::Display for InverseError {
