@@ -290,33 +290,43 @@ fn a_formula_made_non_finite_by_its_parameter_names_the_parameter() {
 
 /// `home_start` is the start at the declared home pose for the current geometry. The delta's
 /// cranks have closed forms, but it used the declared configuration (cranks at 0) whatever
-/// the geometry: its base set 1 mm wider (`rb` = 99), and `home_start` was
+/// the geometry: its base radius set 1 mm smaller (`rb` = 99), and `home_start` was
 /// `InconsistentStart { residual_norm: 781 }` while `inverse` placed the platform there.
 #[test]
 fn home_start_follows_a_calibrated_delta_to_its_home_pose() {
-    for rb in [99.0, 101.0, 90.0, 50.0, 0.0, -0.0, 5e-324] {
+    let calibrations = [99.0, 101.0, 90.0, 50.0, 0.0, -0.0, 5e-324]
+        .map(|v| ("rb", v))
+        .into_iter()
+        .chain([
+            ("rp", 45.0),
+            ("rp", 0.0),
+            ("hw", 20.0),
+            ("ra", 95.0),
+            ("rod", 250.0),
+        ]);
+    for (name, value) in calibrations {
         let mut d = Delta::new();
-        d.set_geometry("rb", rb).unwrap();
+        d.set_geometry(name, value).unwrap();
         let start = d
             .home_start()
-            .unwrap_or_else(|e| panic!("rb = {rb:e}: {e:?}"));
+            .unwrap_or_else(|e| panic!("{name} = {value:e}: {e:?}"));
         let pose = pose_from_unknowns(&d, start.v()).unwrap();
         assert!(
             (pose.translation[2] + 200.0).abs() < 1e-9
                 && pose.translation[0].abs() < 1e-9
                 && pose.euler().iter().all(|a| a.abs() < 1e-12),
-            "rb = {rb:e}: {pose:?}"
+            "{name} = {value:e}: {pose:?}"
         );
         let x = d.inverse(start.v(), &Delta::HOME_INPUTS).unwrap();
         assert!(
             linkage_tests::max_diff(&x, start.x()) < 1e-12,
-            "rb = {rb:e}"
+            "{name} = {value:e}"
         );
         let target = start.x().map(|q| q + 0.05);
         let sol = arc_length(&d, &start, &target, &Options::TIGHT).unwrap();
         assert!(
             sol.is_ok() && residual(&d, &sol.v, &target) < 1e-6,
-            "rb = {rb:e}: {sol:?}"
+            "{name} = {value:e}: {sol:?}"
         );
     }
 }
