@@ -955,3 +955,22 @@ fn a_stewart_platform_at_any_accepted_scale_starts_and_solves() {
         assert!(sol.is_ok(), "scale {k:e}: {:?}", sol.status);
     }
 }
+
+/// A pivot declared on a prismatic axis, moved off it by moving the axis (a SCARA's quill
+/// axis tilted: `arm2.W` 10 mm out, `Wz` kept), is `NotCollinear` — it was `NotCoplanar`,
+/// which speaks of the platform's plane — and the mechanism is unchanged; moving the link's
+/// own pivots within its motion is a mechanism that starts.
+#[test]
+fn a_point_moved_off_its_axis_is_not_collinear() {
+    let scara = Scara::new();
+    let mut s = scara.clone();
+    assert_eq!(
+        s.set_pivot("arm2", "W", [360.0, 0.0, 0.0]),
+        Err(GeometryError::NotCollinear)
+    );
+    assert_eq!(s, scara);
+    assert!(GeometryError::NotCollinear.to_string().contains("line"));
+    s.set_pivot("arm1", "E", [210.0, 0.0, 0.0]).unwrap();
+    let start = s.home_start().unwrap();
+    assert!(holds(&s, start.v(), start.x()));
+}
