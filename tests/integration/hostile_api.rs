@@ -290,33 +290,43 @@ fn a_formula_made_non_finite_by_its_parameter_names_the_parameter() {
 
 /// `home_start` is the start at the declared home pose for the current geometry. The delta's
 /// cranks have closed forms, but it used the declared configuration (cranks at 0) whatever
-/// the geometry: its base set 1 mm wider (`rb` = 99), and `home_start` was
+/// the geometry: its base radius set 1 mm smaller (`rb` = 99), and `home_start` was
 /// `InconsistentStart { residual_norm: 781 }` while `inverse` placed the platform there.
 #[test]
 fn home_start_follows_a_calibrated_delta_to_its_home_pose() {
-    for rb in [99.0, 101.0, 90.0, 50.0, 0.0, -0.0, 5e-324] {
+    let calibrations = [99.0, 101.0, 90.0, 50.0, 0.0, -0.0, 5e-324]
+        .map(|v| ("rb", v))
+        .into_iter()
+        .chain([
+            ("rp", 45.0),
+            ("rp", 0.0),
+            ("hw", 20.0),
+            ("ra", 95.0),
+            ("rod", 250.0),
+        ]);
+    for (name, value) in calibrations {
         let mut d = Delta::new();
-        d.set_geometry("rb", rb).unwrap();
+        d.set_geometry(name, value).unwrap();
         let start = d
             .home_start()
-            .unwrap_or_else(|e| panic!("rb = {rb:e}: {e:?}"));
+            .unwrap_or_else(|e| panic!("{name} = {value:e}: {e:?}"));
         let pose = pose_from_unknowns(&d, start.v()).unwrap();
         assert!(
             (pose.translation[2] + 200.0).abs() < 1e-9
                 && pose.translation[0].abs() < 1e-9
                 && pose.euler().iter().all(|a| a.abs() < 1e-12),
-            "rb = {rb:e}: {pose:?}"
+            "{name} = {value:e}: {pose:?}"
         );
         let x = d.inverse(start.v(), &Delta::HOME_INPUTS).unwrap();
         assert!(
             linkage_tests::max_diff(&x, start.x()) < 1e-12,
-            "rb = {rb:e}"
+            "{name} = {value:e}"
         );
         let target = start.x().map(|q| q + 0.05);
         let sol = arc_length(&d, &start, &target, &Options::TIGHT).unwrap();
         assert!(
             sol.is_ok() && residual(&d, &sol.v, &target) < 1e-6,
-            "rb = {rb:e}: {sol:?}"
+            "{name} = {value:e}: {sol:?}"
         );
     }
 }
@@ -944,4 +954,23 @@ fn a_stewart_platform_at_any_accepted_scale_starts_and_solves() {
         let sol = arc_length(&sys, &start, &HOME_LEGS.map(|l| l * k * 1.01), &o).unwrap();
         assert!(sol.is_ok(), "scale {k:e}: {:?}", sol.status);
     }
+}
+
+/// A pivot declared on a prismatic axis, moved off it by moving the axis (a SCARA's quill
+/// axis tilted: `arm2.W` 10 mm out, `Wz` kept), is `NotCollinear` — it was `NotCoplanar`,
+/// which speaks of the platform's plane — and the mechanism is unchanged; moving the link's
+/// own pivots within its motion is a mechanism that starts.
+#[test]
+fn a_point_moved_off_its_axis_is_not_collinear() {
+    let scara = Scara::new();
+    let mut s = scara.clone();
+    assert_eq!(
+        s.set_pivot("arm2", "W", [360.0, 0.0, 0.0]),
+        Err(GeometryError::NotCollinear)
+    );
+    assert_eq!(s, scara);
+    assert!(GeometryError::NotCollinear.to_string().contains("line"));
+    s.set_pivot("arm1", "E", [210.0, 0.0, 0.0]).unwrap();
+    let start = s.home_start().unwrap();
+    assert!(holds(&s, start.v(), start.x()));
 }

@@ -34,6 +34,9 @@ pub enum GeometryError {
     /// A platform pivot left the plane of the frame, but the system was generated in the
     /// coplanar form of Eq. 16; declare the platform with `form = general`.
     NotCoplanar,
+    /// A pivot declared on the line of two others (on a prismatic pair's axis, or on a link
+    /// whose pivots all lie on one line) left it: the equations place it on that line.
+    NotCollinear,
     /// A pair's axis is given by (nearly) coincident points.
     DegenerateAxis,
     /// A link's length is zero or negative.
@@ -64,6 +67,10 @@ impl fmt::Display for GeometryError {
             GeometryError::NotCoplanar => write!(
                 f,
                 "a platform pivot is off the frame's plane but the system uses the coplanar form"
+            ),
+            GeometryError::NotCollinear => write!(
+                f,
+                "a pivot declared on the line of two others (a prismatic axis) is off it"
             ),
             GeometryError::DegenerateAxis => write!(f, "a pair axis is given by coincident points"),
             GeometryError::FormulaNotFinite { name, parameter } => write!(
@@ -156,7 +163,9 @@ pub fn collinear_coefficients(line: [[f64; 3]; 2], q: [f64; 3]) -> Result<[f64; 
     let b = dot3(r, e) / ee;
     let off = norm3(cross3(r, e)) / sqrt(ee);
     if !(off <= 1e-9 * scale) {
-        return Err(GeometryError::NotCoplanar);
+        // Off its line, not off a plane (a SCARA's quill axis tilted by moving one of its
+        // points was refused as `NotCoplanar`, which names the platform's plane).
+        return Err(GeometryError::NotCollinear);
     }
     Ok([1.0 - b, b])
 }
