@@ -145,7 +145,9 @@ impl<const N: usize> Solution<N> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SolveError {
     /// A start or target value is NaN or infinite, or so large that the constraint equations
-    /// overflow at it.
+    /// overflow at it; or a start at a scale where det B, B regular, over- or underflows (a
+    /// Stewart platform declared in units that make it 1e40 or 1e-40 across: its 18×18
+    /// determinant is not a double).
     NonFinite,
     /// An [`Options`] value is out of range: `reason` says which and why.
     InvalidOptions {

@@ -218,9 +218,20 @@ impl<const N: usize, const M: usize> Start<N, M> {
         let scale = crate::math::scale_or_one(norm(&v));
         let given = v;
         let mut v = v;
+        // A factorisation that fails where B is regular by its scale-free condition failed on
+        // det B alone, which over- or underflows for a machine declared at a scale a double
+        // cannot hold its determinant at (a Stewart platform beyond about 1e±30): a value out
+        // of range, not a singular start.
+        let failed = |v: &[f64; N]| {
+            if singular_to_rounding(sys, v, &x) {
+                SolveError::SingularStart
+            } else {
+                SolveError::NonFinite
+            }
+        };
         let refined = |v: &[f64; N]| match correction(sys, v, &x) {
             Ok(c) => Ok(c),
-            Err(Failure::Singular) => Err(SolveError::SingularStart),
+            Err(Failure::Singular) => Err(failed(v)),
             Err(Failure::NonFinite) => Err(inconsistent),
         };
         let mut c = refined(&v)?;
@@ -239,8 +250,8 @@ impl<const N: usize, const M: usize> Start<N, M> {
         if norm(&moved) > 1e-3 * scale {
             return Err(inconsistent);
         }
-        if singular_to_rounding(sys, &v, &x) || c.det == 0.0 || !c.det.is_finite() {
-            return Err(SolveError::SingularStart);
+        if c.det == 0.0 || !c.det.is_finite() || singular_to_rounding(sys, &v, &x) {
+            return Err(failed(&v));
         }
         if c.size > 1e-6 * scale {
             return Err(inconsistent);
