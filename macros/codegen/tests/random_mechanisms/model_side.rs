@@ -80,6 +80,62 @@ pub fn platform_rates(
         .collect())
 }
 
+/// The model's unknowns at inputs `x` (the model's order), by Newton on F from home, in ten
+/// steps along the straight line from home's inputs, each from the last.
+pub fn solve(model: &Model, h: &Home, x: &[f64]) -> Result<Vec<f64>, String> {
+    let mut v = h.v.clone();
+    let parts = 10;
+    for k in 1..=parts {
+        let t = k as f64 / parts as f64;
+        let at: Vec<f64> = h.x.iter().zip(x).map(|(a, b)| a + t * (b - a)).collect();
+        v = newton(model, h, &at, v).map_err(|e| format!("{e} at {k} of {parts}"))?;
+    }
+    Ok(v)
+}
+
+fn newton(model: &Model, h: &Home, x: &[f64], mut v: Vec<f64>) -> Result<Vec<f64>, String> {
+    let n = model.unknowns.len();
+    let users = unknowns_used(model);
+    let scale = v.iter().fold(1.0f64, |m, a| m.max(a.abs()));
+    let residual = |v: &[f64]| -> DVector<f64> {
+        DVector::from_iterator(n, model.equations.iter().map(|e| e.eval(v, x, &h.c)))
+    };
+    for _ in 0..60 {
+        let f = residual(&v);
+        // Exact central differences of a unit (F is of degree ≤ 2 in v).
+        let mut b = DMatrix::zeros(n, n);
+        let mut w = v.clone();
+        for c in 0..n {
+            for &r in &users[c] {
+                let e = &model.equations[r];
+                w[c] = v[c] + 1.0;
+                let plus = e.eval(&w, x, &h.c);
+                w[c] = v[c] - 1.0;
+                let minus = e.eval(&w, x, &h.c);
+                w[c] = v[c];
+                b[(r, c)] = (plus - minus) / 2.0;
+            }
+        }
+        let step = b.lu().solve(&(-&f)).ok_or("∂F/∂v is singular on the way")?;
+        if step.norm() < 1e-10 * scale {
+            v.iter_mut().zip(step.iter()).for_each(|(a, d)| *a += d);
+            return Ok(v);
+        }
+        // Halved while it does not reduce the residual (an internal link can swing far for a
+        // small step of the inputs near a fold of its own).
+        let mut t = 1.0;
+        let trial = loop {
+            let w: Vec<f64> = v.iter().zip(step.iter()).map(|(a, d)| a + t * d).collect();
+            if residual(&w).norm() < f.norm() || t < 1e-3 {
+                break w;
+            }
+            t /= 2.0;
+        };
+        v = trial;
+    }
+    Err("Newton on F does not converge".into())
+}
+
 /// For each unknown, the equations that mention it.
 fn unknowns_used(model: &Model) -> Vec<Vec<usize>> {
     fn walk(e: &Expr, out: &mut Vec<usize>) {

@@ -1,0 +1,262 @@
+//! The oracle a finite step from home: the mechanism's own joint-space loop closure, written
+//! from the declaration and the README's pair table. Every chain's links are placed by the
+//! product of exponentials of its pairs' home twists (a pair's motion at its joint values,
+//! about its axes as they were at home, in the chain's direction); the passive joint values
+//! are solved (Levenberg–Marquardt, from home) so that every chain puts the platform in one
+//! place, the actives held at their targets.
+
+use crate::generator::{add, dot, scale, sub, unit, Kind, Mech, BASE, PLATFORM, V3};
+use crate::screws::leg_ends;
+use nalgebra::{DMatrix, DVector};
+
+type M3 = [[f64; 3]; 3];
+
+/// A rigid motion x ↦ r x + p.
+#[derive(Clone, Copy)]
+struct Motion {
+    r: M3,
+    p: V3,
+}
+
+const IDENTITY: Motion = Motion {
+    r: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+    p: [0.0; 3],
+};
+
+fn apply(r: &M3, x: V3) -> V3 {
+    [dot(r[0], x), dot(r[1], x), dot(r[2], x)]
+}
+
+impl Motion {
+    /// `self ∘ then`: `then` first, `self` after.
+    fn after(&self, then: &Motion) -> Motion {
+        let r =
+            [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| self.r[i][k] * then.r[k][j]).sum()));
+        Motion {
+            r,
+            p: add(apply(&self.r, then.p), self.p),
+        }
+    }
+
+    fn point(&self, x: V3) -> V3 {
+        add(apply(&self.r, x), self.p)
+    }
+}
+
+/// A turn by `angle` about the axis `u` through `a`, then a slide `s` along `u`.
+fn screw(u: V3, a: V3, angle: f64, s: f64) -> Motion {
+    let (c, sn) = (angle.cos(), angle.sin());
+    let k = [[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]];
+    let r = [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let id = if i == j { 1.0 } else { 0.0 };
+            id * c + sn * k[i][j] + (1.0 - c) * u[i] * u[j]
+        })
+    });
+    let p = add(sub(a, apply(&r, a)), scale(s, u));
+    Motion { r, p }
+}
+
+/// The motion of joint `k` of `chain` at its joint values `q` (one per freedom, in the order
+/// of [`crate::screws::joint_twists`]).
+fn joint_motion(m: &Mech, chain: usize, k: usize, q: &[f64]) -> Motion {
+    let j = &m.chains[chain].joints[k];
+    let axis = j.axis.map(|(a, b)| {
+        let (a, b) = (m.pivots[a].at, m.pivots[b].at);
+        (a, unit(sub(b, a)))
+    });
+    match j.kind {
+        Kind::R => {
+            let (a, u) = axis.unwrap();
+            screw(u, a, q[0], 0.0)
+        }
+        Kind::P => {
+            let u = match axis {
+                Some((_, u)) => u,
+                None => {
+                    let [from, to] = leg_ends(m, chain, k);
+                    unit(sub(to, from))
+                }
+            };
+            screw(u, [0.0; 3], 0.0, q[0])
+        }
+        Kind::C => {
+            let (a, u) = axis.unwrap();
+            screw(u, a, q[0], q[1])
+        }
+        Kind::H => {
+            let (a, u) = axis.unwrap();
+            screw(u, a, q[0], j.lead.unwrap() * q[0] / std::f64::consts::TAU)
+        }
+        // Rz(yaw)·Ry(pitch)·Rx(roll) about the centre, in the base frame's axes.
+        Kind::S => {
+            let c = m.pivots[j.centre.unwrap()].at;
+            let z = screw([0.0, 0.0, 1.0], c, q[0], 0.0);
+            let y = screw([0.0, 1.0, 0.0], c, q[1], 0.0);
+            let x = screw([1.0, 0.0, 0.0], c, q[2], 0.0);
+            z.after(&y).after(&x)
+        }
+        // About the first axis, then about the second as the link after holds it.
+        Kind::U => {
+            let c = m.pivots[j.centre.unwrap()].at;
+            let t = crate::screws::joint_twists(m, chain, k);
+            let (u1, u2) = ([t[0][0], t[0][1], t[0][2]], [t[1][0], t[1][1], t[1][2]]);
+            screw(u1, c, q[0], 0.0).after(&screw(u2, c, q[1], 0.0))
+        }
+    }
+}
+
+/// Per chain, per joint, per freedom: an input's index (`Ok`) or a passive unknown's (`Err`).
+type Variables = Vec<Vec<Vec<Result<usize, usize>>>>;
+
+/// Where each joint variable lives, and how many passive unknowns there are.
+fn variables(m: &Mech) -> (Variables, usize) {
+    let mut passive = 0;
+    let table = m
+        .chains
+        .iter()
+        .map(|c| {
+            c.joints
+                .iter()
+                .map(|j| {
+                    (0..j.kind.freedoms())
+                        .map(|f| match j.inputs.get(f) {
+                            Some(name) => Ok(m.inputs.iter().position(|i| i == name).unwrap()),
+                            None => {
+                                passive += 1;
+                                Err(passive - 1)
+                            }
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
+    (table, passive)
+}
+
+/// Every chain's platform motion at inputs `x` (declared order, each from its home zero) and
+/// passive values `y`.
+fn platform_motions(m: &Mech, x: &[f64], y: &[f64]) -> Vec<Motion> {
+    let (table, _) = variables(m);
+    let mut placed: Vec<Option<Motion>> = vec![None; m.links.len()];
+    placed[BASE] = Some(IDENTITY);
+    let mut out = Vec::new();
+    // Chains start at the base or at a link of an earlier chain: one pass in order.
+    for (ci, c) in m.chains.iter().enumerate() {
+        let mut t = placed[c.links[0].unwrap()].expect("a chain starts at a link placed before");
+        for (k, _) in c.joints.iter().enumerate() {
+            let q: Vec<f64> = table[ci][k]
+                .iter()
+                .map(|v| match v {
+                    Ok(i) => x[*i],
+                    Err(p) => y[*p],
+                })
+                .collect();
+            t = t.after(&joint_motion(m, ci, k, &q));
+            if let Some(l) = c.links[k + 1] {
+                if l == PLATFORM {
+                    out.push(t);
+                } else if placed[l].is_none() {
+                    placed[l] = Some(t);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The loop closure's residual: every chain's platform against the first chain's, and every
+/// chain's pass through a declared link against that link's first placement. Rotations' entries
+/// and translations in units of 100 mm.
+fn residual(m: &Mech, x: &[f64], y: &[f64]) -> DVector<f64> {
+    let (table, _) = variables(m);
+    let mut placed: Vec<Option<Motion>> = vec![None; m.links.len()];
+    placed[BASE] = Some(IDENTITY);
+    let mut r = Vec::new();
+    let compare = |a: &Motion, b: &Motion, r: &mut Vec<f64>| {
+        for i in 0..3 {
+            for j in 0..3 {
+                r.push(a.r[i][j] - b.r[i][j]);
+            }
+            r.push((a.p[i] - b.p[i]) / 100.0);
+        }
+    };
+    for (ci, c) in m.chains.iter().enumerate() {
+        let mut t = placed[c.links[0].unwrap()].unwrap();
+        for (k, _) in c.joints.iter().enumerate() {
+            let q: Vec<f64> = table[ci][k]
+                .iter()
+                .map(|v| match v {
+                    Ok(i) => x[*i],
+                    Err(p) => y[*p],
+                })
+                .collect();
+            t = t.after(&joint_motion(m, ci, k, &q));
+            if let Some(l) = c.links[k + 1] {
+                match placed[l] {
+                    Some(first) => compare(&t, &first, &mut r),
+                    None => placed[l] = Some(t),
+                }
+            }
+        }
+    }
+    DVector::from_vec(r)
+}
+
+/// The platform's pivots (base frame) at inputs `x`, each a step from its home zero, by the
+/// oracle's loop closure solved from home; `Err` if it does not close.
+pub fn platform_points(m: &Mech, x: &[f64]) -> Result<Vec<(String, V3)>, String> {
+    let (_, n) = variables(m);
+    // In ten steps, each from the last, so as to stay on home's branch.
+    let mut y = vec![0.0; n];
+    for k in 1..=10 {
+        let at: Vec<f64> = x.iter().map(|xi| xi * k as f64 / 10.0).collect();
+        close(m, &at, &mut y)?;
+    }
+    let t = platform_motions(m, x, &y)[0];
+    Ok(m.pivots
+        .iter()
+        .filter(|p| p.link == PLATFORM)
+        .map(|p| (p.name.clone(), t.point(p.at)))
+        .collect())
+}
+
+/// Closes the loops at inputs `x` from passive values `y`.
+fn close(m: &Mech, x: &[f64], y: &mut [f64]) -> Result<(), String> {
+    let n = y.len();
+    let mut f = residual(m, x, y);
+    for _ in 0..60 {
+        if f.norm() < 1e-13 {
+            break;
+        }
+        let h = 1e-7;
+        let mut jac = DMatrix::zeros(f.len(), n);
+        for c in 0..n {
+            let mut yp = y.to_vec();
+            yp[c] += h;
+            let mut ym = y.to_vec();
+            ym[c] -= h;
+            let d = (residual(m, x, &yp) - residual(m, x, &ym)) / (2.0 * h);
+            jac.set_column(c, &d);
+        }
+        // Levenberg–Marquardt with a small damping: idle freedoms (a rod's spin) stay put.
+        let jt = jac.transpose();
+        let mut a = &jt * &jac;
+        for i in 0..n {
+            a[(i, i)] += 1e-10 * (1.0 + a[(i, i)]);
+        }
+        let step = a.lu().solve(&(-(&jt * &f))).ok_or("singular step")?;
+        for (yi, si) in y.iter_mut().zip(step.iter()) {
+            *yi += si;
+        }
+        f = residual(m, x, y);
+    }
+    if !(f.norm() < 1e-10) {
+        return Err(format!(
+            "the oracle's loop closure stops at {:.1e}",
+            f.norm()
+        ));
+    }
+    Ok(())
+}
