@@ -282,3 +282,43 @@ fn literal_offsets_of_sliders_from_the_base_are_per_pair() {
     home.dedup();
     assert_eq!(home, [(0, 100.0), (1, 101.0), (2, 102.0)]);
 }
+
+/// A U at the end of a chain, its first axis on the leg: the second axis is perpendicular to
+/// it and to the line from its centre to the platform's farthest *declared* pivot. The
+/// platform also shares an R's axis pivots (K, Kz) declared on the arm, farther from the
+/// centre; before, the model took K, so another chain's pair decided this U's axis.
+#[test]
+fn a_u_at_a_chain_end_takes_its_second_axis_from_its_own_links_pivots() {
+    let m = build(quote! {
+        pub struct Swivel;
+        base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0], A = [300.0, 300.0, 0.0], Ax = [301.0, 300.0, 0.0] }
+        platform { G = [300.0, 100.0, 0.0], G2 = [300.0, 100.0, 20.0] }
+        link arm { K = [500.0, 0.0, 0.0], Kz = [500.0, 0.0, 1.0] }
+        link leg { Q = [300.0, 150.0, 0.0], Qx = [301.0, 150.0, 0.0] }
+        chain a = base - R(passive, axis = O -> Oz) - arm - R(passive, axis = K -> Kz) - platform;
+        chain b = base - U(A, axis = A -> Ax) - P(active l) - leg - U(G, axis = Q -> Qx) - platform;
+    });
+    let g = m.default_slots();
+    let seconds: Vec<[f64; 3]> = m
+        .auto_points
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| matches!(a, linkage_geometry::recipe::Auto::Normal { .. }))
+        .map(|(i, _)| {
+            linkage_codegen::model::home_of(
+                m.home_pose,
+                &m.auto_points,
+                &g,
+                linkage_geometry::recipe::PointRef::Auto(i),
+            )
+        })
+        .collect();
+    assert_eq!(seconds.len(), 2, "{:?}", m.auto_points);
+    // (Qx − Q) × (G2 − G) = x × 20 z = −20 y: the second axis point one unit along −y from G.
+    let s = seconds[1];
+    let expected = [300.0, 99.0, 0.0];
+    assert!(
+        s.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-12),
+        "the second axis point at {s:?}, expected {expected:?}"
+    );
+}

@@ -49,13 +49,23 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
         ));
     };
     // At the end of a chain no joint follows: the other link's pivot farthest from the centre
-    // gives the direction instead.
+    // gives the direction instead. Of a declared link, only the pivots declared on it: its
+    // members also hold what other chains' pairs bring to it (an R's axis pivots declared on
+    // the neighbouring link, the points a slide or a U adds), and the axis of this U must not
+    // depend on the rest of the mechanism.
+    let declared = topo.links[other].declared;
+    let own = |m: PointId| match (declared, topo.points.pivot(m)) {
+        (Some(link), Some(pivot)) => b.decl.pivot(pivot).link == link,
+        (Some(_), None) => false,
+        // An unnamed link belongs to this chain alone: its members are this chain's points.
+        (None, _) => true,
+    };
     let towards = towards.or_else(|| {
         let h = b.home(topo.home(c));
         topo.links[other]
             .members
             .iter()
-            .filter(|&&m| m != c)
+            .filter(|&&m| m != c && own(m))
             .map(|&m| (m, linkage_geometry::distance(b.home(topo.home(m)), h)))
             .max_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(m, _)| m)
