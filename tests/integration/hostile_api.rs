@@ -19,6 +19,7 @@ use linkage::{
 };
 use linkage_examples::rps::Rps3;
 use linkage_serial_arms::{PanTilt, Scara};
+use linkage_tests::residual_norm;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 linkage::mechanism! {
@@ -93,17 +94,6 @@ const HOSTILE: [f64; 12] = [
     f64::MIN_POSITIVE,
 ];
 
-/// max |F(v, x)|.
-fn residual<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-) -> f64 {
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
-    f.iter().fold(0.0f64, |m, q| m.max(q.abs()))
-}
-
 /// Whether F(v, x) = 0 to 1e-9 of the squared scale (F is quadratic in lengths): a start on
 /// a machine of 1e17 mm holds to its own scale.
 fn holds<S: Mechanism<N, M>, const N: usize, const M: usize>(
@@ -112,7 +102,7 @@ fn holds<S: Mechanism<N, M>, const N: usize, const M: usize>(
     x: &[f64; M],
 ) -> bool {
     let scale = 1.0 + v.iter().fold(0.0f64, |m, q| m.max(q.abs()));
-    residual(sys, v, x) <= 1e-9 * scale * scale
+    residual_norm(sys, v, x) <= 1e-9 * scale * scale
 }
 
 /// The inverse at a solved configuration `(v, x)` given each hostile reference: where it
@@ -145,7 +135,7 @@ fn inverse_keeps_its_promise<S: Mechanism<N, M>, const N: usize, const M: usize>
                     "{}: reference {r:e} answered {back:?}",
                     S::NAME
                 );
-                let res = residual(sys, v, &back);
+                let res = residual_norm(sys, v, &back);
                 assert!(
                     res <= 1e-6 * scale * scale,
                     "{}: reference {r:e}: inputs {back:?} leave F = {res:e} (solved at {x:?})",
@@ -325,7 +315,7 @@ fn home_start_follows_a_calibrated_delta_to_its_home_pose() {
         let target = start.x().map(|q| q + 0.05);
         let sol = arc_length(&d, &start, &target, &Options::TIGHT).unwrap();
         assert!(
-            sol.is_ok() && residual(&d, &sol.v, &target) < 1e-6,
+            sol.is_ok() && residual_norm(&d, &sol.v, &target) < 1e-6,
             "{name} = {value:e}: {sol:?}"
         );
     }
@@ -440,7 +430,7 @@ fn judge<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let valid = o.check_for(start).is_ok();
     match got {
         Ok(s) if s.status.meets_tolerance() => {
-            let res = residual(sys, &s.v, x);
+            let res = residual_norm(sys, &s.v, x);
             assert!(
                 valid
                     && s.v.iter().all(|q| q.is_finite())
@@ -547,7 +537,7 @@ fn solvers_keep_their_promises<S: Mechanism<N, M> + Clone, const N: usize, const
                     Ok(v) => {
                         assert!(valid, "{at}: the tracker took options {o:?}");
                         assert!(
-                            v.iter().all(|q| q.is_finite()) && residual(sys, &v, &x) <= 1e-6,
+                            v.iter().all(|q| q.is_finite()) && residual_norm(sys, &v, &x) <= 1e-6,
                             "{at}: tracker sample {v:?}"
                         );
                     }
@@ -556,7 +546,10 @@ fn solvers_keep_their_promises<S: Mechanism<N, M> + Clone, const N: usize, const
                     }
                 }
                 match back {
-                    Ok(v) => assert!(residual(sys, &v, start.x()) <= 1e-6, "{at}: back {v:?}"),
+                    Ok(v) => assert!(
+                        residual_norm(sys, &v, start.x()) <= 1e-6,
+                        "{at}: back {v:?}"
+                    ),
                     // Below the rounding floor even the start's own inputs end short of the
                     // tolerance.
                     Err(e) => assert!(
@@ -660,7 +653,7 @@ fn all_modes_at_hostile_inputs_options_and_centres() {
     let holds = |roots: &Roots<9, 32>, x: &[f64; 3], at: &str| {
         for r in roots.real() {
             assert!(
-                r.v.iter().all(|q| q.is_finite()) && residual(&Rps3::new(), &r.v, x) <= 1e-6,
+                r.v.iter().all(|q| q.is_finite()) && residual_norm(&Rps3::new(), &r.v, x) <= 1e-6,
                 "{at}: a real root off: {r:?}"
             );
         }
