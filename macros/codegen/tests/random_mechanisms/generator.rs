@@ -273,14 +273,10 @@ fn general_pairs(rng: &mut Rng, freedoms: usize, actives: &[usize]) -> Vec<(Kind
         let spins = seq
             .windows(2)
             .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S);
-        // The README's U at a chain's end turns its second axis towards "the farthest pivot
-        // of the link after it", which the model reads over every point that link carries
-        // (an R axis of another chain, a passive C's copies of its axis): not generated.
-        let loose_u = seq.last().is_some_and(|p| p.0 == Kind::U)
-            || seq
-                .windows(2)
-                .any(|w| w[0].0 == Kind::U && !matches!(w[1].0, Kind::S | Kind::U));
-        if slides <= 2 && !spins && !loose_u {
+        // A U anywhere, at a chain's end or before any pair: the oracle's second axis follows
+        // the README's rule in full (`screws::leg_end`, the link right after the U where no
+        // centre follows it).
+        if slides <= 2 && !spins {
             return seq;
         }
     }
