@@ -273,14 +273,13 @@ fn general_pairs(rng: &mut Rng, freedoms: usize, actives: &[usize]) -> Vec<(Kind
         let spins = seq
             .windows(2)
             .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S);
-        // Not generated yet: a U at a chain's end or before an R, P or C. The model used to
-        // read a chain-end U's "farthest pivot of the link after it" over every point that
-        // link holds (fixed, `general_models.rs`); with these placements allowed, the sweep
-        // still disagrees with the oracle on some mechanisms, not yet explained.
-        let loose_u = seq.last().is_some_and(|p| p.0 == Kind::U)
-            || seq
-                .windows(2)
-                .any(|w| w[0].0 == Kind::U && !matches!(w[1].0, Kind::S | Kind::U));
+        // A U at a chain's end is generated; a U before an R, P, C or H is not yet: with it
+        // the full sweep (`LINKAGE_STRESS=1`) still has one mechanism whose finite step ends
+        // 0.19 mm from the oracle's (seed 1548615879: a U before an R and one before an H, the
+        // model's ∂F/∂v near singular on the way), not yet explained.
+        let loose_u = seq
+            .windows(2)
+            .any(|w| w[0].0 == Kind::U && !matches!(w[1].0, Kind::S | Kind::U));
         if slides <= 2 && !spins && !loose_u {
             return seq;
         }

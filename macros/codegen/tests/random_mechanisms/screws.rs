@@ -33,10 +33,11 @@ pub enum Rate {
     Passive(usize),
 }
 
-/// The leg's far end from a pair's centre (the README's U: "C to the next joint's centre, or
-/// at a chain's end to the farthest pivot of the link after it"). The next joint's centre is
-/// read as the next pair that has one (an S or U centre, an R's first axis point), as for a
-/// U–P–S leg; the generator puts a U only before an S or a U or at a chain's end.
+/// The leg's far end from the centre of U pair `k` (the README's U, whose first axis the
+/// generator always puts on the link before): the centre of the nearest pair after it that
+/// has one (an S or U centre, an R's first axis pivot; P, C and H pairs passed over); where
+/// none follows, the pivot declared on the link right after the U (the "other link", not the
+/// chain's last link: they differ when a P, C or H follows) farthest from the centre.
 fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
     let c = &m.chains[chain];
     for j in &c.joints[k + 1..] {
@@ -46,13 +47,15 @@ fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
             _ => {}
         }
     }
-    let after = c.links[c.links.len() - 1].expect("a chain ends at a declared link");
+    // The generator leaves a link unnamed only inside a closed-form leg, where a centre
+    // always follows a U.
+    let other = c.links[k + 1].expect("the link after a U with no centre after it is declared");
     m.pivots
         .iter()
-        .filter(|p| p.link == after)
+        .filter(|p| p.link == other)
         .map(|p| p.at)
         .max_by(|a, b| norm(sub(*a, centre)).total_cmp(&norm(sub(*b, centre))))
-        .expect("the link after a U at a chain's end has pivots")
+        .expect("the link after such a U has pivots")
 }
 
 /// The centre a leg's slide runs from or to: an S or U centre, an R's first axis point.
