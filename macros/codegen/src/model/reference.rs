@@ -51,18 +51,6 @@ pub fn constants(model: &Model) -> Result<Vec<f64>, String> {
     Ok(c)
 }
 
-/// Rz(yaw)·Ry(pitch)·Rx(roll), as `linkage::Pose::from_euler`.
-fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
-    let (cy, sy) = (yaw.cos(), yaw.sin());
-    let (cp, sp) = (pitch.cos(), pitch.sin());
-    let (cr, sr) = (roll.cos(), roll.sin());
-    [
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ]
-}
-
 /// Unknowns, inputs and constants at a configuration.
 pub type Configuration = (Vec<f64>, Vec<f64>, Vec<f64>);
 
@@ -72,7 +60,7 @@ pub fn configuration(model: &Model, pose: [f64; 6]) -> Result<Configuration, Str
     let c = constants(model)?;
     let g = model.default_slots();
     let [yaw, pitch, roll, tx, ty, tz] = pose;
-    let r = rotation(yaw, pitch, roll);
+    let r = linkage_geometry::rotation(yaw, pitch, roll);
     let k = model.points.len();
     let mut v = vec![0.0; model.unknowns.len()];
     for (p, pt) in model.points.iter().enumerate() {

@@ -134,6 +134,15 @@ fn variables(m: &Mech) -> (Variables, usize) {
         .collect();
     (table, passive)
 }
+/// A joint's values: an input's from `x`, a passive freedom's from `y`.
+fn joint_values(vars: &[Result<usize, usize>], x: &[f64], y: &[f64]) -> Vec<f64> {
+    vars.iter()
+        .map(|v| match v {
+            Ok(i) => x[*i],
+            Err(p) => y[*p],
+        })
+        .collect()
+}
 
 /// Every chain's platform motion at inputs `x` (declared order, each from its home zero) and
 /// passive values `y`.
@@ -146,13 +155,7 @@ fn platform_motions(m: &Mech, x: &[f64], y: &[f64]) -> Vec<Motion> {
     for (ci, c) in m.chains.iter().enumerate() {
         let mut t = placed[c.links[0].unwrap()].expect("a chain starts at a link placed before");
         for (k, _) in c.joints.iter().enumerate() {
-            let q: Vec<f64> = table[ci][k]
-                .iter()
-                .map(|v| match v {
-                    Ok(i) => x[*i],
-                    Err(p) => y[*p],
-                })
-                .collect();
+            let q = joint_values(&table[ci][k], x, y);
             t = t.after(&joint_motion(m, ci, k, &q));
             if let Some(l) = c.links[k + 1] {
                 if l == PLATFORM {
@@ -185,13 +188,7 @@ fn residual(m: &Mech, x: &[f64], y: &[f64]) -> DVector<f64> {
     for (ci, c) in m.chains.iter().enumerate() {
         let mut t = placed[c.links[0].unwrap()].unwrap();
         for (k, _) in c.joints.iter().enumerate() {
-            let q: Vec<f64> = table[ci][k]
-                .iter()
-                .map(|v| match v {
-                    Ok(i) => x[*i],
-                    Err(p) => y[*p],
-                })
-                .collect();
+            let q = joint_values(&table[ci][k], x, y);
             t = t.after(&joint_motion(m, ci, k, &q));
             if let Some(l) = c.links[k + 1] {
                 match placed[l] {
