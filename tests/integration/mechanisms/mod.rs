@@ -6,6 +6,7 @@
 
 mod all_modes;
 mod branch_hunt;
+mod calibrated_home;
 mod delta;
 mod delta_tools;
 mod delta_tracking;

@@ -278,8 +278,9 @@ pub fn expand(
         // points of links between), the start is the home pose with the inputs the closed
         // forms give for the current geometry (a delta's cranks: its base set 1 mm wider made
         // the declared configuration inconsistent, and `home_start` refused it). Otherwise it
-        // is the declared configuration itself, refined by `Start::new` (which also follows a
-        // geometry changed at run time a little).
+        // is the declared configuration at the declared inputs, carried to the current
+        // geometry by `Start::follow` (the declared configuration itself where the geometry is
+        // the declared one).
         let pose_places_all = model.unknowns.len() == 3 * model.points.len();
         let start = if (model.general_home_inputs.is_empty() || pose_places_all)
             && no_closed_form.is_none()
@@ -294,7 +295,7 @@ pub fn expand(
                 ::linkage::Start::new(self, v, inputs)
             }
         } else {
-            quote!(::linkage::Start::new(self, Self::HOME_V, Self::HOME_INPUTS))
+            quote!(::linkage::Start::follow(self, Self::HOME_V, Self::HOME_INPUTS))
         };
         quote! {
             /// The platform's pose `[yaw, pitch, roll, x, y, z]` at home (the declared `home`
@@ -310,8 +311,9 @@ pub fn expand(
 
             /// The start configuration at [`Self::HOME`] for the current geometry: the home
             /// pose with the inputs the closed forms give where every chain has one and the
-            /// pose places every unknown, otherwise the declared configuration refined by
-            /// `linkage::Start::new` (which follows a small change of geometry).
+            /// pose places every unknown, otherwise the configuration at `HOME_INPUTS` on the
+            /// branch of the declared one, carried to the current geometry by
+            /// `linkage::Start::follow`.
             pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
                 #start
             }

@@ -5,6 +5,8 @@ use crate::lu::Lu;
 use crate::math::{norm, size};
 use crate::{Mechanism, Options, SolveError};
 
+mod follow;
+
 /// Below this reciprocal condition number of the equilibrated B a start is singular to
 /// working precision. Near a fold the two roots that meet there lie about `rcond · ‖v‖`
 /// apart, while rounding leaves v uncertain by about `ε ‖v‖ / rcond`; the sign of det B — the
@@ -22,7 +24,8 @@ const MIN_RCOND: f64 = 1e-7;
 /// [`arc_length_certified`](crate::arc_length_certified),
 /// [`newton_homotopy`](crate::newton_homotopy), [`Tracker`](crate::Tracker)) measure the
 /// start's own Newton correction and refuse such a start with
-/// [`SolveError::InconsistentStart`]; make a new start for the new geometry.
+/// [`SolveError::InconsistentStart`]; make a new start for the new geometry
+/// ([`Start::follow`] carries the old one's configuration there, on its branch).
 /// [`newton_raphson`](crate::newton_raphson) and [`NewtonRaphson`](crate::NewtonRaphson)
 /// take `v0` as a guess only and do not check it (their answer is
 /// [`Status::Unverified`](crate::Status::Unverified) either way).
