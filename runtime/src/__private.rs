@@ -42,6 +42,23 @@ pub fn derive_constants(
 /// slot, named with the parameter it follows (`sqrt` of a parameter set negative) — and every
 /// square finite (the equations are of degree 2 in the geometry as well: a rod of 1e300 was
 /// accepted, and every solve from it then failed).
+/// Refuses a geometry whose compile-time-only parameters (`slots`) differ from their declared
+/// values: nothing reads them, so a calibration of one would be silently ignored.
+pub fn check_compile_time(
+    names: &[&'static str],
+    slots: &[usize],
+    g: &[f64],
+    declared: &[f64],
+) -> Result<(), GeometryError> {
+    for &k in slots {
+        if g.get(k) != declared.get(k) {
+            let name = names.get(k).copied().unwrap_or("");
+            return Err(GeometryError::CompileTimeOnly { name });
+        }
+    }
+    Ok(())
+}
+
 pub fn check_values(
     names: &[&'static str],
     followed: &[(&'static str, &'static str)],

@@ -41,6 +41,10 @@ pub enum GeometryError {
     DegenerateAxis,
     /// A link's length is zero or negative.
     NonPositiveLength { name: &'static str },
+    /// The parameter `name` is read only at compile time — in `home`, or in another
+    /// parameter's value (evaluated where it is declared) — or not at all: nothing the
+    /// mechanism evaluates depends on it, so it keeps its declared value.
+    CompileTimeOnly { name: &'static str },
     /// The geometry value `name`, declared as arithmetic on the parameters (the first it
     /// reads: `parameter`), is not finite at their values: a square root of a negative, an
     /// `asin` or `acos` out of [−1, 1], a division by zero.
@@ -73,6 +77,10 @@ impl fmt::Display for GeometryError {
                 "a pivot declared on the line of two others (a prismatic axis) is off it"
             ),
             GeometryError::DegenerateAxis => write!(f, "a pair axis is given by coincident points"),
+            GeometryError::CompileTimeOnly { name } => write!(
+                f,
+                "the parameter `{name}` is used only at compile time (in `home` or another parameter's value) or not at all: changing it would change nothing"
+            ),
             GeometryError::FormulaNotFinite { name, parameter } => write!(
                 f,
                 "{name}, declared from the parameter {parameter}, is not finite at the parameters' values"

@@ -272,6 +272,54 @@ fn a_non_positive_rod_length_is_refused() {
     assert!(d.set_geometry("rod", 370.0).is_ok());
 }
 
+/// A parameter read only where another is declared (`h` in `rod = sqrt(... + h * h)`) is not
+/// a run-time value: the parameters are independent at run time, so a calibrated `h` would
+/// change nothing. It is refused, by name, and the mechanism kept; so is a parameter nothing
+/// reads at all (the five-bar's `distal`, which its author meant as the distal links' length:
+/// those are the declared distances), and a `from_geometry` array that changes one. Before,
+/// each was accepted and ignored (the geometry hunt "calibrated" the 3-PRS's `l` and `h`).
+#[test]
+fn a_parameter_read_only_at_compile_time_cannot_be_calibrated() {
+    use super::five_bar::FiveBar;
+    use super::prs::Prs;
+    use linkage::GeometryError;
+    let mut d = Delta::new();
+    let kept = d.clone();
+    assert_eq!(
+        d.set_geometry("h", 210.0),
+        Err(GeometryError::CompileTimeOnly { name: "h" })
+    );
+    assert_eq!(d, kept, "unchanged on error");
+    // Setting it to its declared value changes nothing and is no error.
+    assert_eq!(d.set_geometry("h", 200.0), Ok(()));
+    let mut g = Delta::DEFAULT_GEOMETRY;
+    g[Delta::GEOMETRY_NAMES
+        .iter()
+        .position(|n| *n == "h")
+        .unwrap()] += 1.0;
+    assert_eq!(
+        Delta::from_geometry(g),
+        Err(GeometryError::CompileTimeOnly { name: "h" })
+    );
+    let mut fb = FiveBar::new();
+    assert_eq!(
+        fb.set_geometry("distal", 140.0),
+        Err(GeometryError::CompileTimeOnly { name: "distal" })
+    );
+    let mut prs = Prs::new();
+    for name in ["l", "h"] {
+        assert_eq!(
+            prs.set_geometry(name, 160.0),
+            Err(GeometryError::CompileTimeOnly { name })
+        );
+    }
+    // What they were declared for is calibrated through what reads them.
+    assert!(prs.set_geometry("hc", 110.0).is_ok() && d.set_geometry("rod", 270.0).is_ok());
+    assert!(GeometryError::CompileTimeOnly { name: "h" }
+        .to_string()
+        .contains("compile time"));
+}
+
 #[test]
 fn a_pivot_coordinate_declared_as_a_parameter_names_the_parameter_to_set() {
     use linkage::GeometryError;

@@ -125,7 +125,8 @@ calibrated!(
     15,
     GENERAL_MODEL,
     [200.0; 3],
-    ["rb", "rp", "l", "h"],
+    // `l` and `h` are read only where `hc` is declared: not run-time values.
+    ["rb", "rp", "hc"],
     false,
     0x6E04
 );

@@ -66,6 +66,11 @@ pub fn expand(
     // Names not to be set by name, so that setting one says which parameter to set.
     let followed = model.followed.iter().map(|(n, p)| quote!((#n, #p)));
     let followed = quote!(&[#(#followed),*]);
+    // Parameters only the macro read: a change to one would change nothing, so it is refused.
+    let compile_time_check = (!model.compile_time.is_empty()).then(|| {
+        let slots = &model.compile_time;
+        quote!(::linkage::__private::check_compile_time(&Self::GEOMETRY_NAMES, &[#(#slots),*], &geometry, &Self::DEFAULT_GEOMETRY)?;)
+    });
     let constant_names = model.constants.iter().map(|c| c.name.as_str());
     let unknown_names = model.unknowns.iter().map(String::as_str);
     let input_names = model.inputs.iter().map(String::as_str);
@@ -394,6 +399,7 @@ pub fn expand(
                 // Finite values whose squares are finite, a formula's NaN named with its
                 // parameter.
                 ::linkage::__private::check_values(&Self::GEOMETRY_NAMES, #followed, &geometry)?;
+                #compile_time_check
                 #(#positive_checks)*
                 use ::linkage::__private::recipe;
                 const RECIPES: recipe::Recipes<'static> = #recipes;

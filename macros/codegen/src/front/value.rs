@@ -35,6 +35,15 @@ pub enum Coord {
 }
 
 impl Coord {
+    /// Calls `f` on every parameter it follows at run time.
+    pub fn each_param(&self, f: &mut impl FnMut(&Ident)) {
+        match self {
+            Coord::Literal(_) => {}
+            Coord::Param(p) => f(p),
+            Coord::Formula(formula) => formula.1.each_param(f),
+        }
+    }
+
     pub fn span(&self) -> Span {
         match self {
             Coord::Literal(n) => n.span,
@@ -104,6 +113,19 @@ impl Term {
                     Func::Acos => x.acos(),
                     Func::Atan => x.atan(),
                 }
+            }
+        }
+    }
+
+    /// Calls `f` on every parameter it names.
+    pub fn each_param(&self, f: &mut impl FnMut(&Ident)) {
+        match self {
+            Term::Num(_) => {}
+            Term::Param(p) => f(p),
+            Term::Neg(a) | Term::Call(_, a) => a.each_param(f),
+            Term::Bin(_, a, b) => {
+                a.each_param(f);
+                b.each_param(f);
             }
         }
     }

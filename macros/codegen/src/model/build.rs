@@ -224,9 +224,11 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         .iter()
         .map(|(name, s)| (name.clone(), b.slots[*s].name.clone()))
         .collect();
+    let compile_time = b.compile_time_params();
     let mut model = Model {
         name: d.name.clone(),
         followed,
+        compile_time,
         formulas: b.formulas,
         slots: b.slots,
         constants: b.constants,

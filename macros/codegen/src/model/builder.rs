@@ -23,6 +23,9 @@ pub struct Builder<'d> {
     pub slots: Vec<Slot>,
     /// By `ParamId`.
     param_slots: Vec<usize>,
+    /// By `ParamId`: whether anything the generated code evaluates at run time reads the
+    /// parameter (see [`Self::compile_time_params`]).
+    param_read: Vec<bool>,
     /// By `PivotId`.
     pivot_slots: Vec<[usize; 3]>,
     scalar_slots: HashMap<Scalar, usize>,
@@ -51,6 +54,7 @@ impl<'d> Builder<'d> {
             decl,
             slots: Vec::new(),
             param_slots: Vec::new(),
+            param_read: vec![false; decl.params.len()],
             pivot_slots: Vec::new(),
             scalar_slots: HashMap::new(),
             followed: Vec::new(),
@@ -95,7 +99,7 @@ impl<'d> Builder<'d> {
         match v {
             Value::Literal(x) => self.new_slot(name, x),
             Value::Param(p) => {
-                let s = self.param_slots[p.index()];
+                let s = self.param_slot(p.index());
                 self.followed.push((name, s));
                 s
             }
@@ -110,15 +114,31 @@ impl<'d> Builder<'d> {
             .ops
             .iter()
             .map(|op| match *op {
-                Op::Slot(p) => Op::Slot(self.param_slots[p]),
+                Op::Slot(p) => Op::Slot(self.param_slot(p)),
                 other => other,
             })
             .collect();
-        let first = self.param_slots[formula.first.index()];
+        let first = self.param_slot(formula.first.index());
         let s = self.new_slot(name.clone(), formula.value);
         self.followed.push((name, first));
         self.formulas.push((s, ops));
         s
+    }
+
+    /// Parameter `p`'s slot, read by the generated code.
+    fn param_slot(&mut self, p: usize) -> usize {
+        self.param_read[p] = true;
+        self.param_slots[p]
+    }
+
+    /// The slots of the parameters nothing evaluated at run time reads: used only at compile
+    /// time (in `home`, or in another parameter's value, evaluated where it is declared) or
+    /// not at all. `from_geometry` refuses a change to them rather than ignore it.
+    pub fn compile_time_params(&self) -> Vec<usize> {
+        (0..self.param_slots.len())
+            .filter(|&p| !self.param_read[p])
+            .map(|p| self.param_slots[p])
+            .collect()
     }
 
     fn new_slot(&mut self, name: String, default: f64) -> usize {
@@ -181,7 +201,7 @@ impl<'d> Builder<'d> {
     ) -> Expr {
         let (slot, name) = match v {
             Value::Param(p) => (
-                self.param_slots[p.index()],
+                self.param_slot(p.index()),
                 self.decl.param(p).name.to_string(),
             ),
             Value::Literal(_) | Value::Formula(_) => {

@@ -94,6 +94,9 @@ pub struct Model {
     /// Geometry names that follow a parameter, with the parameter's name (see
     /// [`Builder::followed`]).
     pub followed: Vec<(String, String)>,
+    /// The slots of parameters nothing evaluated at run time reads (see
+    /// [`Builder::compile_time_params`]).
+    pub compile_time: Vec<usize>,
     /// The slots declared as formulas of parameters, with their formulas over the slots: the
     /// generated `from_geometry` sets them before it derives anything.
     pub formulas: Vec<(usize, Vec<linkage_geometry::formula::Op>)>,
