@@ -8,6 +8,7 @@
 use super::four_bar::FourBar;
 use super::published::{StephensonIII, WattI};
 use linkage::{pose_from_unknowns, Mechanism, SolveError, Start};
+use linkage_examples::rps::Rps3;
 use linkage_serial_arms::{PanTilt, Scara, ScaraWrist};
 use linkage_tests::{max_diff, residual_norm, Rng};
 
@@ -146,6 +147,38 @@ fn a_calibrated_closed_loop_starts_on_its_declared_branch() {
         StephensonIII,
         [("t1", "A1", [2.0, -3.0]), ("platform", "Q2", [-6.0, 3.0])]
     );
+}
+
+/// A 3-RPS has three freedoms and its home pose six coordinates: a calibration that moves a
+/// platform pivot out of its leg's plane (G1 3 mm along the hinge axis) leaves the declared
+/// home pose off the machine's motion, where the closed forms cannot place it. `home_start`
+/// is then the configuration at the declared home inputs (it was an error), the same as the
+/// geometry path's, with G1 in its leg's plane.
+#[test]
+fn a_calibrated_3_rps_whose_home_pose_it_cannot_take_starts_at_its_home_inputs() {
+    let declared = Rps3::new();
+    let home = declared.home_start().unwrap();
+    let mut to = Rps3::DEFAULT_GEOMETRY;
+    to[Rps3::GEOMETRY_NAMES
+        .iter()
+        .position(|n| *n == "platform.G1.x")
+        .unwrap()] += 3.0;
+    let calibrated = Rps3::from_geometry(to).unwrap();
+    let start = calibrated.home_start().unwrap();
+    assert_eq!(start.x(), home.x());
+    assert!(start.det() * home.det() > 0.0);
+    let from = Rps3::DEFAULT_GEOMETRY;
+    let mut step = home;
+    for k in 1..=STEPS {
+        let t = k as f64 / STEPS as f64;
+        let g = std::array::from_fn(|i| from[i] + t * (to[i] - from[i]));
+        step = Start::new(&Rps3::from_geometry(g).unwrap(), *step.v(), *step.x()).unwrap();
+    }
+    assert!(max_diff(start.v(), step.v()) < 1e-8 * 200.0);
+    // G1 where its leg swings: the plane x = 0 through A1, normal to the hinge A1 → B1.
+    let pose = linkage::pose_from_unknowns(&calibrated, start.v()).unwrap();
+    assert!(pose.apply([3.0, 50.0, 0.0])[0].abs() < 1e-9);
+    assert!(residual_norm(&calibrated, start.v(), start.x()) < 1e-9);
 }
 
 /// The four-bar's rocker pivot D moved onto the line through the coupler's joints B and C

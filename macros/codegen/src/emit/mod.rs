@@ -290,14 +290,17 @@ pub fn expand(
         let start = if (model.general_home_inputs.is_empty() || pose_places_all)
             && no_closed_form.is_none()
         {
+            // Where a calibration took the home pose off the machine's motion (a 3-RPS has
+            // three freedoms, and its pose six coordinates), the configuration at the declared
+            // inputs instead; the pose's error if that fails too.
             quote! {
                 let [yaw, pitch, roll, x, y, z] = Self::HOME;
                 let v = ::linkage::unknowns_from_pose(self, &::linkage::Pose::from_euler(yaw, pitch, roll, [x, y, z]));
-                let inputs = self.closed_form_inputs(&v, &Self::HOME_INPUTS).map_err(|e| match e {
+                let posed = self.closed_form_inputs(&v, &Self::HOME_INPUTS).map_err(|e| match e {
                     ::linkage::InverseError::Unreachable { input } | ::linkage::InverseError::NoClosedForm { input } | ::linkage::InverseError::FarReference { input } => ::linkage::SolveError::InvalidInput { input },
                     ::linkage::InverseError::NonFinite | ::linkage::InverseError::Inconsistent => ::linkage::SolveError::NonFinite,
-                })?;
-                ::linkage::Start::new(self, v, inputs)
+                }).and_then(|inputs| ::linkage::Start::new(self, v, inputs));
+                posed.or_else(|e| ::linkage::Start::follow(self, Self::HOME_V, Self::HOME_INPUTS).map_err(|_| e))
             }
         } else {
             quote!(::linkage::Start::follow(self, Self::HOME_V, Self::HOME_INPUTS))
@@ -315,10 +318,10 @@ pub fn expand(
             pub const HOME_V: [f64; #n] = [#(#v0),*];
 
             /// The start configuration at [`Self::HOME`] for the current geometry: the home
-            /// pose with the inputs the closed forms give where every chain has one and the
-            /// pose places every unknown, otherwise the configuration at `HOME_INPUTS` on the
-            /// branch of the declared one, carried to the current geometry by
-            /// `linkage::Start::follow`.
+            /// pose with the inputs the closed forms give where every chain has one, the pose
+            /// places every unknown and the mechanism can take it; otherwise the configuration
+            /// at `HOME_INPUTS` on the branch of the declared one, carried to the current
+            /// geometry by `linkage::Start::follow`.
             pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
                 #start
             }
