@@ -16,6 +16,23 @@ use linkage_tests::{max_diff, residual_norm, Rng};
 /// 1e-3 of ‖v‖ that `Start::new` accepts).
 const STEPS: usize = 200;
 
+/// The oracle: the geometry moved from `from` to `to` in [`STEPS`] steps, the start refined
+/// from the last at each by `Start::new` (which accepts only a small move).
+fn geometry_path<S: Mechanism<N, M>, const N: usize, const M: usize, const G: usize>(
+    home: Start<N, M>,
+    from: [f64; G],
+    to: [f64; G],
+    make: impl Fn([f64; G]) -> S,
+) -> Start<N, M> {
+    let mut step = home;
+    for k in 1..=STEPS {
+        let t = k as f64 / STEPS as f64;
+        let s = make(std::array::from_fn(|i| from[i] + t * (to[i] - from[i])));
+        step = Start::new(&s, *step.v(), *step.x()).unwrap();
+    }
+    step
+}
+
 /// The platform's pose as `[yaw, pitch, roll, x, y, z]`.
 fn pose_of<S: Mechanism<N, M>, const N: usize, const M: usize>(s: &S, v: &[f64; N]) -> [f64; 6] {
     let pose = pose_from_unknowns(s, v).unwrap();
@@ -102,14 +119,9 @@ macro_rules! closed_loop {
         }
         let calibrated = <$ty>::from_geometry(to).unwrap();
         let followed = calibrated.home_start().unwrap();
-        let from = <$ty>::DEFAULT_GEOMETRY;
-        let mut step = home;
-        for k in 1..=STEPS {
-            let t = k as f64 / STEPS as f64;
-            let g = std::array::from_fn(|i| from[i] + t * (to[i] - from[i]));
-            let s = <$ty>::from_geometry(g).unwrap();
-            step = Start::new(&s, *step.v(), *step.x()).unwrap();
-        }
+        let step = geometry_path(home, <$ty>::DEFAULT_GEOMETRY, to, |g| {
+            <$ty>::from_geometry(g).unwrap()
+        });
         let scale = followed.v().iter().map(|e| e * e).sum::<f64>().sqrt();
         assert_eq!(followed.x(), home.x());
         assert!(residual_norm(&calibrated, followed.v(), followed.x()) < 1e-9 * scale);
@@ -167,13 +179,9 @@ fn a_calibrated_3_rps_whose_home_pose_it_cannot_take_starts_at_its_home_inputs()
     let start = calibrated.home_start().unwrap();
     assert_eq!(start.x(), home.x());
     assert!(start.det() * home.det() > 0.0);
-    let from = Rps3::DEFAULT_GEOMETRY;
-    let mut step = home;
-    for k in 1..=STEPS {
-        let t = k as f64 / STEPS as f64;
-        let g = std::array::from_fn(|i| from[i] + t * (to[i] - from[i]));
-        step = Start::new(&Rps3::from_geometry(g).unwrap(), *step.v(), *step.x()).unwrap();
-    }
+    let step = geometry_path(home, Rps3::DEFAULT_GEOMETRY, to, |g| {
+        Rps3::from_geometry(g).unwrap()
+    });
     assert!(max_diff(start.v(), step.v()) < 1e-8 * 200.0);
     // G1 where its leg swings: the plane x = 0 through A1, normal to the hinge A1 → B1.
     let pose = linkage::pose_from_unknowns(&calibrated, start.v()).unwrap();
