@@ -77,6 +77,20 @@ fn a_start_made_before_set_geometry_is_refused_by_every_branch_claiming_solver()
         );
         assert!(newton_homotopy(&s, &fresh, &target, &o).is_ok());
         assert!(Tracker::new(s.clone(), fresh, o).update(&target).is_ok());
+        // The stale start carried to the new geometry at its own inputs (`Start::follow`) is
+        // where continuation from the fresh start to those inputs arrives: the same
+        // configuration, reached two ways.
+        let carried = linkage::Start::follow(&s, *stale.v(), *stale.x()).unwrap();
+        assert_eq!(carried.x(), stale.x());
+        let there = arc_length(&s, &fresh, stale.x(), &o).unwrap();
+        assert_eq!(there.status, Status::Converged, "{name}");
+        assert!(
+            linkage_tests::max_diff(carried.v(), &there.v) < 1e-8,
+            "{name}: {:?} vs {:?}",
+            carried.v(),
+            there.v
+        );
+        assert!(carried.det() * fresh.det() > 0.0);
     }
 }
 
