@@ -853,15 +853,26 @@ fn stored_starts_and_starts_from_hostile_values() {
             start.v().map(|q| q * bad),
         ] {
             for x in [*start.x(), [bad; 3]] {
-                match guard(|| Start::new(&delta, v, x)).unwrap() {
-                    Ok(s) => assert!(holds(&delta, s.v(), s.x()), "{bad:e}: {v:?} {x:?}"),
-                    Err(
-                        SolveError::NonFinite
-                        | SolveError::InconsistentStart { .. }
-                        | SolveError::SingularStart
-                        | SolveError::InvalidInput { .. },
-                    ) => {}
-                    Err(e) => panic!("{bad:e}: {e:?}"),
+                // `Start::follow` too: from a point that solves nothing it follows a path, and
+                // must still end at a start that holds or say why not.
+                for follow in [false, true] {
+                    let made = guard(|| {
+                        if follow {
+                            Start::follow(&delta, v, x)
+                        } else {
+                            Start::new(&delta, v, x)
+                        }
+                    });
+                    match made.unwrap() {
+                        Ok(s) => assert!(holds(&delta, s.v(), s.x()), "{bad:e}: {v:?} {x:?}"),
+                        Err(
+                            SolveError::NonFinite
+                            | SolveError::InconsistentStart { .. }
+                            | SolveError::SingularStart
+                            | SolveError::InvalidInput { .. },
+                        ) => {}
+                        Err(e) => panic!("{bad:e}: {e:?}"),
+                    }
                 }
             }
         }
