@@ -166,7 +166,9 @@ pub fn assembled(model: &Model, v: &[f64], x: &[f64], c: &[f64]) -> Result<(), S
 /// For the general model: checks that the declared configuration assembles, decides the mobility
 /// by the rank of the Jacobian there, and drops equations that depend on earlier ones.
 /// `priority` orders the equations for the rank test (lower first, then in order): of two
-/// that depend on each other, the later in that order is left out.
+/// that depend on each other, the later in that order is left out — unless that leaves ∂F/∂v
+/// nearly singular at home, where a row barely independent of those before it may wait for
+/// the rest of its priority (see `simplify::rank::at_home`).
 pub fn rank_at_home(
     model: &mut Model,
     d: &crate::front::resolved::Decl,
@@ -193,9 +195,14 @@ pub fn rank_at_home(
     let (v, x, c) = configuration(model, model.home_pose).map_err(fail)?;
     assembled(model, &v, &x, &c).map_err(fail)?;
     let (n, inputs) = (model.unknowns.len(), model.inputs.len());
+    let class_of = |i: usize| priority.get(i).copied().unwrap_or(u8::MAX);
     let mut order: Vec<usize> = (0..model.equations.len()).collect();
-    order.sort_by_key(|&i| (priority.get(i).copied().unwrap_or(u8::MAX), i));
-    let ranked = crate::simplify::rank::at_home(&model.equations, &order, n, inputs, &v, &x, &c);
+    order.sort_by_key(|&i| (class_of(i), i));
+    let classes: Vec<Vec<usize>> = order
+        .chunk_by(|&a, &b| class_of(a) == class_of(b))
+        .map(<[usize]>::to_vec)
+        .collect();
+    let ranked = crate::simplify::rank::at_home(&model.equations, &classes, n, inputs, &v, &x, &c);
     let gk = crate::model::mobility::of(d);
     let rule = format!(
         "rank of ∂F/∂(v, x) at home: M = {n} + {inputs} − {} = {} (Grübler–Kutzbach says {})",
