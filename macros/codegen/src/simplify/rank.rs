@@ -133,9 +133,9 @@ const NEARLY_SINGULAR: f64 = 1e-7;
 
 /// `classes`: the equations' indices in the order they are offered to the basis, class by
 /// class (a partition of the indices); of dependent ones, the later is left out. Two choices
-/// of the rows (see [`select`]): each in its turn, and with the rows that add less than
-/// [`WEAK`] of themselves waiting for the rest of their class. The first is kept unless it is
-/// nearly singular at home ([`NEARLY_SINGULAR`]) and the second is better conditioned. `kept`
+/// of the rows (see `select`): each in its turn, and with the rows that add less than
+/// `WEAK` of themselves waiting for the rest of their class. The first is kept unless it is
+/// nearly singular at home (`NEARLY_SINGULAR`) and the second is better conditioned. `kept`
 /// is in the equations' own order.
 pub fn at_home(
     equations: &[Expr],
