@@ -6,7 +6,7 @@
 //! place, the actives held at their targets.
 
 use crate::generator::{add, dot, scale, sub, unit, Kind, Mech, BASE, PLATFORM, V3};
-use crate::screws::leg_ends;
+use crate::screws::{joint_axis, leg_ends};
 use nalgebra::{DMatrix, DVector};
 
 type M3 = [[f64; 3]; 3];
@@ -61,10 +61,7 @@ fn screw(u: V3, a: V3, angle: f64, s: f64) -> Motion {
 /// of [`crate::screws::joint_twists`]).
 fn joint_motion(m: &Mech, chain: usize, k: usize, q: &[f64]) -> Motion {
     let j = &m.chains[chain].joints[k];
-    let axis = j.axis.map(|(a, b)| {
-        let (a, b) = (m.pivots[a].at, m.pivots[b].at);
-        (a, unit(sub(b, a)))
-    });
+    let axis = joint_axis(m, chain, k);
     match j.kind {
         Kind::R => {
             let (a, u) = axis.unwrap();

@@ -75,14 +75,20 @@ pub fn leg_ends(m: &Mech, chain: usize, k: usize) -> [V3; 2] {
     [from.unwrap(), to.unwrap()]
 }
 
+/// Joint `k` of chain `chain`'s declared axis, if it has one: a point on it and its unit
+/// direction, at home.
+pub fn joint_axis(m: &Mech, chain: usize, k: usize) -> Option<(V3, V3)> {
+    m.chains[chain].joints[k].axis.map(|(a, b)| {
+        let (a, b) = (m.pivots[a].at, m.pivots[b].at);
+        (a, unit(sub(b, a)))
+    })
+}
+
 /// The unit twists of joint `k` of chain `chain`, one per freedom, in the order of its
 /// joint variables when it is active.
 pub fn joint_twists(m: &Mech, chain: usize, k: usize) -> Vec<Twist> {
     let j = &m.chains[chain].joints[k];
-    let axis = j.axis.map(|(a, b)| {
-        let (a, b) = (m.pivots[a].at, m.pivots[b].at);
-        (a, unit(sub(b, a)))
-    });
+    let axis = joint_axis(m, chain, k);
     match j.kind {
         Kind::R => {
             let (a, u) = axis.unwrap();
