@@ -4,6 +4,7 @@
 use linkage::Mechanism;
 
 pub mod dense;
+pub mod exact_root;
 pub mod invariants;
 pub mod vec3;
 

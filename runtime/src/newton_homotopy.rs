@@ -58,7 +58,14 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 account.lambda = next;
                 account.min_det_ratio = account.min_det_ratio.min((run.det / start.det()).abs());
                 if rule == Rule::Final {
-                    return Ok(unverified(conclude(sys, start, &run, &x, account)));
+                    return Ok(unverified(conclude(
+                        sys,
+                        start,
+                        &run,
+                        &x,
+                        options.tolerance,
+                        account,
+                    )));
                 }
                 v = run.v;
                 step = (step * 2.0).min(nominal);

@@ -163,5 +163,12 @@ fn solve<S: Mechanism<N, M>, const N: usize, const M: usize>(
         iterations: run.iterations,
         ..Account::at(1.0)
     };
-    Ok(unverified(conclude(sys, start, &run, x, account)))
+    Ok(unverified(conclude(
+        sys,
+        start,
+        &run,
+        x,
+        options.tolerance,
+        account,
+    )))
 }

@@ -1,7 +1,8 @@
 //! How every solve's [`Solution`] is assembled, and the one place that may call it
 //! [`Status::Converged`]: a final Newton run whose returned point is finite, whose own
-//! correction is within the tolerance, where det B has the start's sign, and where the
-//! equations left out as dependent at home hold.
+//! correction is within the tolerance, where det B has the start's sign, where the equations
+//! left out as dependent at home hold, and where rounding lets the correction vouch for the
+//! tolerance (`crate::floor`).
 
 use crate::correction::{correction, det_b};
 use crate::math::{norm, size};
@@ -50,36 +51,68 @@ impl Account {
     }
 }
 
-/// The solution after a final Newton run (`Rule::Final`) at the target `x`.
+/// The solution after a final Newton run (`Rule::Final`) at the target `x`, run to
+/// `tolerance`.
 pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     run: &Newton<N>,
     x: &[f64; M],
+    tolerance: f64,
     account: Account,
 ) -> Solution<N> {
     let lambda = account.lambda;
+    let mut estimate = run.estimate;
+    let mut v = run.v;
     let status = match run.ending {
-        Ending::Converged => {
+        Ending::Converged | Ending::Stalled => {
             // `run.det` and `run.estimate` were measured at `run.v` itself.
             let finite = size(&run.v).is_finite() && run.estimate.is_finite();
+            let stalled = run.ending == Ending::Stalled;
             if !finite {
                 not_converged(sys, &run.v, x)
-            } else if run.det * start.det() > 0.0 && holds_dependent(sys, &run.v, x) {
-                Status::Converged
+            } else if !(run.det * start.det() > 0.0 && holds_dependent(sys, &run.v, x)) {
+                if stalled {
+                    Status::ToleranceNotMet {
+                        achieved: run.estimate,
+                    }
+                } else {
+                    Status::BranchChanged
+                }
             } else {
-                Status::BranchChanged
+                // Within the tolerance by its correction, or stalled at the rounding floor
+                // above it: near that floor the correction is measured again with an accurate
+                // residual (and the point refined by it), which a stall always is.
+                let floor = if stalled {
+                    (f64::INFINITY, start.scale())
+                } else {
+                    (start.floor_det(), start.scale())
+                };
+                match crate::floor::vouch(sys, floor, (&mut v, x), run.det, run.estimate, tolerance)
+                {
+                    Ok(e) => {
+                        estimate = e;
+                        Status::Converged
+                    }
+                    Err(achieved) => {
+                        // Infinite where it could not be measured: then a stall's own figure,
+                        // or nothing vouched for at all.
+                        estimate = if achieved.is_finite() || !stalled {
+                            achieved
+                        } else {
+                            run.estimate
+                        };
+                        Status::ToleranceNotMet { achieved: estimate }
+                    }
+                }
             }
         }
-        Ending::Stalled => Status::ToleranceNotMet {
-            achieved: run.estimate,
-        },
         Ending::Singular => Status::Singular { lambda },
         Ending::NonFinite | Ending::Exhausted => not_converged(sys, &run.v, x),
     };
     if matches!(run.ending, Ending::Converged | Ending::Stalled) {
         let ratio = (run.det / start.det()).abs();
-        return account.into_solution(run.v, status, run.estimate, ratio);
+        return account.into_solution(v, status, estimate, ratio);
     }
     finish(sys, start, run.v, x, status, account)
 }

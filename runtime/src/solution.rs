@@ -209,10 +209,12 @@ impl std::error::Error for SolveError {}
 pub struct Options {
     /// Converged when the Newton correction ‖Δv‖ at the result is at most this (same units as
     /// v). Finite, positive and at most 1e-3 of the start's ‖v‖ (or of 1, if larger): a looser
-    /// tolerance would call answers ok that are visibly off. Where rounding forbids it — near a
-    /// singularity, or below the floor the equations' rounding sets (about 1e-13 mm for the
-    /// Table III platform, about 1e-10 mm for the general model's rows at regular points of a
-    /// 200 mm machine, and up to 2e-9 mm near singular ones) — the solve ends
+    /// tolerance would call answers ok that are visibly off. Where the `f64` evaluation of F
+    /// cannot show an error that small (near a singularity, or below the floor the equations'
+    /// rounding sets: about 1e-13 mm for the Table III platform, about 1e-10 mm for the general
+    /// model's rows at regular points of a 200 mm machine), the answer's correction is measured
+    /// again with F evaluated in double-double arithmetic, and the answer refined by it; where
+    /// even that is not within the tolerance (B singular to rounding), the solve ends
     /// [`Status::ToleranceNotMet`] with what was achieved.
     pub tolerance: f64,
     /// Newton iterations allowed for the final correction (and for NR altogether).

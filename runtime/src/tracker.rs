@@ -310,7 +310,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             self.bend = None;
         }
         // Continuation from the last accepted sample, whose branch is the start's.
-        let here = Start::accepted(self.v, self.x, self.det);
+        let here = Start::accepted(self.v, self.x, self.det, self.start.floor_det());
         let sol = from_accepted(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
@@ -407,6 +407,10 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                 c.update(&self.sys, v, x, t, self.options.linear, fac)
                     .ok()?;
                 if c.size <= tol {
+                    // Within the tolerance by its correction, but not by what rounding lets it
+                    // show (near a singularity): continuation decides, and says so.
+                    let floor = (self.start.floor_det(), self.start.scale());
+                    crate::floor::vouch(&self.sys, floor, (v, x), c.det, c.size, tol).ok()?;
                     self.bend = Some(Bend {
                         dv: core::array::from_fn(|i| v[i] - linear[i]),
                         dx,

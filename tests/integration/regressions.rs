@@ -3,8 +3,8 @@
 //! so that the tests are cheap and exact; `REGRESSION_SAMPLES` deepens the one randomized test.
 
 use linkage::{
-    arc_length, det_b, error_estimate, pose_from_unknowns, Mechanism, Method, Options, Pose,
-    SolveError, Start, TrackError, Tracker,
+    arc_length, det_b, pose_from_unknowns, Mechanism, Method, Options, Pose, SolveError, Start,
+    TrackError, Tracker,
 };
 use linkage_examples::stewart::{
     find_start, home_start, legs_for_pose, SixSix, StartError, Stewart, HOME_LEGS,
@@ -117,6 +117,8 @@ fn overflowing_inputs_are_never_converged() {
 /// Defect 10: at an exactly singular target NR, NH and PH returned `ok` with an error estimate
 /// of 1e-6 to 5e-5 mm against a 1e-10 mm tolerance (the "stalled below 1e-6 of the scale"
 /// rule), some with det B of the other sign at the printed solution.
+/// The correction is measured with F in double-double arithmetic, as the solvers now measure
+/// it there.
 #[test]
 fn ok_means_the_tolerance_was_met_at_the_returned_point() {
     let s = Stewart::new();
@@ -136,8 +138,13 @@ fn ok_means_the_tolerance_was_met_at_the_returned_point() {
                 "{method:?}: ok with an error estimate of {:e}",
                 sol.error_estimate
             );
-            let measured = error_estimate(&s, &sol.v, &x);
-            assert!(measured <= tol, "{method:?}: ok, but ‖B⁻¹F‖ = {measured:e}");
+            // With F in double-double arithmetic: at a singular target the `f64` residual's
+            // rounding alone moves the root it sees by more than the tolerance.
+            let measured = linkage_tests::exact_root::exact_correction(&s, &sol.v, &x).unwrap();
+            assert!(
+                measured <= 1.02 * tol,
+                "{method:?}: ok, but ‖B⁻¹F‖ = {measured:e}"
+            );
             assert!(
                 det_b(&s, &sol.v, &x) * st.det() > 0.0,
                 "{method:?}: ok with det B of the other sign at the solution"
@@ -531,4 +538,63 @@ fn after_a_refusal_the_tracker_needs_a_connecting_path() {
         }
     }
     assert!(refusals > 0, "these trajectories include refused samples");
+}
+
+/// Near a singularity the `f64` residual's own rounding hides errors above the tolerance:
+/// answers were labelled ok with a Newton correction within 1e-9 mm while 1.5–2.8e-9 mm from
+/// the root of the same `f64` equations (det B at 1e-5 to 1e-6 of home's; PH, NR and the
+/// tracker alike). Every answer that meets the tolerance must be within it of that root, found
+/// in double-double arithmetic (`linkage_tests::exact_root`). The slack of 2 % is the
+/// correction's second-order term and the floor the solvers allow themselves (a hundredth).
+#[test]
+fn an_answer_within_the_tolerance_is_so_near_a_singularity() {
+    let s = Stewart::new();
+    let st = home_start(&s).unwrap();
+    let (mut met, mut answers) = (0, 0);
+    let mut check = |sol_v: &[f64; 18], root: &[f64; 18], tol: f64, what: &str| {
+        let err = sol_v
+            .iter()
+            .zip(root)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        assert!(
+            err <= 1.02 * tol,
+            "{what}: ok at {tol:e} but {err:e} from the root"
+        );
+        met += 1;
+    };
+    for (u, t) in SINGULAR_RAYS {
+        let at = |back: f64| {
+            let (x, v) = legs_for_pose(&s, &on_ray(&s, &st, &u, t * (1.0 - back))).unwrap();
+            (v, x, det_b(&s, &v, &x) / st.det())
+        };
+        let (_, _, unit) = at(1e-4);
+        for tol in [1e-9, 1e-10] {
+            let options = Options {
+                tolerance: tol,
+                ..Options::TIGHT
+            };
+            let mut tracker = Tracker::new(s.clone(), st, options);
+            for ratio in [1e-2, 1e-3, 1e-4, 1e-5, 3e-6, 1e-6] {
+                let (v, x, _) = at(1e-4 * ratio / unit.abs());
+                let root = linkage_tests::exact_root::exact_root(&s, &v, &x).unwrap();
+                for method in METHODS {
+                    let sol = method.solve(&s, &st, &x, &options).unwrap();
+                    answers += 1;
+                    if sol.status.meets_tolerance() {
+                        check(&sol.v, &root, tol, &format!("{method:?} at det {ratio:e}"));
+                    }
+                }
+                answers += 1;
+                if let Ok(sample) = tracker.update(&x) {
+                    check(&sample.v, &root, tol, &format!("tracker at det {ratio:e}"));
+                }
+            }
+        }
+    }
+    assert!(
+        met * 4 >= answers * 3,
+        "{met} of {answers} answers met the tolerance"
+    );
 }
