@@ -3,9 +3,10 @@
 //! `f64` evaluation, so that B⁻¹F then measures how far a point is from the root of the `f64`
 //! equations, where the `f64` residual shows only its own rounding (`crate::floor`).
 //!
-//! Error-free transformations: `two_sum` (Knuth) and `two_prod` by a fused multiply-add
-//! (`libm::fma`, exact in software on any target). Not for values near overflow: a product of
-//! about 1e154 or more may come out infinite, which the callers treat as "cannot tell".
+//! Error-free transformations: `two_sum` (Knuth) and `two_prod` by Dekker's splitting (no
+//! fused multiply-add: the x86-64 baseline has none, and a software one costs more). Not for
+//! values near overflow: a factor of about 1e300 or a product of about 1e154 may come out
+//! infinite or NaN, which the callers treat as "cannot tell".
 
 use core::ops::{Add, Mul, Neg, Sub};
 
@@ -24,11 +25,22 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, (a - (s - bb)) + (b - bb))
 }
 
-/// `a · b = p + e` exactly (barring underflow), `p` the rounded product.
+/// `a = hi + lo` with each half of 26 significant bits (Dekker's splitting), so that
+/// products of halves are exact.
+#[inline]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a; // 2²⁷ + 1
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// `a · b = p + e` exactly (barring underflow and overflow), `p` the rounded product.
 #[inline]
 fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    (p, libm::fma(a, b, -p))
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
 }
 
 impl DoubleDouble {

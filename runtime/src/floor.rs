@@ -42,8 +42,8 @@ pub(crate) fn estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> f64 {
-    let vi: [Interval; N] = core::array::from_fn(|i| Interval::point(v[i]));
-    let xi: [Interval; M] = core::array::from_fn(|j| Interval::point(x[j]));
+    let vi = v.map(Interval::point);
+    let xi = x.map(Interval::point);
     let mut fi = [Interval::point(0.0); N];
     sys.residual_in(&vi, &xi, &mut fi);
     let mut radius = [0.0; N];
@@ -59,15 +59,19 @@ pub(crate) fn estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
     // All of one sign, alternating, and a fixed scramble: rounding has no sign pattern of its
     // own, and one pattern alone can cancel in B⁻¹'s near-null direction.
-    let patterns: [fn(usize) -> bool; 3] = [
-        |_| true,
-        |i| i % 2 == 0,
-        |i| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 63 == 0,
-    ];
     let mut floor = 0.0f64;
-    for positive in patterns {
-        let mut b: [f64; N] =
-            core::array::from_fn(|i| if positive(i) { radius[i] } else { -radius[i] });
+    for pattern in 0..3 {
+        let mut b = radius;
+        for (i, r) in b.iter_mut().enumerate() {
+            let negative = match pattern {
+                0 => false,
+                1 => i % 2 == 1,
+                _ => (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 63 == 1,
+            };
+            if negative {
+                *r = -*r;
+            }
+        }
         sys.solve(&fac, &mut b);
         let s = size(&b);
         if !s.is_finite() {
@@ -93,7 +97,13 @@ pub(crate) fn may_reach<const N: usize>(
     tolerance: f64,
 ) -> bool {
     let r = (size(v) / scale).max(1.0);
-    let det = det.abs() / r.powi(N as i32);
+    let mut growth = 1.0;
+    if r > 1.0 {
+        for _ in 0..N {
+            growth *= r;
+        }
+    }
+    let det = det.abs() / growth;
     // NaN, infinite or zero values count as near: measure.
     !(MARGIN * floor_det * r * r < tolerance * det)
 }
@@ -108,11 +118,11 @@ fn accurate_correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> Option<[f64; N]> {
-    let vd: [DoubleDouble; N] = core::array::from_fn(|i| DoubleDouble::from_f64(v[i]));
-    let xd: [DoubleDouble; M] = core::array::from_fn(|j| DoubleDouble::from_f64(x[j]));
+    let vd = v.map(DoubleDouble::from_f64);
+    let xd = x.map(DoubleDouble::from_f64);
     let mut fd = [DoubleDouble::from_f64(0.0); N];
     sys.residual_in(&vd, &xd, &mut fd);
-    let mut delta: [f64; N] = core::array::from_fn(|i| fd[i].to_f64());
+    let mut delta = fd.map(DoubleDouble::to_f64);
     sys.solve(fac, &mut delta);
     size(&delta).is_finite().then_some(delta)
 }
@@ -153,7 +163,10 @@ pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if achieved <= tolerance {
             return Ok(achieved);
         }
-        let next: [f64; N] = core::array::from_fn(|i| v[i] - delta[i]);
+        let mut next = *v;
+        for (w, d) in next.iter_mut().zip(&delta) {
+            *w -= d;
+        }
         match measure(&next, &mut fac) {
             Some(d) if crate::math::size(&d) < achieved => {
                 achieved = crate::math::size(&d);
