@@ -135,6 +135,9 @@ fn accurate_correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
 /// residual, which goes below the `f64` floor); `v` becomes the last point measured. `Ok` with
 /// the error estimate to report if its correction is within the tolerance, else `Err` with the
 /// smallest correction reached (infinite if none could be measured).
+// Inlined: on every solve's and tracked sample's path, where the prediction almost always
+// says the floor is far; the measurement is out of line.
+#[inline(always)]
 pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     floor: (f64, f64),
@@ -146,6 +149,18 @@ pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
     if !may_reach(floor.0, floor.1, (v, det), tolerance) {
         return Ok(size);
     }
+    measure_and_refine(sys, (v, x), det, tolerance)
+}
+
+/// [`vouch`] where the floor may reach the tolerance.
+#[cold]
+#[inline(never)]
+fn measure_and_refine<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    (v, x): (&mut [f64; N], &[f64; M]),
+    det: f64,
+    tolerance: f64,
+) -> Result<f64, f64> {
     let mut fac = sys.new_factor();
     let measure = |w: &[f64; N], fac: &mut S::Factor| {
         // B of the start's sign at every point measured: refinement stays on the branch.

@@ -53,6 +53,9 @@ impl Account {
 
 /// The solution after a final Newton run (`Rule::Final`) at the target `x`, run to
 /// `tolerance`.
+// Inlined into each solver: out of line, every solve paid a call, a frame and a copy of the
+// `Solution` through memory (`count nr-normal` 705 305 against 694 997).
+#[inline(always)]
 pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,

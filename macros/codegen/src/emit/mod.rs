@@ -550,12 +550,23 @@ pub fn expand(
             #[allow(unused_variables)]
             fn validate_inputs(&self, x: &[f64; #m]) -> ::core::result::Result<(), usize> {
                 let c = &self.constants;
+                // x · 0 is 0 for finite x and NaN otherwise: one sum, no branch per input,
+                // and the same sum as the solvers' own finiteness check of x, which the
+                // compiler then computes once for both. The first bad input only if one is.
+                let mut zero = 0.0;
                 let mut j = 0;
                 while j < #m {
-                    if !x[j].is_finite() {
-                        return Err(j);
-                    }
+                    zero += x[j] * 0.0;
                     j += 1;
+                }
+                if zero != 0.0 {
+                    let mut j = 0;
+                    while j < #m {
+                        if !x[j].is_finite() {
+                            return Err(j);
+                        }
+                        j += 1;
+                    }
                 }
                 #(#ranges)*
                 Ok(())
