@@ -28,9 +28,11 @@ use crate::{Mechanism, Scalar};
 
 /// How close (as a share of the tolerance) the floor predicted from the start's may come
 /// before the floor is measured at the answer itself. The prediction scales the start's floor
-/// by |det B₀ / det B| (σmin's shrinking near a fold); the hundredfold margin covers the rest
-/// of B⁻¹'s and the terms' change across a workspace.
-const MARGIN: f64 = 100.0;
+/// by |det B₀ / det B| (σmin's shrinking near a fold) and by the machine's growth; the margin
+/// covers the rest of B⁻¹'s change across a workspace, on top of [`estimate`]'s own (it
+/// overstates the floor about tenfold on the Table III platform: 1e-12 against 1e-13 mm).
+/// A hundredfold margin measured at 15 of the 100 normal Table V points at 1e-9 mm.
+const MARGIN: f64 = 10.0;
 
 /// The rounding floor at `(v, x)`, generously: ‖B⁻¹ (ρ ∘ s)‖ for the rows' rounding bounds ρ
 /// (radii of F over the point in interval arithmetic), the largest over three sign patterns s.
@@ -96,16 +98,26 @@ pub(crate) fn may_reach<const N: usize>(
     (v, det): (&[f64; N], f64),
     tolerance: f64,
 ) -> bool {
-    let r = (size(v) / scale).max(1.0);
+    // r² without a square root; rᴺ as (r²)^⌈N/2⌉ by squaring (an overestimate for odd N,
+    // which only measures more often).
+    let mut squares = 0.0;
+    for c in v {
+        squares += c * c;
+    }
+    let r2 = (squares / (scale * scale)).max(1.0);
     let mut growth = 1.0;
-    if r > 1.0 {
-        for _ in 0..N {
-            growth *= r;
+    if r2 > 1.0 {
+        let (mut base, mut e) = (r2, N.div_ceil(2));
+        while e > 0 {
+            if e & 1 == 1 {
+                growth *= base;
+            }
+            base *= base;
+            e >>= 1;
         }
     }
-    let det = det.abs() / growth;
     // NaN, infinite or zero values count as near: measure.
-    !(MARGIN * floor_det * r * r < tolerance * det)
+    !(MARGIN * floor_det * r2 * growth < tolerance * det.abs())
 }
 
 /// The Newton correction at `v` with F evaluated in double-double arithmetic and B factored
@@ -127,27 +139,39 @@ fn accurate_correction<S: Mechanism<N, M>, const N: usize, const M: usize>(
     size(&delta).is_finite().then_some(delta)
 }
 
+/// What [`vouch`] found.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Vouched<const N: usize> {
+    /// The correction found vouches for the tolerance, at the point as it is: the error
+    /// estimate to report.
+    Within(f64),
+    /// A refined point, whose correction (F in double-double arithmetic) is within the
+    /// tolerance: the point and that correction's size.
+    Refined([f64; N], f64),
+    /// Not within the tolerance: the point last measured and the smallest correction reached
+    /// (infinite if none could be measured; then the point is the one given).
+    Short([f64; N], f64),
+}
+
 /// Whether the correction of `size` that a Newton run found within `tolerance` at `v` (where
 /// det B = `det`) vouches for it. Where the floor may reach the tolerance ([`may_reach`];
 /// `floor` is the start's `(floor_det, ‖v₀‖)`), the correction is measured again with F in
 /// double-double arithmetic and B factored at the point, and the point refined by such
 /// corrections while they shrink, up to three times (Newton's method with an accurate
-/// residual, which goes below the `f64` floor); `v` becomes the last point measured. `Ok` with
-/// the error estimate to report if its correction is within the tolerance, else `Err` with the
-/// smallest correction reached (infinite if none could be measured).
+/// residual, which goes below the `f64` floor).
 // Inlined: on every solve's and tracked sample's path, where the prediction almost always
 // says the floor is far; the measurement is out of line.
 #[inline(always)]
 pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     floor: (f64, f64),
-    (v, x): (&mut [f64; N], &[f64; M]),
+    (v, x): (&[f64; N], &[f64; M]),
     det: f64,
     size: f64,
     tolerance: f64,
-) -> Result<f64, f64> {
+) -> Vouched<N> {
     if !may_reach(floor.0, floor.1, (v, det), tolerance) {
-        return Ok(size);
+        return Vouched::Within(size);
     }
     measure_and_refine(sys, (v, x), det, tolerance)
 }
@@ -157,10 +181,10 @@ pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
 #[inline(never)]
 fn measure_and_refine<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
-    (v, x): (&mut [f64; N], &[f64; M]),
+    (v, x): (&[f64; N], &[f64; M]),
     det: f64,
     tolerance: f64,
-) -> Result<f64, f64> {
+) -> Vouched<N> {
     let mut fac = sys.new_factor();
     let measure = |w: &[f64; N], fac: &mut S::Factor| {
         // B of the start's sign at every point measured: refinement stays on the branch.
@@ -171,14 +195,15 @@ fn measure_and_refine<S: Mechanism<N, M>, const N: usize, const M: usize>(
         accurate_correction(sys, fac, w, x)
     };
     let Some(mut delta) = measure(v, &mut fac) else {
-        return Err(f64::INFINITY);
+        return Vouched::Short(*v, f64::INFINITY);
     };
+    let mut point = *v;
     let mut achieved = crate::math::size(&delta);
     for _ in 0..REFINEMENTS {
         if achieved <= tolerance {
-            return Ok(achieved);
+            break;
         }
-        let mut next = *v;
+        let mut next = point;
         for (w, d) in next.iter_mut().zip(&delta) {
             *w -= d;
         }
@@ -186,15 +211,15 @@ fn measure_and_refine<S: Mechanism<N, M>, const N: usize, const M: usize>(
             Some(d) if crate::math::size(&d) < achieved => {
                 achieved = crate::math::size(&d);
                 delta = d;
-                *v = next;
+                point = next;
             }
             _ => break,
         }
     }
     if achieved <= tolerance {
-        Ok(achieved)
+        Vouched::Refined(point, achieved)
     } else {
-        Err(achieved)
+        Vouched::Short(point, achieved)
     }
 }
 

@@ -5,6 +5,7 @@
 //! tolerance (`crate::floor`).
 
 use crate::correction::{correction, det_b};
+use crate::floor::{Vouched, vouch};
 use crate::math::{norm, size};
 use crate::newton::{Ending, Newton};
 use crate::{Mechanism, Solution, Start, Status};
@@ -65,8 +66,6 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     account: Account,
 ) -> Solution<N> {
     let lambda = account.lambda;
-    let mut estimate = run.estimate;
-    let mut v = run.v;
     let status = match run.ending {
         Ending::Converged | Ending::Stalled => {
             // `run.det` and `run.estimate` were measured at `run.v` itself.
@@ -91,22 +90,9 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 } else {
                     (start.floor_det(), start.scale())
                 };
-                match crate::floor::vouch(sys, floor, (&mut v, x), run.det, run.estimate, tolerance)
-                {
-                    Ok(e) => {
-                        estimate = e;
-                        Status::Converged
-                    }
-                    Err(achieved) => {
-                        // Infinite where it could not be measured: then a stall's own figure,
-                        // or nothing vouched for at all.
-                        estimate = if achieved.is_finite() || !stalled {
-                            achieved
-                        } else {
-                            run.estimate
-                        };
-                        Status::ToleranceNotMet { achieved: estimate }
-                    }
+                match vouch(sys, floor, (&run.v, x), run.det, run.estimate, tolerance) {
+                    Vouched::Within(_) => Status::Converged,
+                    measured => return remeasured(start, run, measured, account),
                 }
             }
         }
@@ -115,9 +101,35 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     if matches!(run.ending, Ending::Converged | Ending::Stalled) {
         let ratio = (run.det / start.det()).abs();
-        return account.into_solution(v, status, estimate, ratio);
+        return account.into_solution(run.v, status, run.estimate, ratio);
     }
     finish(sys, start, run.v, x, status, account)
+}
+
+/// The solution of a final run whose answer [`vouch`] measured with an accurate residual:
+/// converged at the refined point, or short of the tolerance by what that measured (by the
+/// run's own figure for a stall where nothing could be measured).
+#[cold]
+fn remeasured<const N: usize, const M: usize>(
+    start: &Start<N, M>,
+    run: &Newton<N>,
+    measured: Vouched<N>,
+    account: Account,
+) -> Solution<N> {
+    let ratio = (run.det / start.det()).abs();
+    let (v, status, estimate) = match measured {
+        Vouched::Within(e) => (run.v, Status::Converged, e),
+        Vouched::Refined(v, e) => (v, Status::Converged, e),
+        Vouched::Short(v, achieved) => {
+            let achieved = if achieved.is_finite() || run.ending != Ending::Stalled {
+                achieved
+            } else {
+                run.estimate
+            };
+            (v, Status::ToleranceNotMet { achieved }, achieved)
+        }
+    };
+    account.into_solution(v, status, estimate, ratio)
 }
 
 /// Whether the equations left out as dependent at home hold at `v` (see
