@@ -14,12 +14,13 @@
 //!
 //! So where the floor may come near the tolerance, the answer's correction is measured again
 //! with F evaluated in double-double arithmetic ([`vouch`]): to first order that correction is
-//! the distance to the root, whatever the `f64` rounding, and one step of it refines the point
-//! (iterative refinement with an accurate residual), after which the correction is measured
-//! once more. The answer is converged only if that last measure is within the tolerance. Where
-//! is "near" is predicted without that work ([`may_reach`]) from a floor [`estimate`]d once, at
-//! the start, and grown as |det B| shrinks; a solve pays for the accurate residual (an
-//! evaluation of F in double-double, a factorisation and two solves) only there.
+//! the distance to the root, whatever the `f64` rounding, and steps of it refine the point
+//! (Newton's method with an accurate residual, B factored at each point and of the start's
+//! sign), each measured again. The answer is converged only if the last measure is within the
+//! tolerance. Where is "near" is predicted without that work ([`may_reach`]) from a floor
+//! [`estimate`]d once, at the start, grown as |det B| shrinks and as the machine grows; a solve
+//! pays for the accurate residual (an evaluation of F in double-double, a factorisation and a
+//! solve per measure) only there.
 
 use crate::double_double::DoubleDouble;
 use crate::interval::Interval;
@@ -31,7 +32,8 @@ use crate::{Mechanism, Scalar};
 /// by |det B₀ / det B| (σmin's shrinking near a fold) and by the machine's growth; the margin
 /// covers the rest of B⁻¹'s change across a workspace, on top of [`estimate`]'s own (it
 /// overstates the floor about tenfold on the Table III platform: 1e-12 against 1e-13 mm).
-/// A hundredfold margin measured at 15 of the 100 normal Table V points at 1e-9 mm.
+/// (A hundredfold margin measured at about 15 of the 100 normal Table V points at 1e-9 mm,
+/// where the tenfold one measures at none.)
 const MARGIN: f64 = 10.0;
 
 /// The rounding floor at `(v, x)`, generously: ‖B⁻¹ (ρ ∘ s)‖ for the rows' rounding bounds ρ
