@@ -1,41 +1,45 @@
 //! Double-double arithmetic: a number as the unevaluated sum of two `f64`s, about 32 significant
-//! digits. The generated `residual_in` run on it evaluates F to far below the rounding of its
-//! `f64` evaluation, so that B⁻¹F then measures how far a point is from the root of the `f64`
-//! equations, where the `f64` residual shows only its own rounding (`crate::floor`).
-//!
-//! Error-free transformations: `two_sum` (Knuth) and `two_prod` by Dekker's splitting (no
-//! fused multiply-add: the x86-64 baseline has none, and a software one costs more). Not for
-//! values near overflow: a factor of about 1e300 or a product of about 1e154 may come out
-//! infinite or NaN, which the callers treat as "cannot tell".
+//! digits, by Dekker's error-free sums and products (no fused multiply-add: the x86-64
+//! baseline has none). One home for it: the all-modes tracker's complex residual far out
+//! (`modes::extended`), and the answers near the rounding floor (`crate::floor`), whose
+//! generated `residual_in` run on it evaluates F to far below the rounding of its `f64`
+//! evaluation. Not for values near overflow: a factor of about 1e300 or a product of about
+//! 1e154 may come out infinite or NaN, which the callers treat as "cannot tell".
 
 use core::ops::{Add, Mul, Neg, Sub};
 
-/// `hi + lo` with |lo| at most half a unit in the last place of `hi`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `hi + lo` with `|lo| ≤ ulp(hi) / 2`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct DoubleDouble {
-    hi: f64,
-    lo: f64,
+    pub(crate) hi: f64,
+    pub(crate) lo: f64,
 }
 
-/// `a + b = s + e` exactly, `s` the rounded sum.
-#[inline]
+/// `a + b` exactly, as a sum and its rounding error.
+#[inline(always)]
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     (s, (a - (s - bb)) + (b - bb))
 }
 
-/// `a = hi + lo` with each half of 26 significant bits (Dekker's splitting), so that
-/// products of halves are exact.
-#[inline]
+/// `a + b` exactly where `|a| ≥ |b|`.
+#[inline(always)]
+fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+/// Dekker's split of a double into two halves of 26 bits.
+#[inline(always)]
 fn split(a: f64) -> (f64, f64) {
-    let c = 134_217_729.0 * a; // 2²⁷ + 1
-    let hi = c - (c - a);
+    let t = 134_217_729.0 * a; // 2^27 + 1
+    let hi = t - (t - a);
     (hi, a - hi)
 }
 
-/// `a · b = p + e` exactly (barring underflow and overflow), `p` the rounded product.
-#[inline]
+/// `a · b` exactly, as a product and its rounding error (no fused multiply–add needed).
+#[inline(always)]
 fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     let (ah, al) = split(a);
@@ -44,29 +48,40 @@ fn two_prod(a: f64, b: f64) -> (f64, f64) {
 }
 
 impl DoubleDouble {
+    pub(crate) const fn new(x: f64) -> Self {
+        DoubleDouble { hi: x, lo: 0.0 }
+    }
+
     /// The value rounded to the nearest `f64`.
     pub(crate) fn to_f64(self) -> f64 {
         self.hi + self.lo
     }
 
-    fn renormalised(hi: f64, lo: f64) -> Self {
-        let (hi, lo) = two_sum(hi, lo);
+    /// `1 / self`: one Newton correction of the f64 quotient.
+    pub(crate) fn recip(self) -> Self {
+        let q1 = 1.0 / self.hi;
+        let r = Self::new(1.0) - self * Self::new(q1);
+        let q2 = r.hi / self.hi;
+        let (hi, lo) = quick_two_sum(q1, q2);
         DoubleDouble { hi, lo }
     }
 }
 
 impl Add for DoubleDouble {
     type Output = Self;
-    fn add(self, o: Self) -> Self {
-        let (s, e) = two_sum(self.hi, o.hi);
-        let (t, f) = two_sum(self.lo, o.lo);
-        let (s, e) = two_sum(s, e + t);
-        Self::renormalised(s, e + f)
+    #[inline(always)]
+    fn add(self, b: Self) -> Self {
+        let (s, e) = two_sum(self.hi, b.hi);
+        let (t, f) = two_sum(self.lo, b.lo);
+        let (s, e) = quick_two_sum(s, e + t);
+        let (hi, lo) = quick_two_sum(s, e + f);
+        DoubleDouble { hi, lo }
     }
 }
 
 impl Neg for DoubleDouble {
     type Output = Self;
+    #[inline(always)]
     fn neg(self) -> Self {
         DoubleDouble {
             hi: -self.hi,
@@ -77,22 +92,25 @@ impl Neg for DoubleDouble {
 
 impl Sub for DoubleDouble {
     type Output = Self;
-    fn sub(self, o: Self) -> Self {
-        self + -o
+    #[inline(always)]
+    fn sub(self, b: Self) -> Self {
+        self + -b
     }
 }
 
 impl Mul for DoubleDouble {
     type Output = Self;
-    fn mul(self, o: Self) -> Self {
-        let (p, e) = two_prod(self.hi, o.hi);
-        Self::renormalised(p, e + (self.hi * o.lo + self.lo * o.hi))
+    #[inline(always)]
+    fn mul(self, b: Self) -> Self {
+        let (p, e) = two_prod(self.hi, b.hi);
+        let (hi, lo) = quick_two_sum(p, e + (self.hi * b.lo + self.lo * b.hi));
+        DoubleDouble { hi, lo }
     }
 }
 
 impl crate::Scalar for DoubleDouble {
     fn from_f64(x: f64) -> Self {
-        DoubleDouble { hi: x, lo: 0.0 }
+        Self::new(x)
     }
     fn sq(self) -> Self {
         self * self
@@ -101,11 +119,11 @@ impl crate::Scalar for DoubleDouble {
     /// the two evaluate the same equations (sines and cosines enter F only through the inputs,
     /// as coefficients).
     fn sin(self) -> Self {
-        Self::from_f64(crate::math::sin(self.hi))
+        Self::new(crate::math::sin(self.hi))
     }
     /// As [`Self::sin`].
     fn cos(self) -> Self {
-        Self::from_f64(crate::math::cos(self.hi))
+        Self::new(crate::math::cos(self.hi))
     }
 }
 
@@ -131,5 +149,8 @@ mod tests {
         assert_eq!(dd_way.to_f64(), tiny);
         assert_eq!((-dd(3.0)).to_f64(), -3.0);
         assert_eq!(dd(0.5).sq().to_f64(), 0.25);
+        // 1/3 to about 32 digits: 3 · (1/3) − 1 is below 1e-31.
+        let third = dd(3.0).recip();
+        assert!((dd(3.0) * third - dd(1.0)).to_f64().abs() < 1e-31);
     }
 }

@@ -12,107 +12,13 @@
 //! of the parameters, so the equations stay one smooth system).
 
 use super::complex::Complex;
+use crate::double_double::DoubleDouble as Dd;
 use core::ops::{Add, Mul, Neg, Sub};
 
 /// Beyond this size (in units of the scale) a root that f64 cannot polish is tried in
 /// double-double, and so are the corrections of `Settings::FAR` paths: roots 10⁴ times the
 /// mechanism's size away still polish in f64.
 pub(crate) const WIDE_BEYOND: f64 = 1e4;
-
-/// `hi + lo` with `|lo| ≤ ulp(hi) / 2`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Dd {
-    hi: f64,
-    lo: f64,
-}
-
-/// `a + b` exactly, as a sum and its rounding error.
-#[inline(always)]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-/// `a + b` exactly where `|a| ≥ |b|`.
-#[inline(always)]
-fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    (s, b - (s - a))
-}
-
-/// Dekker's split of a double into two halves of 26 bits.
-#[inline(always)]
-fn split(a: f64) -> (f64, f64) {
-    let t = 134_217_729.0 * a; // 2^27 + 1
-    let hi = t - (t - a);
-    (hi, a - hi)
-}
-
-/// `a · b` exactly, as a product and its rounding error (no fused multiply–add needed).
-#[inline(always)]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    let (ah, al) = split(a);
-    let (bh, bl) = split(b);
-    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
-}
-
-impl Dd {
-    const fn new(x: f64) -> Dd {
-        Dd { hi: x, lo: 0.0 }
-    }
-
-    /// `1 / self`: one Newton correction of the f64 quotient.
-    fn recip(self) -> Dd {
-        let q1 = 1.0 / self.hi;
-        let r = Dd::new(1.0) - self * Dd::new(q1);
-        let q2 = r.hi / self.hi;
-        let (hi, lo) = quick_two_sum(q1, q2);
-        Dd { hi, lo }
-    }
-}
-
-impl Add for Dd {
-    type Output = Dd;
-    #[inline(always)]
-    fn add(self, b: Dd) -> Dd {
-        let (s, e) = two_sum(self.hi, b.hi);
-        let (t, f) = two_sum(self.lo, b.lo);
-        let (s, e) = quick_two_sum(s, e + t);
-        let (hi, lo) = quick_two_sum(s, e + f);
-        Dd { hi, lo }
-    }
-}
-
-impl Neg for Dd {
-    type Output = Dd;
-    #[inline(always)]
-    fn neg(self) -> Dd {
-        Dd {
-            hi: -self.hi,
-            lo: -self.lo,
-        }
-    }
-}
-
-impl Sub for Dd {
-    type Output = Dd;
-    #[inline(always)]
-    fn sub(self, b: Dd) -> Dd {
-        self + -b
-    }
-}
-
-impl Mul for Dd {
-    type Output = Dd;
-    #[inline(always)]
-    fn mul(self, b: Dd) -> Dd {
-        let (p, e) = two_prod(self.hi, b.hi);
-        let (hi, lo) = quick_two_sum(p, e + (self.hi * b.lo + self.lo * b.hi));
-        Dd { hi, lo }
-    }
-}
 
 /// A complex number in double-double parts: the scalar of [`residual`].
 ///
