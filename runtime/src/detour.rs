@@ -107,7 +107,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
             left_at: None,
         });
     }
-    let here = Start::accepted(straight.v, x_fold, det_here, start.floor_det());
+    let here = Start::accepted(straight.v, x_fold, det_here, *start.floor());
     let mut near = None;
     for share in [0.1, 0.25, 0.5, 1.0] {
         let via: [f64; M] = core::array::from_fn(|j| x_fold[j] + side * share * remaining * n[j]);
@@ -127,7 +127,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if !(det_mid * start.det() > 0.0) {
             continue;
         }
-        let mid = Start::accepted(first.v, via, det_mid, start.floor_det());
+        let mid = Start::accepted(first.v, via, det_mid, *start.floor());
         let Ok(second) = from_accepted(sys, &mid, target, options) else {
             continue;
         };

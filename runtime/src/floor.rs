@@ -86,17 +86,51 @@ pub(crate) fn estimate<S: Mechanism<N, M>, const N: usize, const M: usize>(
     floor
 }
 
+/// What a start knows of the rounding floor on its branch: [`estimate`] at the branch's first
+/// start, |det B| and ‖v‖ there. A start accepted later on the branch carries it unchanged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Floor {
+    at_start: f64,
+    det: f64,
+    scale: f64,
+}
+
+impl Floor {
+    /// The floor of a start at `v` where det B = `det`.
+    pub(crate) fn at<S: Mechanism<N, M>, const N: usize, const M: usize>(
+        sys: &S,
+        v: &[f64; N],
+        x: &[f64; M],
+        det: f64,
+    ) -> Self {
+        Floor {
+            at_start: estimate(sys, v, x),
+            det: det.abs(),
+            scale: size(v),
+        }
+    }
+
+    /// A floor that is always measured: for solvers whose answers cost a path anyway (PH, NH,
+    /// the tracker's fallback), and for a run that stalled at the floor.
+    pub(crate) const ALWAYS: Floor = Floor {
+        at_start: f64::INFINITY,
+        det: 1.0,
+        scale: 1.0,
+    };
+}
+
 /// Whether the floor at a point `v` where det B = `det` may come within [`MARGIN`] of
-/// `tolerance`, predicted from `floor_det` = (the start's floor) · |det B₀| and the start's
-/// size `scale` = ‖v₀‖: the floor grows as 1/σmin, and |det B| shrinks with σmin; and it grows
-/// with the size of F's terms, about ‖v‖² (legs so long that the machine is 1e8 mm across put
-/// it at 1e-2 mm). A configuration r = ‖v‖/‖v₀‖ > 1 times the start's also multiplies det B by
-/// up to rᴺ without bringing B any nearer singular: that growth is taken out, and none is
-/// credited for r < 1. Cheap enough for every solve and tracked sample.
+/// `tolerance`, predicted from the branch's [`Floor`]: the floor grows as 1/σmin, and |det B|
+/// shrinks with σmin (none is credited for |det B| above the start's); and it grows with the
+/// size of F's terms, about ‖v‖² (legs so long that the machine is 1e8 mm across put it at
+/// 1e-2 mm). A configuration r = ‖v‖/‖v₀‖ > 1 times the start's also multiplies det B by up
+/// to rᴺ without bringing B any nearer singular: that growth is taken out first. Cheap enough
+/// for every solve and tracked sample; a prediction, which the stress suite's random
+/// geometries showed can fall short twentyfold near singularities, so the solvers whose
+/// answers cost a path anyway measure every answer ([`Floor::ALWAYS`]).
 #[inline(always)]
 pub(crate) fn may_reach<const N: usize>(
-    floor_det: f64,
-    scale: f64,
+    floor: &Floor,
     (v, det): (&[f64; N], f64),
     tolerance: f64,
 ) -> bool {
@@ -106,7 +140,7 @@ pub(crate) fn may_reach<const N: usize>(
     for c in v {
         squares += c * c;
     }
-    let r2 = (squares / (scale * scale)).max(1.0);
+    let r2 = (squares / (floor.scale * floor.scale)).max(1.0);
     let mut growth = 1.0;
     if r2 > 1.0 {
         let (mut base, mut e) = (r2, N.div_ceil(2));
@@ -118,8 +152,9 @@ pub(crate) fn may_reach<const N: usize>(
             e >>= 1;
         }
     }
+    let det = (det.abs() / growth).min(floor.det);
     // NaN, infinite or zero values count as near: measure.
-    !(MARGIN * floor_det * r2 * growth < tolerance * det.abs())
+    !(MARGIN * floor.at_start * floor.det * r2 < tolerance * det)
 }
 
 /// The Newton correction at `v` with F evaluated in double-double arithmetic and B factored
@@ -156,8 +191,8 @@ pub(crate) enum Vouched<const N: usize> {
 }
 
 /// Whether the correction of `size` that a Newton run found within `tolerance` at `v` (where
-/// det B = `det`) vouches for it. Where the floor may reach the tolerance ([`may_reach`];
-/// `floor` is the start's `(floor_det, ‖v₀‖)`), the correction is measured again with F in
+/// det B = `det`) vouches for it. Where the floor may reach the tolerance ([`may_reach`]
+/// from the branch's `floor`), the correction is measured again with F in
 /// double-double arithmetic and B factored at the point, and the point refined by such
 /// corrections while they shrink, up to three times (Newton's method with an accurate
 /// residual, which goes below the `f64` floor).
@@ -166,13 +201,13 @@ pub(crate) enum Vouched<const N: usize> {
 #[inline(always)]
 pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
-    floor: (f64, f64),
+    floor: &Floor,
     (v, x): (&[f64; N], &[f64; M]),
     det: f64,
     size: f64,
     tolerance: f64,
 ) -> Vouched<N> {
-    if !may_reach(floor.0, floor.1, (v, det), tolerance) {
+    if !may_reach(floor, (v, det), tolerance) {
         return Vouched::Within(size);
     }
     measure_and_refine(sys, (v, x), det, tolerance)

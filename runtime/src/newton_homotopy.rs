@@ -64,6 +64,7 @@ pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(
                         &run,
                         &x,
                         options.tolerance,
+                        false,
                         account,
                     )));
                 }

@@ -169,6 +169,7 @@ fn solve<S: Mechanism<N, M>, const N: usize, const M: usize>(
         &run,
         x,
         options.tolerance,
+        true,
         account,
     )))
 }

@@ -310,7 +310,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             self.bend = None;
         }
         // Continuation from the last accepted sample, whose branch is the start's.
-        let here = Start::accepted(self.v, self.x, self.det, self.start.floor_det());
+        let here = Start::accepted(self.v, self.x, self.det, *self.start.floor());
         let sol = from_accepted(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));
@@ -409,7 +409,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                 if c.size <= tol {
                     // Within the tolerance by its correction, but not by what rounding lets it
                     // show (near a singularity): continuation decides, and says so.
-                    let floor = (self.start.floor_det(), self.start.scale());
+                    let floor = self.start.floor();
                     match crate::floor::vouch(&self.sys, floor, (v, x), c.det, c.size, tol) {
                         crate::floor::Vouched::Within(_) => {}
                         crate::floor::Vouched::Refined(w, _) => *v = w,

@@ -306,5 +306,5 @@ fn polish<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Solution<N> {
     let run = newton(sys, v, x, options, Rule::Final);
     account.iterations += run.iterations;
-    conclude(sys, start, &run, x, options.tolerance, account)
+    conclude(sys, start, &run, x, options.tolerance, false, account)
 }

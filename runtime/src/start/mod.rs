@@ -33,7 +33,7 @@ const MIN_RCOND: f64 = 1e-7;
 /// Only checked constructors make one ([`Start::new`]), so every solve can rely on it:
 ///
 /// ```compile_fail
-/// let start: linkage::Start<1, 1> = linkage::Start { v: [0.0], x: [1.0], det: 1.0, scale: 0.0, floor_det: 0.0 };
+/// let start: linkage::Start<1, 1> = linkage::Start { v: [0.0], x: [1.0], det: 1.0, scale: 0.0 };
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Start<const N: usize, const M: usize> {
@@ -43,10 +43,9 @@ pub struct Start<const N: usize, const M: usize> {
     /// ‖v‖ ([`size`]), which every solve from here checks its options against and sets its
     /// rounding floor by: computed once, not per solve.
     scale: f64,
-    /// The rounding floor measured at the first start of this branch (`crate::floor`), times
-    /// |det B| there: the floor a point with det B grows to is predicted as this over |det B|,
-    /// so a start accepted later on the branch carries it unchanged.
-    floor_det: f64,
+    /// What is known of the rounding floor on this branch (`crate::floor`), from its first
+    /// start: a start accepted later on the branch carries it unchanged.
+    floor: crate::floor::Floor,
 }
 
 /// Whether every entry is finite, without a branch per entry: `x · 0` is 0 for finite x and
@@ -264,28 +263,27 @@ impl<const N: usize, const M: usize> Start<N, M> {
             return Err(inconsistent);
         }
         // `c` was computed at `v` itself: det B belongs to the stored point.
-        let floor_det = crate::floor::estimate(sys, &v, &x) * c.det.abs();
-        Ok(Start::accepted(v, x, c.det, floor_det))
+        let floor = crate::floor::Floor::at(sys, &v, &x, c.det);
+        Ok(Start::accepted(v, x, c.det, floor))
     }
 
     /// A point the crate has itself accepted on a start's branch (a tracked sample, a
     /// converged solve, a point of a continuation path): consistent and regular as far as
-    /// that acceptance showed, with det B measured at `v`, and `floor_det` from the start of
-    /// the branch ([`Self::floor_det`]). Not for unchecked input.
-    pub(crate) fn accepted(v: [f64; N], x: [f64; M], det: f64, floor_det: f64) -> Self {
+    /// that acceptance showed, with det B measured at `v`, and the `floor` of the start of the
+    /// branch ([`Self::floor`]). Not for unchecked input.
+    pub(crate) fn accepted(v: [f64; N], x: [f64; M], det: f64, floor: crate::floor::Floor) -> Self {
         Start {
             v,
             x,
             det,
             scale: size(&v),
-            floor_det,
+            floor,
         }
     }
 
-    /// The rounding floor measured where the branch's first start was made, times |det B|
-    /// there (see `crate::floor::may_reach`).
-    pub(crate) fn floor_det(&self) -> f64 {
-        self.floor_det
+    /// What is known of the rounding floor on the start's branch (`crate::floor`).
+    pub(crate) fn floor(&self) -> &crate::floor::Floor {
+        &self.floor
     }
 
     /// ‖v0‖.
