@@ -26,6 +26,8 @@ mod finite;
 mod generator;
 #[path = "random_mechanisms/model_side.rs"]
 mod model_side;
+#[path = "random_mechanisms/path.rs"]
+mod path;
 #[path = "random_mechanisms/screws.rs"]
 mod screws;
 
@@ -343,7 +345,8 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
         }
     }
     // A finite step from home (0.05 rad, 2 mm each input, random signs): Newton on the model's
-    // F from home against the oracle's own loop closure, both in ten steps along the way.
+    // F from home against the oracle's own loop closure, both following home's branch along
+    // the way (`random_mechanisms/path.rs`).
     let step: Vec<f64> = mech
         .inputs
         .iter()
@@ -382,15 +385,29 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
         finite::platform_points(mech, &step),
     ) {
         (Ok(v), Ok(o)) => (v, o),
-        // Both stop on the way: the mechanism meets a fold within the step (a random one can
-        // be near one at home). Counted; the first-order check above stands.
-        (Err(_), Err(_)) => {
+        // Both stop at one place on the way: the mechanism meets a fold within the step (a
+        // random one can be near one at home). Counted; the first-order check above stands.
+        // Each side stops within a few of its shortest steps (1/640) of the fold.
+        (Err(a), Err(b)) if (a.at - b.at).abs() <= 0.02 => {
             counts.folds += 1;
             counts.checked += 1;
             return Ok(());
         }
-        (Err(e), Ok(_)) => return Err(format!("{e}, where the oracle's loop closure closes")),
-        (Ok(_), Err(e)) => return Err(format!("{e}, where Newton on the model's F converges")),
+        (Err(a), Err(b)) => {
+            return Err(format!(
+                "Newton on F {a}; the oracle's loop closure {b}: not at one fold"
+            ))
+        }
+        (Err(e), Ok(_)) => {
+            return Err(format!(
+                "Newton on F {e}, where the oracle's loop closure closes"
+            ))
+        }
+        (Ok(_), Err(e)) => {
+            return Err(format!(
+                "the oracle's loop closure {e}, where Newton on the model's F converges"
+            ))
+        }
     };
     for (p, pt) in model.points.iter().enumerate() {
         let got = [0, 1, 2].map(|a| v[model.unknown(p, a)]);
@@ -688,4 +705,49 @@ fn a_platform_placed_by_three_slides_keeps_well_conditioned_equations() {
         let r = e.eval(&v, &x, &home.c);
         assert!(r.abs() < 1e-9 * scale * scale, "{r:.3e}: {text}");
     }
+}
+
+/// A seed's mechanism as the sweep generates it, checked as the sweep checks it, with a line
+/// of its declaration to make sure the generator still makes that one.
+fn check_seed(seed: u64, family: &str, line: &str) -> Counts {
+    let mech = generator::generate(seed);
+    let text = generator::render(&mech);
+    assert_eq!(mech.family, family);
+    assert!(text.contains(line), "the generator changed:\n{text}");
+    let mut counts = Counts::default();
+    if let Err(e) = check(seed, &mech, &text, &mut counts) {
+        panic!("seed {seed}: {e}");
+    }
+    counts
+}
+
+/// A mechanism whose step from home ends 3% short of a fold (the oracle's closure at σmin/σmax
+/// 2.7e-6 there, 1.6e-5 at home): Newton on F, from the last answer in ten steps, did not
+/// converge from 0.9 to 1.0 ("Newton on F does not converge at 10 of 10, where the oracle's
+/// loop closure closes"), although the branch is there (in a hundred steps it agrees with the
+/// oracle to 1e-8 mm). Both sides now follow the branch (`random_mechanisms/path.rs`) and
+/// agree at the end. Found by the sweep (seed 1548616513); the model was not at fault.
+#[test]
+fn a_step_that_ends_near_a_fold_is_followed_to_its_end() {
+    let counts = check_seed(
+        1548616513,
+        "mixed-actives",
+        "chain c1 = base - C(active t1 z2, axis = b10 -> b11) - l1_1",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
+}
+
+/// A hexapod whose branch from home folds at 0.442 of its step: the oracle's loop closure,
+/// stepping from 0.4 to 0.5, closed on another assembly and went on to the end, while Newton on
+/// F stopped ("Newton on F does not converge at 5 of 10, where the oracle's loop closure
+/// closes"), a failure charged to the model. Both sides now stop at the fold, which the sweep
+/// counts as one. Found by the sweep (seed 1548616563); the model was not at fault.
+#[test]
+fn a_fold_within_the_step_stops_both_sides() {
+    let counts = check_seed(
+        1548616563,
+        "hexapod",
+        "chain c4 = base - P(active d4, axis = b30 -> b31",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 0, 1));
 }

@@ -2,8 +2,8 @@
 //! from the declaration and the README's pair table. Every chain's links are placed by the
 //! product of exponentials of its pairs' home twists (a pair's motion at its joint values,
 //! about its axes as they were at home, in the chain's direction); the passive joint values
-//! are solved (Levenberg–Marquardt, from home) so that every chain puts the platform in one
-//! place, the actives held at their targets.
+//! are solved (Gauss–Newton by least squares, along home's branch: `crate::path`) so that
+//! every chain puts the platform in one place, the actives held at their targets.
 
 use crate::generator::{add, dot, scale, sub, unit, Kind, Mech, BASE, PLATFORM, V3};
 use crate::screws::{joint_axis, leg_ends};
@@ -199,15 +199,23 @@ fn residual(m: &Mech, x: &[f64], y: &[f64]) -> DVector<f64> {
 }
 
 /// The platform's pivots (base frame) at inputs `x`, each a step from its home zero, by the
-/// oracle's loop closure solved from home; `Err` if it does not close.
-pub fn platform_points(m: &Mech, x: &[f64]) -> Result<Vec<(String, V3)>, String> {
+/// oracle's loop closure solved from home along the way, following home's branch
+/// (`crate::path::follow`); `Err` if it does not close.
+pub fn platform_points(m: &Mech, x: &[f64]) -> Result<Vec<(String, V3)>, crate::path::Stop> {
     let (_, n) = variables(m);
-    // In ten steps, each from the last, so as to stay on home's branch.
-    let mut y = vec![0.0; n];
-    for k in 1..=10 {
-        let at: Vec<f64> = x.iter().map(|xi| xi * k as f64 / 10.0).collect();
-        close(m, &at, &mut y)?;
-    }
+    let at = |t: f64| -> Vec<f64> { x.iter().map(|xi| xi * t).collect() };
+    // dy/dt = −J⁺ ∂r/∂t, for the prediction.
+    let tangent = |t: f64, y: &[f64]| -> Result<Vec<f64>, String> {
+        let e = 1e-6;
+        let rt = (residual(m, &at(t + e), y) - residual(m, &at(t - e), y)) / (2.0 * e);
+        Ok(least_squares(jacobian(m, &at(t), y), &rt)?
+            .iter()
+            .copied()
+            .collect())
+    };
+    let y = crate::path::follow(vec![0.0; n], tangent, |t, mut y| {
+        close(m, &at(t), &mut y).map(|()| y)
+    })?;
     let t = platform_motions(m, x, &y)[0];
     Ok(m.pivots
         .iter()
@@ -216,41 +224,52 @@ pub fn platform_points(m: &Mech, x: &[f64]) -> Result<Vec<(String, V3)>, String>
         .collect())
 }
 
+/// The residual's Jacobian in the passive values, by central differences.
+fn jacobian(m: &Mech, x: &[f64], y: &[f64]) -> DMatrix<f64> {
+    let h = 1e-7;
+    let mut jac = DMatrix::zeros(residual(m, x, y).len(), y.len());
+    for c in 0..y.len() {
+        let mut yp = y.to_vec();
+        yp[c] += h;
+        let mut ym = y.to_vec();
+        ym[c] -= h;
+        jac.set_column(
+            c,
+            &((residual(m, x, &yp) - residual(m, x, &ym)) / (2.0 * h)),
+        );
+    }
+    jac
+}
+
+/// −J⁺ f, the least-squares step, with singular values below 1e-9 of the largest (idle
+/// freedoms: a rod's spin) left out of the pseudo-inverse, so that those freedoms stay put.
+/// Not damped: near a fold J's smallest singular value (2.7e-6 of its largest, seed
+/// 1548616513) squared is below any damping that holds the idle ones, which shortened the
+/// steps (and the tangent) just where they matter.
+fn least_squares(jac: DMatrix<f64>, f: &DVector<f64>) -> Result<DVector<f64>, String> {
+    if jac.ncols() == 0 {
+        return Ok(DVector::zeros(0));
+    }
+    let svd = jac.svd(true, true);
+    let floor = 1e-9 * svd.singular_values.max();
+    Ok(svd.solve(&(-f), floor)?)
+}
+
 /// Closes the loops at inputs `x` from passive values `y`.
 fn close(m: &Mech, x: &[f64], y: &mut [f64]) -> Result<(), String> {
-    let n = y.len();
     let mut f = residual(m, x, y);
     for _ in 0..60 {
         if f.norm() < 1e-13 {
             break;
         }
-        let h = 1e-7;
-        let mut jac = DMatrix::zeros(f.len(), n);
-        for c in 0..n {
-            let mut yp = y.to_vec();
-            yp[c] += h;
-            let mut ym = y.to_vec();
-            ym[c] -= h;
-            let d = (residual(m, x, &yp) - residual(m, x, &ym)) / (2.0 * h);
-            jac.set_column(c, &d);
-        }
-        // Levenberg–Marquardt with a small damping: idle freedoms (a rod's spin) stay put.
-        let jt = jac.transpose();
-        let mut a = &jt * &jac;
-        for i in 0..n {
-            a[(i, i)] += 1e-10 * (1.0 + a[(i, i)]);
-        }
-        let step = a.lu().solve(&(-(&jt * &f))).ok_or("singular step")?;
+        let step = least_squares(jacobian(m, x, y), &f)?;
         for (yi, si) in y.iter_mut().zip(step.iter()) {
             *yi += si;
         }
         f = residual(m, x, y);
     }
     if !(f.norm() < 1e-10) {
-        return Err(format!(
-            "the oracle's loop closure stops at {:.1e}",
-            f.norm()
-        ));
+        return Err(format!("residual {:.1e} after 60 iterations", f.norm()));
     }
     Ok(())
 }

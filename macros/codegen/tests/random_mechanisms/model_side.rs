@@ -80,17 +80,47 @@ pub fn platform_rates(
         .collect())
 }
 
-/// The model's unknowns at inputs `x` (the model's order), by Newton on F from home, in ten
-/// steps along the straight line from home's inputs, each from the last.
-pub fn solve(model: &Model, h: &Home, x: &[f64]) -> Result<Vec<f64>, String> {
-    let mut v = h.v.clone();
-    let parts = 10;
-    for k in 1..=parts {
-        let t = k as f64 / parts as f64;
-        let at: Vec<f64> = h.x.iter().zip(x).map(|(a, b)| a + t * (b - a)).collect();
-        v = newton(model, h, &at, v).map_err(|e| format!("{e} at {k} of {parts}"))?;
+/// The model's unknowns at inputs `x` (the model's order), by Newton on F from home along the
+/// straight line from home's inputs, following home's branch (`crate::path::follow`).
+pub fn solve(model: &Model, h: &Home, x: &[f64]) -> Result<Vec<f64>, crate::path::Stop> {
+    let at = |t: f64| -> Vec<f64> { h.x.iter().zip(x).map(|(a, b)| a + t * (b - a)).collect() };
+    let users = unknowns_used(model);
+    // dv/dt = −B⁻¹ ∂F/∂t, ∂F/∂t by central differences in t (for the prediction only).
+    let tangent = |t: f64, v: &[f64]| -> Result<Vec<f64>, String> {
+        let e = 1e-6;
+        let (plus, minus) = (at(t + e), at(t - e));
+        let ft = DVector::from_iterator(
+            v.len(),
+            model
+                .equations
+                .iter()
+                .map(|f| (f.eval(v, &plus, &h.c) - f.eval(v, &minus, &h.c)) / (2.0 * e)),
+        );
+        let b = jacobian(model, &users, v, &at(t), &h.c);
+        let d = b.lu().solve(&(-ft)).ok_or("∂F/∂v is singular on the way")?;
+        Ok(d.iter().copied().collect())
+    };
+    crate::path::follow(h.v.clone(), tangent, |t, v| newton(model, h, &at(t), v))
+}
+
+/// ∂F/∂v at (v, x) by central differences of a whole unit: F is of degree ≤ 2 in v, so they are
+/// exact up to rounding.
+fn jacobian(model: &Model, users: &[Vec<usize>], v: &[f64], x: &[f64], c: &[f64]) -> DMatrix<f64> {
+    let n = v.len();
+    let mut b = DMatrix::zeros(n, n);
+    let mut w = v.to_vec();
+    for col in 0..n {
+        for &r in &users[col] {
+            let e = &model.equations[r];
+            w[col] = v[col] + 1.0;
+            let plus = e.eval(&w, x, c);
+            w[col] = v[col] - 1.0;
+            let minus = e.eval(&w, x, c);
+            w[col] = v[col];
+            b[(r, col)] = (plus - minus) / 2.0;
+        }
     }
-    Ok(v)
+    b
 }
 
 fn newton(model: &Model, h: &Home, x: &[f64], mut v: Vec<f64>) -> Result<Vec<f64>, String> {
@@ -102,20 +132,7 @@ fn newton(model: &Model, h: &Home, x: &[f64], mut v: Vec<f64>) -> Result<Vec<f64
     };
     for _ in 0..60 {
         let f = residual(&v);
-        // Exact central differences of a unit (F is of degree ≤ 2 in v).
-        let mut b = DMatrix::zeros(n, n);
-        let mut w = v.clone();
-        for c in 0..n {
-            for &r in &users[c] {
-                let e = &model.equations[r];
-                w[c] = v[c] + 1.0;
-                let plus = e.eval(&w, x, &h.c);
-                w[c] = v[c] - 1.0;
-                let minus = e.eval(&w, x, &h.c);
-                w[c] = v[c];
-                b[(r, c)] = (plus - minus) / 2.0;
-            }
-        }
+        let b = jacobian(model, &users, &v, x, &h.c);
         let step = b.lu().solve(&(-&f)).ok_or("∂F/∂v is singular on the way")?;
         // Converged when the step is negligible, or when F is down to its rounding (F is of
         // degree ≤ 2 in lengths of `scale`: its terms round at about 1e-16·scale²). Where
