@@ -9,7 +9,9 @@ use crate::dense::Lu;
 use linkage::{Mechanism, Scalar};
 use std::ops::{Add, Mul, Neg, Sub};
 
-/// `hi + lo`, about 32 significant digits.
+/// `hi + lo`, about 32 significant digits. Its sums and products are out of line: written out
+/// at every operation of every mechanism's `residual_in`, they cost the tests' build more than
+/// the calls cost the tests.
 #[derive(Clone, Copy, Debug)]
 pub struct Dd(f64, f64);
 
@@ -35,6 +37,7 @@ fn two_prod(a: f64, b: f64) -> (f64, f64) {
 
 impl Add for Dd {
     type Output = Dd;
+    #[inline(never)]
     fn add(self, o: Dd) -> Dd {
         let (s, e) = two_sum(self.0, o.0);
         let (h, l) = two_sum(s, e + self.1 + o.1);
@@ -49,12 +52,14 @@ impl Neg for Dd {
 }
 impl Sub for Dd {
     type Output = Dd;
+    #[inline(never)]
     fn sub(self, o: Dd) -> Dd {
         self + -o
     }
 }
 impl Mul for Dd {
     type Output = Dd;
+    #[inline(never)]
     fn mul(self, o: Dd) -> Dd {
         let (p, e) = two_prod(self.0, o.0);
         let (h, l) = two_sum(p, e + self.0 * o.1 + self.1 * o.0);

@@ -21,7 +21,9 @@
 //! (its residual over its largest derivative by the coordinates: a length), or where the
 //! configuration the inputs place satisfies them so and has the platform within as much of v,
 //! so any inputs returned do place the platform at v; a pose the mechanism cannot take is
-//! `Unreachable`.
+//! `Unreachable` — at once where the platform is given out of shape (an equation on its
+//! points alone that no input reads fails by far more than that: [`FAR`]), after the search
+//! below otherwise.
 //!
 //! Where to start, in order: the reference inputs with whichever guess for the links between
 //! fits better (the given v's, or the declared home's with each point moved as far as the
@@ -85,6 +87,17 @@ const SMALLEST_STEP: f64 = 1.0 / 4096.0;
 /// Steps taken in all along the path from home.
 const PATH_STEPS: usize = 400;
 
+/// How far (a length, relative to the scale) an equation on the platform's coordinates alone
+/// that reads no input ([`Plan::rigid`], a rigid platform's distances, say) may be off at the
+/// given v before the pose is unreachable without a search: no inputs or links' points move
+/// it, and an answer needs it within [`ACCEPT`] at v, or at a configuration whose platform is
+/// within [`ACCEPT`] of v — which moves it by at most the row's nonzeros times that, to first
+/// order. A thousand times [`ACCEPT`] leaves room for both and for the second-order term; a
+/// pose between the two is searched as any other. Without it a platform given out of shape
+/// cost the whole search (every start, the path from home) to be refused: 20 to 190 ms
+/// for the 3-PRP of 39 unknowns in the tests' build.
+const FAR: f64 = 1e3 * ACCEPT;
+
 /// What the generated `inverse` tells [`solve`] besides the equations.
 #[derive(Clone, Copy, Debug)]
 pub struct Plan<'a, const N: usize, const M: usize> {
@@ -97,6 +110,9 @@ pub struct Plan<'a, const N: usize, const M: usize> {
     pub carried: &'a [(usize, usize)],
     /// The inputs that F holds only through their sine and cosine.
     pub turning: &'a [usize],
+    /// The equations on the platform's coordinates alone that read no input: neither the
+    /// inputs nor the links between can make them hold ([`FAR`]).
+    pub rigid: &'a [usize],
     /// The first input without a closed form (named in `Unreachable`).
     pub unsolved: usize,
 }
@@ -167,6 +183,9 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
     };
     let scale = |v: &[f64; N]| 1.0 + v[..plan.held].iter().fold(0.0f64, |s, q| s.max(q.abs()));
     let tolerance = scale(v);
+    if out_of_shape(sys, v, x0, plan.rigid, tolerance) {
+        return Err(unreachable);
+    }
 
     let inputs_only = Solver::<S, N, M, M> { sys, held: N, work };
     let guesses = guesses(&solver, v, x0, plan);
@@ -647,19 +666,53 @@ fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let mut off = 0.0f64;
     for r in 0..N {
         let slope = b[r].iter().fold(0.0f64, |m, q| m.max(q.abs()));
-        let here = if slope > 0.0 {
-            f[r].abs() / slope
-        } else if f[r] == 0.0 {
-            0.0
-        } else {
-            f64::INFINITY
-        };
-        off = off.max(here);
+        off = off.max(as_length(f[r], slope));
     }
     // And the equations left out as dependent at home: platform pivots on another component
     // of an over-constrained mechanism's square system are no placement of it.
     off = off.max(sys.dependent_offset(v, x));
     if off.is_nan() { f64::INFINITY } else { off }
+}
+
+/// Whether an equation of `rigid` ([`Plan::rigid`]) is more than [`FAR`] of the `scale` off
+/// at v, as a length ([`as_length`]); `x` only completes the call (those rows read no input).
+fn out_of_shape<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+    rigid: &[usize],
+    scale: f64,
+) -> bool {
+    if rigid.is_empty() {
+        return false;
+    }
+    let mut f = [0.0; N];
+    sys.residual(v, x, &mut f);
+    let mut b = [[0.0; N]; N];
+    sys.jacobian_dense(v, x, &mut b);
+    // The quadratic term's allowance, absolute: it matters only where the row's slope is
+    // itself near zero (points of the platform nearly coincident).
+    let second_order = 16.0 * (FAR * scale) * (FAR * scale);
+    rigid.iter().any(|&r| match (f.get(r), b.get(r)) {
+        (Some(&fr), Some(row)) => {
+            let slope = row.iter().fold(0.0f64, |m, q| m.max(q.abs()));
+            fr.abs() > second_order && as_length(fr, slope) > FAR * scale
+        }
+        _ => false,
+    })
+}
+
+/// An equation's residual `f` over its largest derivative `slope`: how far, as a length, its
+/// point is from holding it, to first order. Zero or infinite where no coordinate moves it,
+/// as it holds or fails; NaN where `f` is.
+fn as_length(f: f64, slope: f64) -> f64 {
+    if slope > 0.0 {
+        f.abs() / slope
+    } else if f == 0.0 {
+        0.0
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// What is left of F after a solve.

@@ -227,3 +227,62 @@ fn work_on_a_random_sweep() {
         totals[0][1]
     );
 }
+
+crate::mechanism! {
+    /// A 3-RRS (the generator's snapshot `three_rrs`): its platform's three distances are
+    /// equations on the platform's points alone that no input reads.
+    pub struct Rrs;
+    params { rb = 200.0, rc = 100.0, rp = 100.0, c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0) }
+    base {
+        A1 = [rb, 0.0, 0.0], B1 = [rb, 1.0, 0.0],
+        A2 = [rb * c2, rb * s2, 0.0], B2 = [rb * c2 - s2, rb * s2 + c2, 0.0],
+        A3 = [rb * c2, -rb * s2, 0.0], B3 = [rb * c2 + s2, -rb * s2 + c2, 0.0],
+    }
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
+        G1 = [rp, 0.0, 0.0], G2 = [rp * c2, rp * s2, 0.0], G3 = [rp * c2, -rp * s2, 0.0],
+    }
+    link crank1 { C1 = [rb - rc, 0.0, 0.0], D1 = [rb - rc, 1.0, 0.0] }
+    link crank2 { C2 = [(rb - rc) * c2, (rb - rc) * s2, 0.0], D2 = [(rb - rc) * c2 - s2, (rb - rc) * s2 + c2, 0.0] }
+    link crank3 { C3 = [(rb - rc) * c2, -(rb - rc) * s2, 0.0], D3 = [(rb - rc) * c2 + s2, -(rb - rc) * s2 + c2, 0.0] }
+    link leg1 { } link leg2 { } link leg3 { }
+    chain c1 = base - R(active q1, axis = A1 -> B1) - crank1 - R(passive, axis = C1 -> D1) - leg1 - S(G1) - platform;
+    chain c2 = base - R(active q2, axis = A2 -> B2) - crank2 - R(passive, axis = C2 -> D2) - leg2 - S(G2) - platform;
+    chain c3 = base - R(active q3, axis = A3 -> B3) - crank3 - R(passive, axis = C3 -> D3) - leg3 - S(G3) - platform;
+}
+
+/// A platform given out of shape (G3 moved along x) is refused before any search: no run of
+/// Levenberg–Marquardt. Moved by far less than the acceptance, it is answered as before.
+#[test]
+fn a_platform_out_of_shape_is_refused_without_a_search() {
+    let rrs = Rrs::new();
+    let start = rrs.home_start().unwrap();
+    let v = forward(&rrs, &start, &[0.1, -0.05, 0.08]);
+    let k = Rrs::POINTS.len();
+    let scale = 1.0 + v[..3 * k].iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    // G3's x is v[2] (unknowns by axis: v[a k + p]).
+    let moved = |by: f64| {
+        let mut off = v;
+        off[2] += by * scale;
+        off
+    };
+    take();
+    for by in [1e-3, 1e-5, -2e-6] {
+        let r = rrs.inverse(&moved(by), &Rrs::HOME_INPUTS);
+        assert!(
+            matches!(r, Err(crate::InverseError::Unreachable { .. })),
+            "G3 moved by {by} of the scale: {r:?}"
+        );
+        assert_eq!(take()[0], 0, "G3 moved by {by} of the scale: a search ran");
+    }
+    // Between the acceptance and FAR: searched, and refused.
+    let r = rrs.inverse(&moved(1e-7), &Rrs::HOME_INPUTS);
+    assert!(
+        matches!(r, Err(crate::InverseError::Unreachable { .. })),
+        "{r:?}"
+    );
+    assert!(take()[0] > 0);
+    let back = rrs
+        .inverse(&moved(1e-12), &Rrs::HOME_INPUTS)
+        .expect("G3 moved by 1e-12 of the scale");
+    assert!(misplaced(&rrs, &start, &v, &back) < 1e-9 * scale);
+}

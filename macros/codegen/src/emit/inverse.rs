@@ -23,15 +23,13 @@ pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenS
     let held = 3 * model.points.len();
     let n = model.unknowns.len();
     let nnz = pattern.len();
-    // The equations on the platform's points alone, each with the indices of its values.
-    let rows = (0..n).filter_map(|r| {
-        let entries: Vec<usize> = (0..nnz).filter(|&k| pattern[k].0 == r).collect();
-        let platform_only = !entries.is_empty() && entries.iter().all(|&k| pattern[k].1 < held);
-        platform_only.then(|| quote!((#r, &[#(#entries),*])))
-    });
     match numerical_input(model) {
         // Each closed form reads one point: the others must be where the inputs put them.
-        None => quote! {
+        None => {
+            let rows = platform_rows(model, pattern, false)
+                .into_iter()
+                .map(|(r, entries)| quote!((#r, &[#(#entries),*])));
+            quote! {
             let out = self.closed_form_inputs(v, reference)?;
             const ROWS: &[(usize, &[usize])] = &[#(#rows),*];
             let mut f = [0.0; #n];
@@ -42,9 +40,31 @@ pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenS
                 return Err(::linkage::InverseError::Inconsistent);
             }
             Ok(out)
-        },
-        Some(first) => numerical_body(model, has_home, first),
+            }
+        }
+        Some(first) => numerical_body(model, has_home, first, pattern),
     }
+}
+
+/// The equations on the platform's points alone, each with the indices of its values in
+/// ∂F/∂v; with `fixed`, only those that read no input either: no inputs and no points of the
+/// links between can make them hold, so a platform they fail is unreachable as given.
+fn platform_rows(
+    model: &Model,
+    pattern: &[(usize, usize)],
+    fixed: bool,
+) -> Vec<(usize, Vec<usize>)> {
+    let held = 3 * model.points.len();
+    let m = model.inputs.len();
+    (0..model.unknowns.len())
+        .filter_map(|r| {
+            let entries: Vec<usize> = (0..pattern.len()).filter(|&k| pattern[k].0 == r).collect();
+            let platform_only = !entries.is_empty() && entries.iter().all(|&k| pattern[k].1 < held);
+            let free_of_inputs =
+                (0..m).all(|i| !model.equations[r].depends_on(crate::expr::Var::Input(i)));
+            (platform_only && (free_of_inputs || !fixed)).then_some((r, entries))
+        })
+        .collect()
 }
 
 /// Where every chain has a closed form: the inherent `closed_form_inputs`, the inputs they
@@ -77,7 +97,15 @@ pub fn closed_form_method(model: &Model) -> Option<TokenStream> {
     })
 }
 
-fn numerical_body(model: &Model, has_home: bool, first: usize) -> TokenStream {
+fn numerical_body(
+    model: &Model,
+    has_home: bool,
+    first: usize,
+    pattern: &[(usize, usize)],
+) -> TokenStream {
+    let rigid = platform_rows(model, pattern, true)
+        .into_iter()
+        .map(|(r, _)| r);
     let steps = model.inverses.iter().map(|inv| closed_form(model, inv));
     let n = model.unknowns.len();
     let m = model.inputs.len();
@@ -122,6 +150,7 @@ fn numerical_body(model: &Model, has_home: bool, first: usize) -> TokenStream {
             home: #home,
             carried: &[#(#carried),*],
             turning: &[#(#turning),*],
+            rigid: &[#(#rigid),*],
             unsolved: #first,
         };
         ::linkage::__private::numerical_inverse::<Self, #n, #m, #z>(self, v, reference, &out, &plan)
