@@ -220,6 +220,12 @@ pub fn expand(
     } else {
         quote!(#[allow(unused_variables)])
     };
+    // The f64 kernels (residual, Jacobians, factorisation and solve) are `#[inline]` where
+    // debug assertions are off, as in release builds: inlined into the solvers' loops there.
+    // Where they are on (the tests' profile, optimised), an inline function is compiled again
+    // in every codegen unit that calls it, for every declared mechanism: without the hint the
+    // integration tests' binary rebuilt alone in 89 s instead of 115–118 s, its tests running
+    // as fast (39.7 s against 40.5 s; BENCHMARKS.md).
     let residual_fns = if turns {
         let turns_body = crate::emit::turns::turns_body(&turned);
         quote! {
@@ -228,7 +234,7 @@ pub fn expand(
                 self.residual_turned(v, x, &self.turns(x), f);
             }
 
-            #[inline]
+            #[cfg_attr(not(debug_assertions), inline)]
             #allow
             fn residual_turned(&self, v: &[f64; #n], x: &[f64; #m], t: &::linkage::Turns<#m>, f: &mut [f64; #n]) {
                 let c = &self.constants;
@@ -242,7 +248,7 @@ pub fn expand(
         }
     } else {
         quote! {
-            #[inline]
+            #[cfg_attr(not(debug_assertions), inline)]
             #allow
             fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
                 let c = &self.constants;
@@ -257,7 +263,7 @@ pub fn expand(
                 self.input_derivative_turned(v, x, &self.turns(x), dx, out);
             }
 
-            #[inline]
+            #[cfg_attr(not(debug_assertions), inline)]
             #[allow(unused_variables)]
             fn input_derivative_turned(&self, v: &[f64; #n], x: &[f64; #m], t: &::linkage::Turns<#m>, dx: &[f64; #m], out: &mut [f64; #n]) {
                 let c = &self.constants;
@@ -266,7 +272,7 @@ pub fn expand(
         }
     } else {
         quote! {
-            #[inline]
+            #[cfg_attr(not(debug_assertions), inline)]
             #[allow(unused_variables)]
             fn input_derivative(&self, v: &[f64; #n], x: &[f64; #m], dx: &[f64; #m], out: &mut [f64; #n]) {
                 let c = &self.constants;
@@ -483,7 +489,7 @@ pub fn expand(
 
             #residual_fns
 
-            #[inline]
+            #[cfg_attr(not(debug_assertions), inline)]
             #[allow(unused_variables)]
             fn jacobian(&self, v: &[f64; #n], x: &[f64; #m], values: &mut [f64]) {
                 let c = &self.constants;
@@ -527,7 +533,7 @@ pub fn expand(
 
             #factor_fns
 
-            #[inline]
+            #[cfg_attr(not(debug_assertions), inline)]
             #[allow(unused_variables)]
             fn input_jacobian(&self, v: &[f64; #n], x: &[f64; #m], a: &mut [[f64; #m]; #n]) {
                 let c = &self.constants;
