@@ -131,15 +131,12 @@ impl Floor {
 #[inline(always)]
 pub(crate) fn may_reach<const N: usize>(
     floor: &Floor,
-    (v, det): (&[f64; N], f64),
+    (squares, det): (f64, f64),
     tolerance: f64,
 ) -> bool {
-    // r² without a square root; rᴺ as (r²)^⌈N/2⌉ by squaring (an overestimate for odd N,
-    // which only measures more often).
-    let mut squares = 0.0;
-    for c in v {
-        squares += c * c;
-    }
+    // r² without a square root, from Σv² (`squares`, which the caller has: see [`vouch`]);
+    // rᴺ as (r²)^⌈N/2⌉ by squaring (an overestimate for odd N, which only measures more
+    // often).
     let r2 = (squares / (floor.scale * floor.scale)).max(1.0);
     let mut growth = 1.0;
     if r2 > 1.0 {
@@ -191,7 +188,8 @@ pub(crate) enum Vouched<const N: usize> {
 }
 
 /// Whether the correction of `size` that a Newton run found within `tolerance` at `v` (where
-/// det B = `det`) vouches for it. Where the floor may reach the tolerance ([`may_reach`]
+/// det B = `det` and Σv² = `squares`: [`crate::math::squares`], which `conclude` has computed
+/// anyway, to check that v is finite) vouches for it. Where the floor may reach the tolerance ([`may_reach`]
 /// from the branch's `floor`), the correction is measured again with F in
 /// double-double arithmetic and B factored at the point, and the point refined by such
 /// corrections while they shrink, up to three times (Newton's method with an accurate
@@ -203,11 +201,12 @@ pub(crate) fn vouch<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     floor: &Floor,
     (v, x): (&[f64; N], &[f64; M]),
+    squares: f64,
     det: f64,
     size: f64,
     tolerance: f64,
 ) -> Vouched<N> {
-    if !may_reach(floor, (v, det), tolerance) {
+    if !may_reach::<N>(floor, (squares, det), tolerance) {
         return Vouched::Within(size);
     }
     measure_and_refine(sys, (v, x), det, tolerance)

@@ -3,6 +3,24 @@
 
 pub use linkage_geometry::math::*;
 
+/// Σ vᵢ², unscaled: infinite where it overflows (‖v‖ above about 1e154) as well as where an
+/// entry is not finite; finite only where every entry is.
+#[inline(always)]
+pub(crate) fn squares<const N: usize>(v: &[f64; N]) -> f64 {
+    // As in `size`.
+    let (mut even, mut odd) = (0.0, 0.0);
+    let pairs = v.chunks_exact(2);
+    let last = pairs.remainder();
+    for p in pairs {
+        even += p[0] * p[0];
+        odd += p[1] * p[1];
+    }
+    for x in last {
+        even += x * x;
+    }
+    even + odd
+}
+
 /// The Euclidean norm of a fixed-size vector: one sum of squares and one square root, unrolled
 /// by the compiler for the mechanism's size. Where that sum is not a normal finite number —
 /// NaN, overflowed, or so small it may have underflowed — the rescaling [`norm`] decides, so

@@ -6,7 +6,7 @@
 
 use crate::correction::{correction, det_b};
 use crate::floor::{Floor, Vouched, vouch};
-use crate::math::{norm, size};
+use crate::math::{norm, size, squares};
 use crate::newton::{Ending, Newton};
 use crate::{Mechanism, Solution, Start, Status};
 
@@ -72,7 +72,11 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let status = match run.ending {
         Ending::Converged | Ending::Stalled => {
             // `run.det` and `run.estimate` were measured at `run.v` itself.
-            let finite = size(&run.v).is_finite() && run.estimate.is_finite();
+            // Σv² once, for this check and the floor's prediction; where it overflows, the
+            // size (rescaled) tells whether v is finite.
+            let squares = squares(&run.v);
+            let finite =
+                (squares.is_finite() || size(&run.v).is_finite()) && run.estimate.is_finite();
             let stalled = run.ending == Ending::Stalled;
             if !finite {
                 not_converged(sys, &run.v, x)
@@ -93,7 +97,15 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 } else {
                     &Floor::ALWAYS
                 };
-                match vouch(sys, floor, (&run.v, x), run.det, run.estimate, tolerance) {
+                match vouch(
+                    sys,
+                    floor,
+                    (&run.v, x),
+                    squares,
+                    run.det,
+                    run.estimate,
+                    tolerance,
+                ) {
                     Vouched::Within(_) => Status::Converged,
                     measured => return remeasured(start, run, measured, account),
                 }

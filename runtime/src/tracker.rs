@@ -410,7 +410,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                     // Within the tolerance by its correction, but not by what rounding lets it
                     // show (near a singularity): continuation decides, and says so.
                     let floor = self.start.floor();
-                    match crate::floor::vouch(&self.sys, floor, (v, x), c.det, c.size, tol) {
+                    let squares = crate::math::squares(v);
+                    match crate::floor::vouch(&self.sys, floor, (v, x), squares, c.det, c.size, tol)
+                    {
                         crate::floor::Vouched::Within(_) => {}
                         crate::floor::Vouched::Refined(w, _) => *v = w,
                         crate::floor::Vouched::Short(..) => return None,

@@ -117,11 +117,25 @@ fn the_generator_survives_mangled_declarations() {
     mangle(DECLARATION, 99, true);
 }
 
+// One test per declaration of the general model, so that the harness runs them side by side.
 #[test]
-fn the_general_model_survives_mangled_declarations() {
-    for (k, text) in GENERAL.iter().enumerate() {
-        mangle(text, k as u64, true);
-    }
+fn the_general_model_survives_a_mangled_five_bar() {
+    mangle(GENERAL[0], 0, true);
+}
+
+#[test]
+fn the_general_model_survives_a_mangled_3_upu() {
+    mangle(GENERAL[1], 1, true);
+}
+
+#[test]
+fn the_general_model_survives_a_mangled_3_rpr() {
+    mangle(GENERAL[2], 2, true);
+}
+
+#[test]
+fn the_general_model_survives_a_mangled_parallelogram() {
+    mangle(GENERAL[3], 3, true);
 }
 
 /// Random edits of a declaration: each one is expanded or is a `compile_error!`, never a panic.
