@@ -7,7 +7,9 @@ pub fn sq(x: f64) -> f64 {
     x * x
 }
 
-pub use crate::inverse::{Plan as InversePlan, closed_form_places, solve as numerical_inverse};
+pub use crate::inverse::{
+    Plan as InversePlan, closed_form_places, platform_in_shape, solve as numerical_inverse,
+};
 pub use crate::lu::{fallback_factor, fallback_solve};
 pub use crate::math::{cos, sin};
 

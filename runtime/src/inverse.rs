@@ -88,15 +88,16 @@ const SMALLEST_STEP: f64 = 1.0 / 4096.0;
 const PATH_STEPS: usize = 400;
 
 /// How far (a length, relative to the scale) an equation on the platform's coordinates alone
-/// that reads no input ([`Plan::rigid`], a rigid platform's distances, say) may be off at the
-/// given v before the pose is unreachable without a search: no inputs or links' points move
+/// that reads no input (a rigid platform's distances, say) may be off at the given v before the
+/// pose is unreachable without a search ([`platform_in_shape`], which the generated `inverse`
+/// calls with the generator's list of such equations before this module's search): no inputs or links' points move
 /// it, and an answer needs it within [`ACCEPT`] at v, or at a configuration whose platform is
 /// within [`ACCEPT`] of v — which moves it by at most the row's nonzeros times that, to first
 /// order. A thousand times [`ACCEPT`] leaves room for both and for the second-order term; a
 /// pose between the two is searched as any other. Without it a platform given out of shape
 /// cost the whole search (every start, the path from home) to be refused: 20 to 190 ms
 /// for the 3-PRP of 39 unknowns in the tests' build.
-const FAR: f64 = 1e3 * ACCEPT;
+pub const FAR: f64 = 1e3 * ACCEPT;
 
 /// What the generated `inverse` tells [`solve`] besides the equations.
 #[derive(Clone, Copy, Debug)]
@@ -110,9 +111,6 @@ pub struct Plan<'a, const N: usize, const M: usize> {
     pub carried: &'a [(usize, usize)],
     /// The inputs that F holds only through their sine and cosine.
     pub turning: &'a [usize],
-    /// The equations on the platform's coordinates alone that read no input: neither the
-    /// inputs nor the links between can make them hold ([`FAR`]).
-    pub rigid: &'a [usize],
     /// The first input without a closed form (named in `Unreachable`).
     pub unsolved: usize,
 }
@@ -183,9 +181,6 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
     };
     let scale = |v: &[f64; N]| 1.0 + v[..plan.held].iter().fold(0.0f64, |s, q| s.max(q.abs()));
     let tolerance = scale(v);
-    if out_of_shape(sys, v, x0, plan.rigid, tolerance) {
-        return Err(unreachable);
-    }
 
     let inputs_only = Solver::<S, N, M, M> { sys, held: N, work };
     let guesses = guesses(&solver, v, x0, plan);
@@ -243,7 +238,7 @@ mod closed_form;
 mod tests;
 
 use by_the_inputs::by_the_inputs;
-pub use closed_form::closed_form_places;
+pub use closed_form::{closed_form_places, platform_in_shape};
 
 /// `d` brought into (−π, π].
 fn half_turn(d: f64) -> f64 {
@@ -672,34 +667,6 @@ fn off_by<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // of an over-constrained mechanism's square system are no placement of it.
     off = off.max(sys.dependent_offset(v, x));
     if off.is_nan() { f64::INFINITY } else { off }
-}
-
-/// Whether an equation of `rigid` ([`Plan::rigid`]) is more than [`FAR`] of the `scale` off
-/// at v, as a length ([`as_length`]); `x` only completes the call (those rows read no input).
-fn out_of_shape<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    v: &[f64; N],
-    x: &[f64; M],
-    rigid: &[usize],
-    scale: f64,
-) -> bool {
-    if rigid.is_empty() {
-        return false;
-    }
-    let mut f = [0.0; N];
-    sys.residual(v, x, &mut f);
-    let mut b = [[0.0; N]; N];
-    sys.jacobian_dense(v, x, &mut b);
-    // The quadratic term's allowance, absolute: it matters only where the row's slope is
-    // itself near zero (points of the platform nearly coincident).
-    let second_order = 16.0 * (FAR * scale) * (FAR * scale);
-    rigid.iter().any(|&r| match (f.get(r), b.get(r)) {
-        (Some(&fr), Some(row)) => {
-            let slope = row.iter().fold(0.0f64, |m, q| m.max(q.abs()));
-            fr.abs() > second_order && as_length(fr, slope) > FAR * scale
-        }
-        _ => false,
-    })
 }
 
 /// An equation's residual `f` over its largest derivative `slope`: how far, as a length, its

@@ -29,8 +29,41 @@ pub fn closed_form_places<const N: usize>(
     b: &[f64],
     rows: &[(usize, &[usize])],
 ) -> bool {
-    let scale = 1.0 + v.iter().take(held).fold(0.0f64, |m, q| m.max(q.abs()));
-    let bound = CLOSED_FORM_ACCEPT * scale;
+    rows_hold(f, b, rows, CLOSED_FORM_ACCEPT * scale(v, held), 0.0)
+}
+
+/// Whether the platform at `v` is in shape: every equation of `rows` — on the platform's
+/// points alone and reading no input (the generator's list), so that no inputs or links'
+/// points can make it hold — within [`FAR`](super::FAR) of the scale at v (F there `f`, ∂F/∂v's
+/// values `b`, as for [`closed_form_places`]), or within the second-order term's allowance in
+/// F's own units (it matters only where a row's slope is itself near zero: points of the
+/// platform nearly coincident). The generated numerical `inverse` calls it before the search,
+/// which a platform out of shape would otherwise run through every start to be refused.
+pub fn platform_in_shape<const N: usize>(
+    v: &[f64; N],
+    held: usize,
+    f: &[f64; N],
+    b: &[f64],
+    rows: &[(usize, &[usize])],
+) -> bool {
+    let bound = super::FAR * scale(v, held);
+    rows_hold(f, b, rows, bound, 16.0 * bound * bound)
+}
+
+/// 1 + the largest of the platform's coordinates (the first `held`).
+fn scale<const N: usize>(v: &[f64; N], held: usize) -> f64 {
+    1.0 + v.iter().take(held).fold(0.0f64, |m, q| m.max(q.abs()))
+}
+
+/// Whether each equation of `rows` holds to `bound` as a length (its residual over its largest
+/// derivative among its values in `b`), or to `allowance` in F's own units.
+fn rows_hold<const N: usize>(
+    f: &[f64; N],
+    b: &[f64],
+    rows: &[(usize, &[usize])],
+    bound: f64,
+    allowance: f64,
+) -> bool {
     rows.iter().all(|&(r, entries)| {
         let slope = entries
             .iter()
@@ -38,7 +71,9 @@ pub fn closed_form_places<const N: usize>(
             .fold(0.0f64, |m, q| m.max(q.abs()));
         let fr = f.get(r).copied().unwrap_or(f64::NAN);
         // NaN anywhere fails; an equation no coordinate moves must hold exactly.
-        if slope > 0.0 {
+        if fr.abs() <= allowance {
+            true
+        } else if slope > 0.0 {
             fr.abs() <= bound * slope
         } else {
             fr == 0.0

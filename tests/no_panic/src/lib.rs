@@ -161,8 +161,30 @@ proven!(hexapod, RssHexapod, 18, 6);
 /// `inverse` is the numerical one (`linkage`'s inverse.rs).
 pub use linkage_serial_arms::ScaraWrist;
 
+linkage::mechanism! {
+    /// A 3-RRS: no closed-form inverse either, and equations on its platform's points alone
+    /// (their distances), which the numerical inverse checks before its search.
+    pub struct Rrs;
+    params { rb = 200.0, rc = 100.0, rp = 100.0, c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0) }
+    base {
+        A1 = [rb, 0.0, 0.0], B1 = [rb, 1.0, 0.0],
+        A2 = [rb * c2, rb * s2, 0.0], B2 = [rb * c2 - s2, rb * s2 + c2, 0.0],
+        A3 = [rb * c2, -rb * s2, 0.0], B3 = [rb * c2 + s2, -rb * s2 + c2, 0.0],
+    }
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
+        G1 = [rp, 0.0, 0.0], G2 = [rp * c2, rp * s2, 0.0], G3 = [rp * c2, -rp * s2, 0.0],
+    }
+    link crank1 { C1 = [rb - rc, 0.0, 0.0], D1 = [rb - rc, 1.0, 0.0] }
+    link crank2 { C2 = [(rb - rc) * c2, (rb - rc) * s2, 0.0], D2 = [(rb - rc) * c2 - s2, (rb - rc) * s2 + c2, 0.0] }
+    link crank3 { C3 = [(rb - rc) * c2, -(rb - rc) * s2, 0.0], D3 = [(rb - rc) * c2 + s2, -(rb - rc) * s2 + c2, 0.0] }
+    link leg1 { } link leg2 { } link leg3 { }
+    chain c1 = base - R(active q1, axis = A1 -> B1) - crank1 - R(passive, axis = C1 -> D1) - leg1 - S(G1) - platform;
+    chain c2 = base - R(active q2, axis = A2 -> B2) - crank2 - R(passive, axis = C2 -> D2) - leg2 - S(G2) - platform;
+    chain c3 = base - R(active q3, axis = A3 -> B3) - crank3 - R(passive, axis = C3 -> D3) - leg3 - S(G3) - platform;
+}
+
 /// Inverse kinematics: the closed forms (the 3-RPS's legs, the Stewart platform's, the
-/// hexapod's cranks) and the numerical inverse (the SCARA with a wrist).
+/// hexapod's cranks) and the numerical inverse (the SCARA with a wrist, the 3-RRS).
 pub mod inverse {
     use super::*;
     use linkage::{InverseError, Mechanism};
@@ -183,6 +205,18 @@ pub mod inverse {
         v: &[f64; 18],
         x0: &[f64; 6],
     ) -> Result<[f64; 6], InverseError> {
+        sys.inverse(v, x0)
+    }
+
+    #[no_panic]
+    pub fn rrs<const N: usize>(
+        sys: &Rrs,
+        v: &[f64; N],
+        x0: &[f64; 3],
+    ) -> Result<[f64; 3], InverseError>
+    where
+        Rrs: Mechanism<N, 3>,
+    {
         sys.inverse(v, x0)
     }
 

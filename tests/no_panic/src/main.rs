@@ -341,7 +341,7 @@ fn all_modes() {
 
 /// Inverse kinematics gives a solved pose's inputs back, and refuses a NaN pose.
 fn inverse() {
-    use no_panic_proof::{inverse, ScaraWrist};
+    use no_panic_proof::{inverse, Rrs, ScaraWrist};
     let o = Options::TIGHT;
     let sys = ScaraWrist::new();
     let start = sys.home_start().expect("the SCARA's start");
@@ -356,6 +356,21 @@ fn inverse() {
     let mut bad = sol.v;
     bad[0] = f64::NAN;
     assert!(inverse::scara_wrist(&sys, &black_box(bad), start.x()).is_err());
+
+    // The 3-RRS: answered, and refused where its platform is out of shape (G3's x moved).
+    let rrs = Rrs::new();
+    let start = rrs.home_start().expect("the 3-RRS's start");
+    let x = black_box([0.1, -0.05, 0.08]);
+    let sol = linkage::arc_length(&rrs, &start, &x, &o).expect("a 3-RRS solve");
+    assert!(sol.is_ok(), "{:?}", sol.status);
+    let back = inverse::rrs(&rrs, &sol.v, start.x()).expect("its inputs");
+    assert!(
+        back.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-6),
+        "{back:?}"
+    );
+    let mut bad = sol.v;
+    bad[2] += 5.0;
+    assert!(inverse::rrs(&rrs, &black_box(bad), start.x()).is_err());
 
     let rps = Rps::new();
     let v = linkage::unknowns_from_pose(&rps, &Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));

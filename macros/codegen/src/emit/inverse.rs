@@ -103,13 +103,28 @@ fn numerical_body(
     first: usize,
     pattern: &[(usize, usize)],
 ) -> TokenStream {
-    let rigid = platform_rows(model, pattern, true)
-        .into_iter()
-        .map(|(r, _)| r);
     let steps = model.inverses.iter().map(|inv| closed_form(model, inv));
     let n = model.unknowns.len();
     let m = model.inputs.len();
     let held = 3 * model.points.len();
+    // A platform out of shape is refused before the search, where some equation can tell.
+    let rigid: Vec<TokenStream> = platform_rows(model, pattern, true)
+        .into_iter()
+        .map(|(r, entries)| quote!((#r, &[#(#entries),*])))
+        .collect();
+    let nnz = pattern.len();
+    let in_shape = (!rigid.is_empty()).then(|| {
+        quote! {
+            const RIGID: &[(usize, &[usize])] = &[#(#rigid),*];
+            let mut f = [0.0; #n];
+            self.residual(v, &out, &mut f);
+            let mut b = [0.0; #nnz];
+            self.jacobian(v, &out, &mut b);
+            if !::linkage::__private::platform_in_shape(v, #held, &f, &b, RIGID) {
+                return Err(::linkage::InverseError::Unreachable { input: #first });
+            }
+        }
+    });
     let z = m + n - held;
     // The points of the links between that a platform point carries: the second guess moves
     // them as far as it has from home.
@@ -145,12 +160,12 @@ fn numerical_body(
         // The chains with a closed form give their inputs; the rest start at the reference.
         let mut out = *reference;
         #(#steps)*
+        #in_shape
         let plan = ::linkage::__private::InversePlan {
             held: #held,
             home: #home,
             carried: &[#(#carried),*],
             turning: &[#(#turning),*],
-            rigid: &[#(#rigid),*],
             unsolved: #first,
         };
         ::linkage::__private::numerical_inverse::<Self, #n, #m, #z>(self, v, reference, &out, &plan)
