@@ -7,7 +7,8 @@ pub use linkage_geometry::math::*;
 /// entry is not finite; finite only where every entry is.
 #[inline(always)]
 pub(crate) fn squares<const N: usize>(v: &[f64; N]) -> f64 {
-    // As in `size`.
+    // As in `size`, which keeps its own copy of the loop: written as this function and a
+    // root, it cost the Newton loop 72 instructions a solve (`count nr-normal`, BENCHMARKS.md).
     let (mut even, mut odd) = (0.0, 0.0);
     let pairs = v.chunks_exact(2);
     let last = pairs.remainder();
