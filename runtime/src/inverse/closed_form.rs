@@ -34,11 +34,12 @@ pub fn closed_form_places<const N: usize>(
 
 /// Whether the platform at `v` is in shape: every equation of `rows` — on the platform's
 /// points alone and reading no input (the generator's list), so that no inputs or links'
-/// points can make it hold — within [`FAR`](super::FAR) of the scale at v (F there `f`, ∂F/∂v's
-/// values `b`, as for [`closed_form_places`]), or within the second-order term's allowance in
-/// F's own units (it matters only where a row's slope is itself near zero: points of the
-/// platform nearly coincident). The generated numerical `inverse` calls it before the search,
-/// which a platform out of shape would otherwise run through every start to be refused.
+/// points can make it hold — within `FAR` (a thousand times the numerical inverse's
+/// acceptance) of the scale at v (F there `f`, ∂F/∂v's values `b`, as for
+/// [`closed_form_places`]), or within the second-order term's allowance in F's own units (it
+/// matters only where a row's slope is itself near zero: points of the platform nearly
+/// coincident). The generated numerical `inverse` calls it before the search, which a
+/// platform out of shape would otherwise run through every start to be refused.
 pub fn platform_in_shape<const N: usize>(
     v: &[f64; N],
     held: usize,
