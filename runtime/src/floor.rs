@@ -189,8 +189,8 @@ pub(crate) enum Vouched<const N: usize> {
 
 /// Whether the correction of `size` that a Newton run found within `tolerance` at `v` (where
 /// det B = `det` and Σv² = `squares`: [`crate::math::squares`], which `conclude` has computed
-/// anyway, to check that v is finite) vouches for it. Where the floor may reach the tolerance ([`may_reach`]
-/// from the branch's `floor`), the correction is measured again with F in
+/// anyway, to check that v is finite) vouches for it. Where the floor may reach the tolerance
+/// ([`may_reach`] from the branch's `floor`), the correction is measured again with F in
 /// double-double arithmetic and B factored at the point, and the point refined by such
 /// corrections while they shrink, up to three times (Newton's method with an accurate
 /// residual, which goes below the `f64` floor).
