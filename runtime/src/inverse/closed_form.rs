@@ -4,6 +4,10 @@
 //! somewhere else — they still give inputs, which place the points they read and not the
 //! others. So the inputs are returned only where every equation on the platform's points
 //! alone holds with them.
+//!
+//! The same measure, far looser, is the numerical inverse's first step: a platform whose
+//! equations on its points alone that read no input fail by far more than the search could
+//! accept is refused before the search (`platform_in_shape`).
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the equations on the
 /// platform's points may be from holding with the closed forms' inputs: a thousandth. Far
