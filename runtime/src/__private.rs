@@ -8,7 +8,8 @@ pub fn sq(x: f64) -> f64 {
 }
 
 pub use crate::inverse::{
-    Plan as InversePlan, closed_form_places, platform_in_shape, solve as numerical_inverse,
+    Plan as InversePlan, closed_form_places, platform_in_shape, platform_keeps_its_distances,
+    solve as numerical_inverse,
 };
 pub use crate::lu::{fallback_factor, fallback_solve};
 pub use crate::math::{cos, sin};

@@ -21,9 +21,9 @@
 //! (its residual over its largest derivative by the coordinates: a length), or where the
 //! configuration the inputs place satisfies them so and has the platform within as much of v,
 //! so any inputs returned do place the platform at v; a pose the mechanism cannot take is
-//! `Unreachable` — at once where the platform is given out of shape (an equation on its
-//! points alone that no input reads fails by far more than that: [`FAR`]), after the search
-//! below otherwise.
+//! `Unreachable` — at once where the platform is given out of shape (two of its points
+//! farther apart or nearer than declared, or an equation on its points alone that no input
+//! reads failing, by far more than that: [`FAR`]), after the search below otherwise.
 //!
 //! Where to start, in order: the reference inputs with whichever guess for the links between
 //! fits better (the given v's, or the declared home's with each point moved as far as the
@@ -96,9 +96,15 @@ const PATH_STEPS: usize = 400;
 /// row's nonzeros times that, to first order. A thousand times [`ACCEPT`] leaves room for both
 /// and for the second-order term; a pose between the two is searched as any other. Without it
 /// a platform given out of shape cost the whole search (every start, the path from home) to
-/// be refused: about 50 ms for the 6-PCS of 60 unknowns in the tests' build. (Where the model
-/// places the platform's points through links, as the 3-PRP's does, no such equation exists,
-/// and the search still decides.)
+/// be refused: about 50 ms for the 6-PCS of 60 unknowns in the tests' build.
+///
+/// The same bound holds the platform's distances ([`platform_keeps_its_distances`]), which
+/// every model has, equations on the platform alone or not (the 3-PRP's model places its
+/// platform's points through links, a delta's tool through its carriage: 25–75 ms a refusal
+/// before). A configuration that satisfies F exactly moves the platform rigidly; one an answer
+/// accepts satisfies it within [`ACCEPT`] as lengths, which moves the platform's points off its
+/// shape by that times the platform's own equations' coefficients, to first order — a thousand
+/// leaves room for coefficients up to hundreds (a frame of three points nearly on a line).
 const FAR: f64 = 1e3 * ACCEPT;
 
 /// What the generated `inverse` tells [`solve`] besides the equations.
@@ -240,7 +246,7 @@ mod closed_form;
 mod tests;
 
 use by_the_inputs::by_the_inputs;
-pub use closed_form::{closed_form_places, platform_in_shape};
+pub use closed_form::{closed_form_places, platform_in_shape, platform_keeps_its_distances};
 
 /// `d` brought into (−π, π].
 fn half_turn(d: f64) -> f64 {

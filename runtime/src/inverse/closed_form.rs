@@ -7,7 +7,12 @@
 //!
 //! The same measure, far looser, is the numerical inverse's first step: a platform whose
 //! equations on its points alone that read no input fail by far more than the search could
-//! accept is refused before the search (`platform_in_shape`).
+//! accept is refused before the search (`platform_in_shape`), and so is one whose points are
+//! not as far apart as declared (`platform_keeps_its_distances`, for every model, whether or
+//! not it has such equations).
+
+use crate::Mechanism;
+use crate::math::sqrt;
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the equations on the
 /// platform's points may be from holding with the closed forms' inputs: a thousandth. Far
@@ -53,6 +58,39 @@ pub fn platform_in_shape<const N: usize>(
 ) -> bool {
     let bound = super::FAR * scale(v, held);
     rows_hold(f, b, rows, bound, 16.0 * bound * bound)
+}
+
+/// Whether the platform at `v` keeps its declared distances: every two of its points as far
+/// apart as the geometry puts them in the platform's own frame ([`Mechanism::point_local`],
+/// calibrated values included), within `FAR` of the scale. A rigid platform keeps them in every
+/// configuration, so no inputs or links' points can place one that does not; unlike
+/// [`platform_in_shape`], this needs no equation on the platform's points alone, and holds
+/// where the model places the platform through links (a delta's tool on its carriage, the
+/// 3-PRP's platform through its guides). The generated numerical `inverse` calls it before the
+/// search, as it does [`platform_in_shape`].
+pub fn platform_keeps_its_distances<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+) -> bool {
+    let k = S::POINTS.len();
+    let bound = super::FAR * scale(v, 3 * k);
+    // Unknowns are by axis: point p's coordinate a is v[a k + p].
+    let at = |p: usize| [0, 1, 2].map(|a| v.get(a * k + p).copied().unwrap_or(f64::NAN));
+    let distance = |a: [f64; 3], b: [f64; 3]| {
+        sqrt(
+            (a[0] - b[0]) * (a[0] - b[0])
+                + (a[1] - b[1]) * (a[1] - b[1])
+                + (a[2] - b[2]) * (a[2] - b[2]),
+        )
+    };
+    // NaN anywhere fails the comparison.
+    (0..k).all(|p| {
+        (p + 1..k).all(|q| {
+            let given = distance(at(p), at(q));
+            let declared = distance(sys.point_local(p), sys.point_local(q));
+            (given - declared).abs() <= bound
+        })
+    })
 }
 
 /// 1 + the largest of the platform's coordinates (the first `held`).

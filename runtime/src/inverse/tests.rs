@@ -286,3 +286,48 @@ fn a_platform_out_of_shape_is_refused_without_a_search() {
         .expect("G3 moved by 1e-12 of the scale");
     assert!(misplaced(&rrs, &start, &v, &back) < 1e-9 * scale);
 }
+
+/// The SCARA's platform is placed through its arm (no equation on the platform's points alone
+/// that no input reads): a platform given with its points not as far apart as declared is
+/// refused by their distances, before any search. Calibrated: with the tool point moved in the
+/// geometry, the platform the declared geometry gives is out of shape, and the calibrated
+/// one's is answered.
+#[test]
+fn a_platform_placed_through_links_out_of_shape_is_refused_without_a_search() {
+    let arm = ScaraWrist::new();
+    let start = arm.home_start().unwrap();
+    let v = forward(&arm, &start, &[0.3, -0.4, 20.0, 0.2, 0.1]);
+    let k = ScaraWrist::POINTS.len();
+    let scale = 1.0 + v[..3 * k].iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    take();
+    // Q's z (v[2 k + 2]) moved.
+    for by in [1e-2, 1e-5, -2e-6] {
+        let mut off = v;
+        off[2 * k + 2] += by * scale;
+        let r = arm.inverse(&off, &ScaraWrist::HOME_INPUTS);
+        assert!(
+            matches!(r, Err(crate::InverseError::Unreachable { .. })),
+            "Q moved by {by} of the scale: {r:?}"
+        );
+        assert_eq!(take()[0], 0, "Q moved by {by} of the scale: a search ran");
+    }
+    let back = arm.inverse(&v, &ScaraWrist::HOME_INPUTS).unwrap();
+    assert!(misplaced(&arm, &start, &v, &back) < 1e-9 * scale);
+    // The same pose on a machine whose Q was measured 0.5 mm lower: out of shape there.
+    let mut calibrated = arm.clone();
+    let q = calibrated.point_local(2);
+    calibrated
+        .set_pivot("platform", "Q", [q[0], q[1], q[2] - 0.5])
+        .unwrap();
+    take();
+    let r = calibrated.inverse(&v, &ScaraWrist::HOME_INPUTS);
+    assert!(
+        matches!(r, Err(crate::InverseError::Unreachable { .. })),
+        "{r:?}"
+    );
+    assert_eq!(take()[0], 0, "a search ran");
+    let start = calibrated.home_start().unwrap();
+    let w = forward(&calibrated, &start, &[0.3, -0.4, 20.0, 0.2, 0.1]);
+    let back = calibrated.inverse(&w, &ScaraWrist::HOME_INPUTS).unwrap();
+    assert!(misplaced(&calibrated, &start, &w, &back) < 1e-9 * scale);
+}

@@ -125,6 +125,15 @@ fn numerical_body(
             }
         }
     });
+    // And one whose points are not as far apart as declared, for any model of two points or
+    // more (the rows above exist only where the model keeps equations on the platform alone).
+    let distances = (model.points.len() >= 2).then(|| {
+        quote! {
+            if !::linkage::__private::platform_keeps_its_distances(self, v) {
+                return Err(::linkage::InverseError::Unreachable { input: #first });
+            }
+        }
+    });
     let z = m + n - held;
     // The points of the links between that a platform point carries: the second guess moves
     // them as far as it has from home.
@@ -156,6 +165,7 @@ fn numerical_body(
                 return Err(::linkage::InverseError::FarReference { input: #turning });
             }
         )*
+        #distances
         let c = &self.constants;
         // The chains with a closed form give their inputs; the rest start at the reference.
         let mut out = *reference;
