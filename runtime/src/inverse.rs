@@ -187,7 +187,7 @@ fn solve_counting<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: u
         held: plan.held,
         work,
     };
-    let scale = |v: &[f64; N]| 1.0 + v[..plan.held].iter().fold(0.0f64, |s, q| s.max(q.abs()));
+    let scale = |v: &[f64; N]| closed_form::scale(v, plan.held);
     let tolerance = scale(v);
 
     let inputs_only = Solver::<S, N, M, M> { sys, held: N, work };

@@ -93,8 +93,9 @@ pub fn platform_keeps_its_distances<S: Mechanism<N, M>, const N: usize, const M:
     })
 }
 
-/// 1 + the largest of the platform's coordinates (the first `held`).
-fn scale<const N: usize>(v: &[f64; N], held: usize) -> f64 {
+/// 1 + the largest of the platform's coordinates (the first `held`): the scale every
+/// tolerance of the inverse is relative to.
+pub(super) fn scale<const N: usize>(v: &[f64; N], held: usize) -> f64 {
     1.0 + v.iter().take(held).fold(0.0f64, |m, q| m.max(q.abs()))
 }
 
