@@ -161,7 +161,17 @@ pub fn det_b<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
     x: &[f64; M],
 ) -> f64 {
+    dense_b(sys, v, x).map_or(0.0, |lu| lu.det())
+}
+
+/// B at `(v, x)` as a dense matrix, factored with partial pivoting (`None` where it is
+/// singular): the baseline `det_b` and the reference path measure with.
+pub(crate) fn dense_b<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    x: &[f64; M],
+) -> Option<Lu<N>> {
     let mut b = [[0.0; N]; N];
     sys.jacobian_dense(v, x, &mut b);
-    Lu::new(b).map_or(0.0, |lu| lu.det())
+    Lu::new(b)
 }
