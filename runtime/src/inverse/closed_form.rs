@@ -12,7 +12,7 @@
 //! not it has such equations).
 
 use crate::Mechanism;
-use crate::math::sqrt;
+use linkage_geometry::distance;
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the equations on the
 /// platform's points may be from holding with the closed forms' inputs: a thousandth. Far
@@ -76,13 +76,6 @@ pub fn platform_keeps_its_distances<S: Mechanism<N, M>, const N: usize, const M:
     let bound = super::FAR * scale(v, 3 * k);
     // Unknowns are by axis: point p's coordinate a is v[a k + p].
     let at = |p: usize| [0, 1, 2].map(|a| v.get(a * k + p).copied().unwrap_or(f64::NAN));
-    let distance = |a: [f64; 3], b: [f64; 3]| {
-        sqrt(
-            (a[0] - b[0]) * (a[0] - b[0])
-                + (a[1] - b[1]) * (a[1] - b[1])
-                + (a[2] - b[2]) * (a[2] - b[2]),
-        )
-    };
     // NaN anywhere fails the comparison.
     (0..k).all(|p| {
         (p + 1..k).all(|q| {
