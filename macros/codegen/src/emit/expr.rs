@@ -12,16 +12,17 @@
 //! function body are emitted through an [`Emitter`]: it hash-conses them into a DAG, and a
 //! subexpression that occurs more than once and costs at least [`SHARED_COST`] operations is
 //! bound once, to a `let` at the top of the body ([`Emitter::bindings`]), and named where it
-//! occurs.
+//! occurs. In the generic bodies every repeated operation is bound, down to a constant's
+//! conversion ([`Arithmetic::Generic`]).
 
 use crate::expr::Expr;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashMap;
 
-/// Operations a repeated subexpression must cost to be bound to a name: below it (a difference
-/// of two coordinates, a square of one) the compiler's own merging does as well, and a binding
-/// would only lengthen what is live at a time.
+/// Operations a repeated subexpression must cost to be bound to a name in `f64`: below it (a
+/// difference of two coordinates, a square of one) the compiler's own merging does as well, and
+/// a binding would only lengthen what is live at a time.
 pub const SHARED_COST: usize = 3;
 
 /// What a call of sin or cos counts for against [`SHARED_COST`].
@@ -50,7 +51,10 @@ pub enum Arithmetic {
     /// fixed inputs.
     Turned,
     /// The generic scalar `T` of `residual_in` and `jacobian_in`: numbers and constants enter
-    /// through `T::from_f64`.
+    /// through `T::from_f64`. Every repeated operation is bound to a name, a conversion too:
+    /// an operation on series, balls or double-doubles is a call the compiler does not merge
+    /// (out of line in builds with debug assertions, loops over coefficients otherwise), and
+    /// each copy is one more to compile for every declared mechanism and every scalar type.
     Generic,
 }
 
@@ -86,6 +90,8 @@ pub struct Emitter {
     cost: Vec<usize>,
     name: Vec<Option<Ident>>,
     lets: Vec<TokenStream>,
+    /// How many of `lets` [`Emitter::new_bindings`] has handed out.
+    handed: usize,
 }
 
 impl Emitter {
@@ -98,6 +104,7 @@ impl Emitter {
             cost: Vec::new(),
             name: Vec::new(),
             lets: Vec::new(),
+            handed: 0,
         }
     }
 
@@ -115,6 +122,14 @@ impl Emitter {
     /// The `let` of every subexpression [`Emitter::tokens`] has named so far, in order.
     pub fn bindings(&self) -> TokenStream {
         let lets = &self.lets;
+        quote!(#(#lets)*)
+    }
+
+    /// The `let`s named since the last call: put before the statement just emitted, each
+    /// binding is computed where it is first needed rather than all at the top of the body.
+    pub fn new_bindings(&mut self) -> TokenStream {
+        let lets = &self.lets[self.handed..];
+        self.handed = self.lets.len();
         quote!(#(#lets)*)
     }
 
@@ -144,7 +159,9 @@ impl Emitter {
         let id = match self.index.get(&node) {
             Some(&id) => id,
             None => {
+                let generic = self.arithmetic == Arithmetic::Generic;
                 let cost = match &node {
+                    Node::Num(_) | Node::Constant(_) if generic => 1,
                     Node::Num(_) | Node::Unknown(_) | Node::Input(_) | Node::Constant(_) => 0,
                     Node::Sum(ts) => {
                         ts.len() - 1 + ts.iter().map(|t| self.cost[t.1]).sum::<usize>()
@@ -238,7 +255,8 @@ impl Emitter {
                 None => call("cos", self.emit(a)),
             },
         };
-        if self.uses[id] < 2 || self.cost[id] < SHARED_COST {
+        let shared_cost = if generic { 1 } else { SHARED_COST };
+        if self.uses[id] < 2 || self.cost[id] < shared_cost {
             return code;
         }
         let name = format_ident!("cse{}", self.lets.len());
@@ -303,6 +321,28 @@ mod tests {
         emitter.count(&b);
         let _ = (emitter.tokens(&a), emitter.tokens(&b));
         assert!(emitter.bindings().is_empty());
+    }
+
+    #[test]
+    fn generic_bodies_bind_every_repeated_operation_and_conversion() {
+        // The same v0 - c0 twice: in `f64` left to the compiler, for a generic scalar bound
+        // once, with the conversion of c0 it reads.
+        let d = Expr::minus(Expr::Unknown(0), Expr::Constant(0));
+        let a = Expr::times(d.clone(), Expr::Unknown(1));
+        let b = Expr::Square(Box::new(d));
+        let mut emitter = Emitter::new(Arithmetic::Generic);
+        emitter.count(&a);
+        emitter.count(&b);
+        let (ta, tb) = (
+            emitter.tokens(&a).to_string(),
+            emitter.tokens(&b).to_string(),
+        );
+        assert_eq!(
+            emitter.bindings().to_string(),
+            "let cse0 = T :: from_f64 (c [0usize]) ; let cse1 = (v [0usize] - cse0) ;"
+        );
+        assert_eq!(ta, "(cse1 * v [1usize])");
+        assert_eq!(tb, ":: linkage :: Scalar :: sq (cse1)");
     }
 
     #[test]

@@ -649,6 +649,17 @@ fn assignments<'e>(
     let items: Vec<(TokenStream, &Expr)> = items.collect();
     let mut emitter = Emitter::new(arithmetic);
     items.iter().for_each(|(_, e)| emitter.count(e));
+    if arithmetic == Arithmetic::Generic {
+        // Every repeated operation is bound here: each `let` goes where it is first needed, so
+        // that fewer values are live at a time (all at the top, the complex and series
+        // residuals took 4 % more instructions in release builds).
+        let statements = items.iter().map(|(place, e)| {
+            let e = emitter.tokens(e);
+            let lets = emitter.new_bindings();
+            quote!(#lets #place = #e;)
+        });
+        return quote!(#(#statements)*);
+    }
     let statements: Vec<TokenStream> = items
         .iter()
         .map(|(place, e)| {
