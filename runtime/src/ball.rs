@@ -71,9 +71,15 @@ impl<const D: usize> Ball<D> {
     }
 }
 
+// The arithmetic is out of line in builds with debug assertions, as the series and
+// double-double arithmetic is (`modes::taylor`): each operation of a generated `residual_in` or
+// `jacobian_in` written out (the radius's loops, its rounding bound) for every declared
+// mechanism is compiled again for each. Release builds, where the certified tracker runs at
+// 1 kHz, inline it. The results are the same bit for bit either way.
 impl<const D: usize> Add for Ball<D> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add(self, o: Self) -> Self {
         Ball::finish(
             self.mid + o.mid,
@@ -86,7 +92,8 @@ impl<const D: usize> Sub for Ball<D> {
     type Output = Self;
     // The radii of a difference add, as those of a sum do.
     #[allow(clippy::suspicious_arithmetic_impl)]
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub(self, o: Self) -> Self {
         Ball::finish(
             self.mid - o.mid,
@@ -108,7 +115,8 @@ impl<const D: usize> Neg for Ball<D> {
 
 impl<const D: usize> Mul for Ball<D> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul(self, o: Self) -> Self {
         let (a, b) = (self.mid.abs(), o.mid.abs());
         let mut rad: [f64; D] = core::array::from_fn(|l| a * o.rad[l] + b * self.rad[l]);
@@ -131,7 +139,8 @@ impl<const D: usize> crate::Scalar for Ball<D> {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sq(self) -> Self {
         // (a + s)² − a² = 2 a s + s².
         let a = self.mid.abs();
