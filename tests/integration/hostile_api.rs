@@ -17,42 +17,12 @@ use linkage::{
     pose_from_unknowns, unknowns_from_pose, CertifyError, GeometryError, InverseError, Mechanism,
     NewtonRaphson, Options, Pose, Solution, SolveError, Start, Status, TrackError, Tracker,
 };
+// The README's delta, declared once for all the tests.
+use crate::mechanisms::delta::Delta;
 use linkage_examples::rps::Rps3;
 use linkage_serial_arms::{PanTilt, Scara};
 use linkage_tests::residual_norm;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-
-linkage::mechanism! {
-    /// The README's delta: every base, arm and platform coordinate declared from parameters.
-    pub struct Delta;
-    params {
-        rb = 100.0, ra = 100.0, rp = 40.0, hw = 30.0, h = 200.0,
-        rod = sqrt((rb + ra - rp) * (rb + ra - rp) + h * h),
-        c = cos(2.0 * pi / 3.0), s = sin(2.0 * pi / 3.0),
-    }
-    base {
-        A1 = [rb, 0.0, 0.0], B1 = [rb, 1.0, 0.0],
-        A2 = [rb * c, rb * s, 0.0], B2 = [rb * c - s, rb * s + c, 0.0],
-        A3 = [rb * c, -rb * s, 0.0], B3 = [rb * c + s, -rb * s + c, 0.0],
-    }
-    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, -h]) {
-        F11 = [rp, hw, 0.0], F12 = [rp, -hw, 0.0],
-        F21 = [rp * c - hw * s, rp * s + hw * c, 0.0], F22 = [rp * c + hw * s, rp * s - hw * c, 0.0],
-        F31 = [rp * c + hw * s, -rp * s + hw * c, 0.0], F32 = [rp * c - hw * s, -rp * s - hw * c, 0.0],
-    }
-    link arm1 { E11 = [rb + ra, hw, 0.0], E12 = [rb + ra, -hw, 0.0] }
-    link arm2 { E21 = [(rb + ra) * c - hw * s, (rb + ra) * s + hw * c, 0.0], E22 = [(rb + ra) * c + hw * s, (rb + ra) * s - hw * c, 0.0] }
-    link arm3 { E31 = [(rb + ra) * c + hw * s, -(rb + ra) * s + hw * c, 0.0], E32 = [(rb + ra) * c - hw * s, -(rb + ra) * s - hw * c, 0.0] }
-    link rod11 { length = rod } link rod12 { length = rod }
-    link rod21 { length = rod } link rod22 { length = rod }
-    link rod31 { length = rod } link rod32 { length = rod }
-    chain arm1a = base - R(active q1, axis = A1 -> B1) - arm1 - S(E11) - rod11 - S(F11) - platform;
-    chain arm1b = arm1 - S(E12) - rod12 - S(F12) - platform;
-    chain arm2a = base - R(active q2, axis = A2 -> B2) - arm2 - S(E21) - rod21 - S(F21) - platform;
-    chain arm2b = arm2 - S(E22) - rod22 - S(F22) - platform;
-    chain arm3a = base - R(active q3, axis = A3 -> B3) - arm3 - S(E31) - rod31 - S(F31) - platform;
-    chain arm3b = arm3 - S(E32) - rod32 - S(F32) - platform;
-}
 
 linkage::mechanism! {
     /// A five-bar whose base half-width is the square root of the parameter `w2`.

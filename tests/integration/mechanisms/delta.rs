@@ -13,31 +13,32 @@ macro_rules! delta {
     ($name:ident, $z:expr, $rb:tt) => {
         linkage::mechanism! {
             /// A delta robot: cranks of 100 mm on tangent axes at radius 100 mm, parallelograms
-            /// 60 mm wide of rods `rod`, a platform of radius 40 mm.
+            /// 60 mm wide of rods `rod`, a platform of radius 40 mm. `Delta` is the README's
+            /// delta, declared as there (every coordinate from parameters).
             pub struct $name;
             params {
                 rb = $rb, ra = 100.0, rp = 40.0, hw = 30.0, h = 200.0,
                 rod = sqrt((rb + ra - rp) * (rb + ra - rp) + h * h),
-                c2 = cos(2.0 * pi / 3.0), s2 = sin(2.0 * pi / 3.0),
+                c = cos(2.0 * pi / 3.0), s = sin(2.0 * pi / 3.0),
             }
             base {
                 A1 = [rb, 0.0, 0.0], B1 = [rb, 1.0, 0.0],
-                A2 = [rb * c2, rb * s2, 0.0], B2 = [rb * c2 - s2, rb * s2 + c2, 0.0],
-                A3 = [rb * c2, -rb * s2, 0.0], B3 = [rb * c2 + s2, -rb * s2 + c2, 0.0],
+                A2 = [rb * c, rb * s, 0.0], B2 = [rb * c - s, rb * s + c, 0.0],
+                A3 = [rb * c, -rb * s, 0.0], B3 = [rb * c + s, -rb * s + c, 0.0],
             }
             platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, $z]) {
                 F11 = [rp, hw, 0.0], F12 = [rp, -hw, 0.0],
-                F21 = [rp * c2 - hw * s2, rp * s2 + hw * c2, 0.0], F22 = [rp * c2 + hw * s2, rp * s2 - hw * c2, 0.0],
-                F31 = [rp * c2 + hw * s2, -rp * s2 + hw * c2, 0.0], F32 = [rp * c2 - hw * s2, -rp * s2 - hw * c2, 0.0],
+                F21 = [rp * c - hw * s, rp * s + hw * c, 0.0], F22 = [rp * c + hw * s, rp * s - hw * c, 0.0],
+                F31 = [rp * c + hw * s, -rp * s + hw * c, 0.0], F32 = [rp * c - hw * s, -rp * s - hw * c, 0.0],
             }
             link arm1 { E11 = [rb + ra, hw, 0.0], E12 = [rb + ra, -hw, 0.0] }
             link arm2 {
-                E21 = [(rb + ra) * c2 - hw * s2, (rb + ra) * s2 + hw * c2, 0.0],
-                E22 = [(rb + ra) * c2 + hw * s2, (rb + ra) * s2 - hw * c2, 0.0],
+                E21 = [(rb + ra) * c - hw * s, (rb + ra) * s + hw * c, 0.0],
+                E22 = [(rb + ra) * c + hw * s, (rb + ra) * s - hw * c, 0.0],
             }
             link arm3 {
-                E31 = [(rb + ra) * c2 + hw * s2, -(rb + ra) * s2 + hw * c2, 0.0],
-                E32 = [(rb + ra) * c2 - hw * s2, -(rb + ra) * s2 - hw * c2, 0.0],
+                E31 = [(rb + ra) * c + hw * s, -(rb + ra) * s + hw * c, 0.0],
+                E32 = [(rb + ra) * c - hw * s, -(rb + ra) * s - hw * c, 0.0],
             }
             link rod11 { length = rod } link rod12 { length = rod }
             link rod21 { length = rod } link rod22 { length = rod }
@@ -354,8 +355,8 @@ fn a_pivot_coordinate_declared_as_a_parameter_names_the_parameter_to_set() {
 }
 
 /// A coordinate declared as arithmetic on parameters follows them at run time: the delta's
-/// base, arms and platform are declared from `rb`, `ra`, `rp` and `hw` (`A2 = [rb * c2, rb * s2,
-/// 0.0]`, `E21 = [(rb + ra) * c2 - hw * s2, …]`). Set `rb` at run time, the delta is the one
+/// base, arms and platform are declared from `rb`, `ra`, `rp` and `hw` (`A2 = [rb * c, rb * s,
+/// 0.0]`, `E21 = [(rb + ra) * c - hw * s, …]`). Set `rb` at run time, the delta is the one
 /// declared with that `rb`, bit for bit — every pivot declared from it moved, not only those
 /// declared as `rb` alone — and solves as that one does. (The rods' length `rod` is a parameter
 /// of its own: its declared value was computed from `rb`, but it is a dimension in its own

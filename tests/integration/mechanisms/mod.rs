@@ -7,7 +7,7 @@
 mod all_modes;
 mod branch_hunt;
 mod calibrated_home;
-mod delta;
+pub mod delta;
 mod delta_tools;
 mod delta_tracking;
 mod five_bar;
