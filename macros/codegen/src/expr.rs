@@ -194,6 +194,19 @@ impl Expr {
         }
     }
 
+    /// The factors of [`Expr::split_coefficient`]'s rest, borrowed: a product's factors after
+    /// its numeric one, or the term itself. Two terms of a simplified sum (no numbers, no
+    /// product of one factor) have equal rests exactly where these are equal.
+    fn rest_factors(&self) -> &[Expr] {
+        match self {
+            Expr::Product(fs) => match fs.first() {
+                Some(Expr::Num(_)) => &fs[1..],
+                _ => fs,
+            },
+            e => core::slice::from_ref(e),
+        }
+    }
+
     /// Human-readable form, in the paper's notation.
     pub fn render(&self, names: &Names) -> String {
         let mut s = String::new();
@@ -313,11 +326,14 @@ fn simplify_sum(ts: Vec<Expr>) -> Expr {
 /// operation per evaluation. A sum without repeats is returned as it was, so the emitted code
 /// of such mechanisms does not change.
 fn combine_like_terms(terms: Vec<Expr>) -> Vec<Expr> {
-    let split: Vec<(f64, Option<Expr>)> = terms.iter().map(Expr::split_coefficient).collect();
-    let repeated = (0..split.len()).any(|i| (0..i).any(|j| split[j].1 == split[i].1));
+    // Most sums have no repeats: look for one by reference first, without building (cloning)
+    // each term's rest.
+    let rests: Vec<&[Expr]> = terms.iter().map(Expr::rest_factors).collect();
+    let repeated = (0..rests.len()).any(|i| (0..i).any(|j| rests[j] == rests[i]));
     if !repeated {
         return terms;
     }
+    let split: Vec<(f64, Option<Expr>)> = terms.iter().map(Expr::split_coefficient).collect();
     let mut merged: Vec<(f64, Expr)> = Vec::with_capacity(split.len());
     for (c, rest) in split {
         // `split_coefficient` gives a rest for every non-number term, which is all a sum
