@@ -12,8 +12,9 @@
 //! function body are emitted through an [`Emitter`]: it hash-conses them into a DAG, and a
 //! subexpression that occurs more than once and costs at least [`SHARED_COST`] operations is
 //! bound once, to a `let` at the top of the body ([`Emitter::bindings`]), and named where it
-//! occurs. In the generic bodies every repeated operation is bound, down to a constant's
-//! conversion ([`Arithmetic::Generic`]).
+//! occurs. In the generic bodies of `residual_in` and `jacobian_in` every repeated operation
+//! is bound, down to a constant's conversion ([`Arithmetic::Generic`]), each `let` just before
+//! the statement that first needs it ([`Emitter::new_bindings`]).
 
 use crate::expr::Expr;
 use proc_macro2::{Ident, Literal, TokenStream};
