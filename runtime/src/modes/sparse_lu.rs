@@ -23,6 +23,29 @@ fn head<const N: usize>(list: &[u8; N], n: u8) -> &[u8] {
     list.get(..n as usize).unwrap_or(&[])
 }
 
+/// `t -= s · x` on complex vectors held as separate real and imaginary parts, over the
+/// shortest of the four slices: the one update of every dense loop of the factorisation and
+/// the solves. The operations, and so the results, are the same bit for bit as the loops
+/// written in place were.
+///
+/// A function of its own so that its slices are distinct by their types (`&mut` and `&`
+/// arguments): written in place on columns of the same arrays, the loop checked for overlap
+/// at run time and, in the tests' profile (optimised, with debug assertions), took its scalar
+/// branch in every column. That profile keeps it out of line, where the arguments stay
+/// distinct; release builds inline it, as their loops were already in vector code
+/// (BENCHMARKS.md, Every assembly mode). Slices cut to one length and an index, not zips,
+/// whose constructors the tests' profile left as calls.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn sub_scaled(tr: &mut [f64], ti: &mut [f64], sr: &[f64], si: &[f64], xr: f64, xi: f64) {
+    let n = tr.len().min(ti.len()).min(sr.len()).min(si.len());
+    let (tr, ti, sr, si) = (&mut tr[..n], &mut ti[..n], &sr[..n], &si[..n]);
+    for i in 0..n {
+        tr[i] -= sr[i] * xr - si[i] * xi;
+        ti[i] -= sr[i] * xi + si[i] * xr;
+    }
+}
+
 /// The elimination order and the update lists, computed from the pattern.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Plan<const N: usize> {
@@ -441,12 +464,11 @@ impl<const N: usize> Lu<N> {
                 lr[i] = l.re;
                 li[i] = l.im;
             }
+            let (lr, li) = (lr.get(k + 1..m)?, li.get(k + 1..m)?);
             for (cr, ci) in rright.iter_mut().zip(iright.iter_mut()).take(m - k - 1) {
                 let (ur, ui) = (cr[k], ci[k]);
-                for i in k + 1..m {
-                    cr[i] -= lr[i] * ur - li[i] * ui;
-                    ci[i] -= lr[i] * ui + li[i] * ur;
-                }
+                let (cr, ci) = (cr.get_mut(k + 1..m)?, ci.get_mut(k + 1..m)?);
+                sub_scaled(cr, ci, lr, li, ur, ui);
             }
         }
         self.min_pivot = lo;
@@ -498,22 +520,18 @@ impl<const N: usize> Lu<N> {
         // L (unit diagonal), column by column.
         for k in 0..m {
             let (xr, xi) = (zr[k], zi[k]);
-            let (lr, li) = (&tr[k], &ti[k]);
-            for i in k + 1..m {
-                zr[i] -= lr[i] * xr - li[i] * xi;
-                zi[i] -= lr[i] * xi + li[i] * xr;
-            }
+            let (lr, li) = (tr.get(k)?.get(k + 1..m)?, ti.get(k)?.get(k + 1..m)?);
+            let (zr, zi) = (zr.get_mut(k + 1..m)?, zi.get_mut(k + 1..m)?);
+            sub_scaled(zr, zi, lr, li, xr, xi);
         }
         // U, column by column from the last.
         for k in (0..m).rev() {
             let x = Complex::new(zr[k], zi[k]) * self.inv_dense[k];
             zr[k] = x.re;
             zi[k] = x.im;
-            let (ur, ui) = (&tr[k], &ti[k]);
-            for i in 0..k {
-                zr[i] -= ur[i] * x.re - ui[i] * x.im;
-                zi[i] -= ur[i] * x.im + ui[i] * x.re;
-            }
+            let (ur, ui) = (tr.get(k)?.get(..k)?, ti.get(k)?.get(..k)?);
+            let (zr, zi) = (zr.get_mut(..k)?, zi.get_mut(..k)?);
+            sub_scaled(zr, zi, ur, ui, x.re, x.im);
         }
         // The static pivots' right-hand sides less their rows' remainder part (σ included).
         let mut sr = [0.0; N];
@@ -524,12 +542,12 @@ impl<const N: usize> Lu<N> {
             si[k] = x.im;
         }
         for j in 0..m {
-            let (xr, xi) = (zr[j], zi[j]);
-            let (wr, wi) = (&self.wr[j], &self.wi[j]);
-            for k in 0..statics {
-                sr[k] -= wr[k] * xr - wi[k] * xi;
-                si[k] -= wr[k] * xi + wi[k] * xr;
-            }
+            let (wr, wi) = (
+                self.wr.get(j)?.get(..statics)?,
+                self.wi.get(j)?.get(..statics)?,
+            );
+            let (sr, si) = (sr.get_mut(..statics)?, si.get_mut(..statics)?);
+            sub_scaled(sr, si, wr, wi, zr[j], zi[j]);
         }
         let mut y = [Complex::ZERO; N];
         for ((&c, &r), &i) in plan.rest_cols[..n].iter().zip(&zr).zip(&zi) {
