@@ -8,7 +8,7 @@ use linkage_examples::cli::legs_csv::{LegRows, Row};
 use linkage_examples::cli::results_csv::{self, Record, Via};
 use linkage_examples::cli::stream::{open_input, refuse_overwriting, FlushBeforeRead, SharedSink};
 use linkage_examples::stewart::{
-    find_start, platform_is_coplanar, SixSix, Stewart, StewartGeneral, HOME_LEGS,
+    find_start, legs_for_pose, platform_is_coplanar, SixSix, Stewart, StewartGeneral, HOME_LEGS,
 };
 
 /// Legs longer than this many times the mechanism's size are `invalid_input`: there double
@@ -17,7 +17,8 @@ use linkage_examples::stewart::{
 const MAX_LEG_OVER_SIZE: f64 = 1e6;
 
 /// The status of a row the solver called converged with an error estimate above the
-/// tolerance (near a singularity rounding can forbid the tolerance): not `ok`.
+/// tolerance (near a singularity rounding can forbid the tolerance), or whose pose, its leg
+/// lengths recomputed, misses the row's legs by more than the tolerance: not `ok`.
 const TOLERANCE_NOT_MET: &str = "tolerance_not_met";
 
 /// The status of a row with `--certify --track` whose step from the last row was solved but
@@ -251,7 +252,7 @@ impl<S: SixSix> RowSolver<S> {
         if !sol.status.meets_tolerance() {
             return record;
         }
-        let mut record = with_pose(&self.sys, record, &sol.v, self.options.tolerance);
+        let mut record = with_pose(&self.sys, record, &sol.v, &x, self.options.tolerance);
         if self.certify && record.solution.is_some() {
             if self.track {
                 // The step from the last row solved ok: a row it is not proven to reach on
@@ -315,7 +316,7 @@ impl<S: SixSix> RowSolver<S> {
                         _ => None,
                     },
                 };
-                let record = with_pose(&self.sys, record, &sample.v, self.options.tolerance);
+                let record = with_pose(&self.sys, record, &sample.v, x, self.options.tolerance);
                 if record.solution.is_none() {
                     self.tracker = before;
                 }
@@ -329,11 +330,15 @@ impl<S: SixSix> RowSolver<S> {
 }
 
 /// An `ok` record with its pose, or the reason it is not ok after all: never `ok` with a
-/// non-finite value or with the error estimate above the tolerance asked for.
+/// non-finite value, with the error estimate above the tolerance asked for, or with a pose
+/// whose leg lengths, recomputed, miss the legs `x` asked for by more than the tolerance (the
+/// error estimate measures v against the mechanism's equations, and a pose is read from
+/// three of its pivots: only the legs themselves show that the printed pose is the answer).
 fn with_pose<'a, S: Mechanism<18, 6>>(
     sys: &S,
     record: Record<'a>,
     v: &[f64; 18],
+    x: &[f64; 6],
     tolerance: f64,
 ) -> Record<'a> {
     let finite = |a: &[f64]| a.iter().all(|c| c.is_finite());
@@ -355,15 +360,28 @@ fn with_pose<'a, S: Mechanism<18, 6>>(
         let t = p.translation;
         [yaw, pitch, roll, t[0], t[1], t[2]]
     });
-    match pose {
-        Some(pose) if finite(&pose) => Record {
-            solution: Some((pose, *v)),
-            ..record
-        },
-        _ => Record {
+    let Some(pose) = pose.filter(|p| finite(p)) else {
+        return Record {
             status: "degenerate_pose",
             ..record
-        },
+        };
+    };
+    let [yaw, pitch, roll, px, py, pz] = pose;
+    let reproduced = legs_for_pose(sys, &Pose::from_euler(yaw, pitch, roll, [px, py, pz]))
+        .is_some_and(|(legs, _)| {
+            legs.iter()
+                .zip(x)
+                .all(|(got, want)| (got - want).abs() <= tolerance)
+        });
+    if !reproduced {
+        return Record {
+            status: TOLERANCE_NOT_MET,
+            ..record
+        };
+    }
+    Record {
+        solution: Some((pose, *v)),
+        ..record
     }
 }
 
