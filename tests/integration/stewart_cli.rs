@@ -154,6 +154,41 @@ fn leg_files_from_other_programs_read_every_row() {
     }
 }
 
+/// A quote left open takes every line after it into one field, which the CSV parser accepts
+/// at the end of the input: the rows it swallowed were lost without a word (one
+/// `missing_value` row stood for all of them). It is a read error naming the quote's line,
+/// after the rows before it; quoted fields that close, `""` inside one, a quote inside an
+/// unquoted field and a line break inside a closed quoted field stay readable.
+#[test]
+fn a_quote_left_open_is_an_error_not_lost_rows() {
+    for text in [
+        &b"L1,L2,L3,L4,L5,L6\n1,2,3,4,5,6\n\"6,5,4,3,2,1\n1,1,1,1,1,1\n"[..],
+        b"L1,L2,L3,L4,L5,L6\r\n1,2,3,4,5,6\r\n\"6,5,4,3,2,1\r\n1,1,1,1,1,1",
+        b"L1,L2,L3,L4,L5,L6,note\n1,2,3,4,5,6,x\n6,5,4,3,2,1,\"a \"\"b\"\"\n",
+    ] {
+        let mut rows = legs_csv::LegRows::new(text).unwrap();
+        assert_eq!(
+            rows.next_row(),
+            Ok(Some(Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])))
+        );
+        let err = rows.next_row().unwrap_err();
+        assert!(
+            err.contains("quoted field") && err.contains("line 3"),
+            "{err}"
+        );
+    }
+    let fine = b"L1,L2,L3,L4,L5,L6,note\n1,2,3,4,5,6,\"a \"\"b\"\" c\"\n6,5,4,3,2,1,x\"y\n1,1,1,1,1,1,\"two\nlines\"\n";
+    let rows = legs_csv::read_from(&fine[..]).unwrap();
+    assert_eq!(
+        rows,
+        [
+            Ok([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+            Ok([6.0, 5.0, 4.0, 3.0, 2.0, 1.0]),
+            Ok([1.0; 6])
+        ]
+    );
+}
+
 /// A random 6-6 geometry around Table III's, optionally lifting pivots off their planes.
 fn random_geometry(
     rng: &mut Rng,

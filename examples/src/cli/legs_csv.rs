@@ -27,20 +27,72 @@ pub struct LegRows<R: Read> {
     rows: u64,
 }
 
-/// Input whose lines may not exceed [`MAX_LINE`] bytes: a longer one is a read error.
+/// Input whose lines may not exceed [`MAX_LINE`] bytes, and which may not end inside a quoted
+/// field: either is a read error.
 struct LineLimit<R> {
     inner: R,
     /// Bytes since the last line break (`\n` or `\r`).
     run: usize,
+    /// Where the input is among the CSV parser's fields.
+    quote: Quote,
+    /// Line breaks read so far (the last byte read a CR: a LF after it ends no new line),
+    /// and the line the open quoted field began on.
+    lines: u64,
+    after_cr: bool,
+    opened: u64,
+}
+
+/// The CSV parser's view of quotes (the `csv` crate's defaults): a `"` opens a quoted field
+/// only as a field's first byte, `""` inside one is a quote, and a lone `"` closes it. A
+/// quoted field may hold line breaks, so one left open takes every line after it into one
+/// field: the parser accepts that at the end of the input, and the rows it swallowed would be
+/// lost without a word (one `missing_value` row for all of them).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Quote {
+    /// At a field's first byte.
+    FieldStart,
+    /// In a field that did not start with a quote.
+    Plain,
+    /// In a quoted field.
+    Open,
+    /// Just after a quote in a quoted field: it closed the field, or starts `""`.
+    Closing,
+}
+
+impl Quote {
+    fn after(self, b: u8) -> Quote {
+        let separator = matches!(b, b',' | b'\n' | b'\r');
+        match self {
+            Quote::FieldStart if b == b'"' => Quote::Open,
+            Quote::Open if b == b'"' => Quote::Closing,
+            Quote::Open => Quote::Open,
+            Quote::Closing if b == b'"' => Quote::Open,
+            _ if separator => Quote::FieldStart,
+            _ => Quote::Plain,
+        }
+    }
 }
 
 impl<R: Read> Read for LineLimit<R> {
     fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
         let n = self.inner.read(buf)?;
+        if n == 0 && self.quote == Quote::Open {
+            return Err(std::io::Error::other(format!(
+                "the input ends inside a quoted field: the `\"` on line {} is never closed, and \
+                 every line after it would be read as part of that field",
+                self.opened
+            )));
+        }
         for &b in &buf[..n] {
+            let was = self.quote;
+            self.quote = was.after(b);
             if b == b'\n' || b == b'\r' {
+                // CRLF is one line break, as are a lone CR and a lone LF.
+                self.lines += u64::from(b == b'\r' || !self.after_cr);
+                self.after_cr = b == b'\r';
                 self.run = 0;
             } else {
+                self.after_cr = false;
                 self.run += 1;
                 if self.run > MAX_LINE {
                     return Err(std::io::Error::other(format!(
@@ -48,6 +100,9 @@ impl<R: Read> Read for LineLimit<R> {
                         MAX_LINE >> 20
                     )));
                 }
+            }
+            if was != Quote::Open && self.quote == Quote::Open {
+                self.opened = self.lines + 1;
             }
         }
         Ok(n)
@@ -64,6 +119,10 @@ impl<R: Read> LegRows<R> {
             .from_reader(LineLimit {
                 inner: source,
                 run: 0,
+                quote: Quote::FieldStart,
+                lines: 0,
+                after_cr: false,
+                opened: 0,
             });
         let headers = reader.byte_headers().map_err(|e| e.to_string())?.clone();
         let mut columns = [0usize; 6];
