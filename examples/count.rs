@@ -24,6 +24,7 @@
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
 
 use linkage::{newton_raphson, Linear, Mechanism, NewtonRaphson, Options, Start};
+use linkage_examples::twins::around;
 use linkage_examples::{rps, rss_hexapod, stewart};
 use std::hint::black_box;
 
@@ -159,13 +160,6 @@ fn main() -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// 100 inputs within `by` of `home`, spread deterministically.
-fn around<const M: usize>(home: &[f64; M], by: f64) -> Vec<[f64; M]> {
-    (1..=100)
-        .map(|k| std::array::from_fn(|j| home[j] + by * (1.3 * k as f64 + 0.7 * j as f64).sin()))
-        .collect()
 }
 
 /// Columns 2 to 7 of every row after the header.

@@ -6,5 +6,6 @@ pub mod demo;
 pub mod rps;
 pub mod rss_hexapod;
 pub mod start_sets;
+pub mod twins;
 /// Gao & Wu's Stewart platform, in a crate of its own that the C interface shares.
 pub use linkage_stewart as stewart;

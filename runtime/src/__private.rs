@@ -7,6 +7,7 @@ pub fn sq(x: f64) -> f64 {
     x * x
 }
 
+pub use crate::dispatch::prefer_x86_64_v3;
 pub use crate::inverse::{
     Plan as InversePlan, closed_form_places, platform_in_shape, platform_keeps_its_distances,
     solve as numerical_inverse,
@@ -157,7 +158,7 @@ pub fn dependent_worst(worst: f64, g: f64, grad_sq: f64) -> f64 {
     let off = if g == 0.0 {
         0.0
     } else {
-        g.abs() / libm::sqrt(grad_sq)
+        g.abs() / crate::math::sqrt(grad_sq)
     };
     if off.is_nan() {
         f64::INFINITY

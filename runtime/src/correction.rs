@@ -79,8 +79,9 @@ impl<const N: usize> Correction<N> {
         t: &Turns<M>,
         fac: &S::Factor,
     ) -> Result<(), Failure> {
-        sys.residual_turned(v, x, t, &mut self.delta);
-        sys.solve(fac, &mut self.delta);
+        let delta = &mut self.delta;
+        crate::dispatch::fastest(|| sys.residual_turned(v, x, t, delta));
+        crate::dispatch::fastest(|| sys.solve(fac, delta));
         self.size = size(&self.delta);
         if self.size.is_finite() {
             Ok(())

@@ -1,5 +1,5 @@
 #![no_std]
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 #![doc = include_str!("../../README.md")]
 
@@ -49,6 +49,7 @@ mod convergence;
 mod correction;
 mod damped_least_squares;
 mod detour;
+mod dispatch;
 mod double_double;
 mod error;
 mod floor;
@@ -81,6 +82,7 @@ pub use certified_steps::{CertifiedSteps, StepProof};
 pub use certify::{Certificate, CertifyError, certify, certify_step};
 pub use correction::{det_b, error_estimate};
 pub use detour::{Detoured, arc_length_detour};
+pub use dispatch::uses_x86_64_v3;
 pub use error::{GeometryError, InverseError};
 pub use interval::Interval;
 pub use mechanism::Mechanism;

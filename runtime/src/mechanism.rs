@@ -72,14 +72,16 @@ pub trait Mechanism<const N: usize, const M: usize> {
         crate::Turns::NONE
     }
     /// [`Self::residual`] with `t` = [`Self::turns`]`(x)` given: the same values bit for bit.
-    #[inline]
+    // Always: a forwarding call, inlined wherever its callee is.
+    #[inline(always)]
     fn residual_turned(&self, v: &[f64; N], x: &[f64; M], t: &crate::Turns<M>, f: &mut [f64; N]) {
         let _ = t;
         self.residual(v, x, f);
     }
     /// [`Self::factor`] with `t` = [`Self::turns`]`(x)` given: the same factorisation bit for
     /// bit.
-    #[inline]
+    // Always: a forwarding call, inlined wherever its callee is.
+    #[inline(always)]
     fn factor_turned(
         &self,
         v: &[f64; N],

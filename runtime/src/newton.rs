@@ -111,6 +111,24 @@ pub(crate) fn newton_scaled<S: Mechanism<N, M>, const N: usize, const M: usize>(
     rule: Rule,
     shortcuts: Shortcuts<'_, S::Factor>,
 ) -> Newton<N> {
+    crate::dispatch::fastest(
+        #[inline(always)]
+        || newton_loop(sys, v, scale, x, options, rule, shortcuts),
+    )
+}
+
+/// [`newton_scaled`]'s work, inlined into each of [`fastest`](crate::dispatch::fastest)'s
+/// twins.
+#[inline(always)]
+fn newton_loop<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    v: &[f64; N],
+    scale: f64,
+    x: &[f64; M],
+    options: &Options,
+    rule: Rule,
+    shortcuts: Shortcuts<'_, S::Factor>,
+) -> Newton<N> {
     let tolerance = options.tolerance;
     let mut convergence = Convergence::with_scale(tolerance, scale);
     let mut fac = sys.new_factor();

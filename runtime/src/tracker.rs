@@ -329,6 +329,16 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// B is factored at the returned point in `self.factor`, which is left unspecified when
     /// the fast path fails.
     fn fast(&mut self, x: &[f64; M], v: &mut [f64; N], iterations: &mut u32) -> Option<f64> {
+        crate::dispatch::fastest(
+            #[inline(always)]
+            || self.fast_here(x, v, iterations),
+        )
+    }
+
+    /// [`Self::fast`]'s work, inlined into each of [`fastest`](crate::dispatch::fastest)'s
+    /// twins.
+    #[inline(always)]
+    fn fast_here(&mut self, x: &[f64; M], v: &mut [f64; N], iterations: &mut u32) -> Option<f64> {
         let tol = self.options.tolerance;
         let fac = match &mut self.factor {
             Some(f) => f,

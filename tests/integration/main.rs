@@ -6,6 +6,7 @@ mod certified_tracking;
 mod certify;
 mod certify_adversarial;
 mod cli_regressions;
+mod dispatch;
 mod file_readers_robustness;
 mod generated_systems;
 mod hostile_api;

@@ -1,7 +1,15 @@
 //! Float maths through `libm`, so that nothing needs `std`.
 
+/// √x, correctly rounded either way. With `std`, the compiler's own: one instruction, encoded
+/// for the target features of the function it is inlined into. `libm`'s, on x86, is inline
+/// assembly in the SSE encoding, which in the runtime's AVX twin (`linkage::uses_x86_64_v3`)
+/// stalled on the registers' upper halves: the tracker's median sample took 0.62 µs instead
+/// of 0.45 (BENCHMARKS.md, Instruction counts).
 #[inline]
 pub fn sqrt(x: f64) -> f64 {
+    #[cfg(feature = "std")]
+    return x.sqrt();
+    #[cfg(not(feature = "std"))]
     libm::sqrt(x)
 }
 

@@ -518,7 +518,7 @@ pub fn factor(
 
         #factor_wrapper
 
-        #[cfg_attr(not(debug_assertions), inline)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         #[allow(unused_variables, unused_mut)]
         fn #factor_name(&self, v: &[f64; #n], x: &[f64; #m], #turns_param f: &mut Self::Factor) -> ::core::option::Option<::linkage::lu::Factored> {
             /// The fallback: B again, its complement factored with partial pivoting.
@@ -553,7 +553,7 @@ pub fn factor(
             ::core::option::Option::Some(::linkage::lu::Factored { det, pivot_ratio })
         }
 
-        #[cfg_attr(not(debug_assertions), inline)]
+        #[cfg_attr(not(debug_assertions), inline(always))]
         #[allow(unused_variables, unused_mut)]
         fn solve(&self, f: &Self::Factor, b: &mut [f64; #n]) {
             #[cold]

@@ -225,7 +225,11 @@ pub fn expand(
     // Where they are on (the tests' profile, optimised), an inline function is compiled again
     // in every codegen unit that calls it, for every declared mechanism: without the hint the
     // integration tests' binary rebuilt alone in 89 s instead of 115–118 s, its tests running
-    // as fast (39.7 s against 40.5 s; BENCHMARKS.md).
+    // as fast (39.7 s against 40.5 s; BENCHMARKS.md). The residual, the factorisation and the
+    // solve are `#[inline(always)]` there: the runtime's x86-64-v3 twins (`dispatch.rs`) are
+    // compiled for AVX only as far as the kernels are inlined into them, and with the plain
+    // hint the compiler left the factorisation out of line once it had a few more callers
+    // (`count nr-normal`: 615 554 instructions inlined, 666 695 not).
     let residual_fns = if turns {
         let turns_body = crate::emit::turns::turns_body(&turned);
         quote! {
@@ -234,7 +238,7 @@ pub fn expand(
                 self.residual_turned(v, x, &self.turns(x), f);
             }
 
-            #[cfg_attr(not(debug_assertions), inline)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             #allow
             fn residual_turned(&self, v: &[f64; #n], x: &[f64; #m], t: &::linkage::Turns<#m>, f: &mut [f64; #n]) {
                 let c = &self.constants;
@@ -248,7 +252,7 @@ pub fn expand(
         }
     } else {
         quote! {
-            #[cfg_attr(not(debug_assertions), inline)]
+            #[cfg_attr(not(debug_assertions), inline(always))]
             #allow
             fn residual(&self, v: &[f64; #n], x: &[f64; #m], f: &mut [f64; #n]) {
                 let c = &self.constants;
