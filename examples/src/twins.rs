@@ -1,11 +1,13 @@
 //! The solvers' x86-64-v3 twin (linkage's run-time dispatch) against the code as built: the
 //! same answers, bit for bit, from Newton–Raphson, Newton homotopy, continuation and the
-//! tracker, on the Stewart platform (every Table V point), the 3-RPS and the 6-RSS hexapod.
+//! tracker, on the Stewart platform (every Table V point), the 3-RPS and the 6-RSS hexapod,
+//! and every assembly mode of the 3-RPS (whose sparse LU has a twin).
 //! Run by the integration tests and, in a release build where the kernels are inlined into the
 //! twins, by `cargo run --release --example twins` in CI.
 
 use crate::{rps, rss_hexapod, stewart};
 use linkage::__private::prefer_x86_64_v3;
+use linkage::modes::{AllModes, ModesOptions, Roots};
 use linkage::{
     arc_length, Mechanism, Method, NewtonRaphson, Options, Solution, SolveError, Start, Tracker,
 };
@@ -51,6 +53,7 @@ fn every_answer() -> Vec<String> {
     let r = rps::Rps3::new();
     let r_home = rps::home_start(&r).expect("home");
     out.extend(answers(&r, &r_home, &around(r_home.x(), 10.0)));
+    out.extend(every_mode(r, &around(r_home.x(), 10.0)[..5]));
 
     let h = rss_hexapod::RssHexapod::new();
     let h_home = rss_hexapod::home_start(&h).expect("home");
@@ -85,6 +88,24 @@ fn answers<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
         }
     }
     out
+}
+
+/// Every assembly mode of the 3-RPS at each of `targets`: the endpoints of all 16 paths.
+fn every_mode(r: rps::Rps3, targets: &[[f64; 3]]) -> Vec<String> {
+    let modes = match AllModes::<_, 9, 3, 32>::new(r, &ModesOptions::default()) {
+        Ok(m) => m,
+        Err(e) => return vec![format!("3-RPS all modes: {e:?}")],
+    };
+    let mut roots = Roots::new();
+    targets
+        .iter()
+        .enumerate()
+        .map(|(k, x)| match modes.solve(x, &mut roots) {
+            // Debug prints each float so that it reads back to the same bits.
+            Ok(()) => format!("3-RPS modes {k}: {:?}", roots.endpoints()),
+            Err(e) => format!("3-RPS modes {k}: {e:?}"),
+        })
+        .collect()
 }
 
 fn line<const N: usize>(name: &str, k: usize, r: &Result<Solution<N>, SolveError>) -> String {

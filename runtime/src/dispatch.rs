@@ -1,19 +1,19 @@
 //! The hot loops compiled twice on x86-64: once for the target the crate is built for, once
 //! for the x86-64-v3 level (AVX2 and BMI2, as on every x86-64 CPU since 2013–2015), chosen at
 //! run time by the CPU ([`fastest`]). The twins: Newton's method (`newton.rs`), the chord
-//! correction's residual and solve (`correction.rs`) and the tracker's fast path
-//! (`tracker.rs`).
+//! correction's residual and solve (`correction.rs`), the tracker's fast path (`tracker.rs`)
+//! and the all-modes sparse LU's factorisation and solve (`modes/sparse_lu.rs`).
 //!
 //! Why: the default x86-64 target has SSE2's two-operand instructions only, and an operation
 //! that must keep its source costs a register copy first; the generated factorisation keeps
 //! about forty values live on sixteen registers. AVX's three-operand forms need no copies.
 //! Measured with `count` under callgrind (BENCHMARKS.md, Instruction counts): Newton–Raphson
-//! 694 797 → 615 566 instructions on the 100 normal Table V points, the tracker 5 856 448 →
-//! 5 240 402 on the 2 s trajectory.
+//! 694 797 → 616 593 instructions on the 100 normal Table V points, the tracker 5 856 448 →
+//! 5 110 252 on the 2 s trajectory.
 //!
 //! The twin performs the same operations in the same order: FMA is not enabled, and Rust
 //! never fuses a·b + c by itself, so both give the same results, bit for bit
-//! (`tests/integration/dispatch.rs` compares them).
+//! (`linkage_examples::twins` compares them: in the tests, and in a release build by CI).
 //!
 //! Only with the `std` feature, whose `is_x86_feature_detected!` knows whether the operating
 //! system saves the AVX registers; a `no_std` build runs the code it was built for (choose

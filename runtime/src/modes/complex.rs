@@ -88,7 +88,7 @@ impl Complex {
         if r == 0.0 {
             return Complex::ZERO;
         }
-        let t = libm::sqrt(0.5 * (r + self.re.abs()));
+        let t = crate::math::sqrt(0.5 * (r + self.re.abs()));
         if self.re >= 0.0 {
             Complex::new(t, 0.5 * self.im / t)
         } else {

@@ -165,5 +165,5 @@ pub(crate) fn real_root<S: Mechanism<N, M>, const N: usize, const M: usize>(
 
 /// Euclidean distance between two complex points.
 pub(crate) fn distance<const N: usize>(a: &[Complex; N], b: &[Complex; N]) -> f64 {
-    libm::sqrt((0..N).map(|i| (a[i] - b[i]).norm_sqr()).sum::<f64>())
+    crate::math::sqrt((0..N).map(|i| (a[i] - b[i]).norm_sqr()).sum::<f64>())
 }

@@ -77,7 +77,7 @@ impl<const M: usize> Inputs<M> {
         if n == 0 {
             self.scale
         } else {
-            libm::sqrt(sum / n as f64)
+            crate::math::sqrt(sum / n as f64)
         }
     }
 }

@@ -26,7 +26,7 @@ impl Rng {
 
     /// A standard complex normal number (Box–Muller).
     pub(crate) fn complex_normal(&mut self) -> Complex {
-        let r = libm::sqrt(-libm::log(self.uniform()));
+        let r = crate::math::sqrt(-libm::log(self.uniform()));
         let t = 2.0 * core::f64::consts::PI * self.uniform();
         Complex::new(r * libm::cos(t), r * libm::sin(t))
     }

@@ -148,7 +148,7 @@ fn walk<S: Mechanism<N, M>, const N: usize, const M: usize>(
             for l in 0..M {
                 sq += a[i][l].norm_sqr();
             }
-            let inv = 1.0 / libm::sqrt(sq);
+            let inv = 1.0 / crate::math::sqrt(sq);
             if !(inv.is_finite()) {
                 return Err(Miss::Walk);
             }

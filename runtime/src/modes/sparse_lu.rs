@@ -315,10 +315,16 @@ impl<const N: usize> Lu<N> {
         values: &[Complex],
         border: Option<&Border<N>>,
     ) -> bool {
-        self.factor_checked(plan, values, border).is_some()
+        crate::dispatch::fastest(
+            #[inline(always)]
+            || self.factor_checked(plan, values, border),
+        )
+        .is_some()
     }
 
-    /// [`Lu::factor`], `None` for `false`.
+    /// [`Lu::factor`], `None` for `false`; inlined into each of
+    /// [`fastest`](crate::dispatch::fastest)'s twins.
+    #[inline(always)]
     fn factor_checked(
         &mut self,
         plan: &Plan<N>,
@@ -480,12 +486,18 @@ impl<const N: usize> Lu<N> {
     /// dropped); `b` is overwritten with `y` (NaN if the plan were inconsistent, which its
     /// construction rules out).
     pub(crate) fn solve(&self, plan: &Plan<N>, b: &mut [Complex; N]) {
-        if self.solve_checked(plan, b).is_none() {
+        let solved = crate::dispatch::fastest(
+            #[inline(always)]
+            || self.solve_checked(plan, b),
+        );
+        if solved.is_none() {
             *b = [Complex::new(f64::NAN, f64::NAN); N];
         }
     }
 
-    /// [`Lu::solve`], `None` for the NaN solution.
+    /// [`Lu::solve`], `None` for the NaN solution; inlined into each of
+    /// [`fastest`](crate::dispatch::fastest)'s twins.
+    #[inline(always)]
     fn solve_checked(&self, plan: &Plan<N>, b: &mut [Complex; N]) -> Option<()> {
         let a = &self.a;
         let statics = plan.statics.min(N);
