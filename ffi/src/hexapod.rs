@@ -108,6 +108,9 @@ fn start_with<S: SixSix>(
     let start = find_start(sys, *legs, Some(at.to_pose())).map_err(|e| match e {
         StartError::Solve(e) => status::of_error(&e),
         StartError::PoseMismatch | StartError::NoAssemblyMode => status::POSE_MISMATCH,
+        // Not met with a start pose given (its own check comes first), but a geometry singular
+        // everywhere is a singular start.
+        StartError::SingularEverywhere => status::SINGULAR_START,
     })?;
     let tracker = Tracker::new(sys.clone(), start, options);
     Ok(if certify {

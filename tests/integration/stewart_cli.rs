@@ -313,3 +313,21 @@ fn a_start_pose_that_does_not_fit_the_legs_is_refused() {
         Err(StartError::Solve(_))
     ));
 }
+
+#[test]
+fn a_geometry_singular_everywhere_is_named_as_such() {
+    // Legs 1 and 2 on the same base joint and the same platform joint: their two equations
+    // have the same gradient at every configuration, so ∂F/∂v is never regular.
+    let g = Stewart::new().geometry().to_owned();
+    let joint = |at: usize, i: usize| -> [f64; 3] { std::array::from_fn(|a| g[at + 3 * i + a]) };
+    let mut base: [[f64; 3]; 6] = std::array::from_fn(|i| joint(0, i));
+    let mut platform: [[f64; 3]; 6] = std::array::from_fn(|i| joint(18, i));
+    base[1] = base[0];
+    platform[1] = platform[0];
+    let singular = Stewart::with_joints(&base, &platform).unwrap();
+    let err = find_start(&singular, HOME_LEGS, None).err();
+    assert_eq!(err, Some(StartError::SingularEverywhere));
+    assert!(err.unwrap().to_string().contains("architecture-singular"));
+    // Only the coincidence does it: the same legs on Table III's joints have a start.
+    assert!(find_start(&Stewart::new(), HOME_LEGS, None).is_ok());
+}

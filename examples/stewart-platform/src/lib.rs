@@ -203,6 +203,10 @@ pub enum StartError {
     Solve(SolveError),
     /// No assembly mode with the platform above the base was found for the start legs.
     NoAssemblyMode,
+    /// ∂F/∂v was singular at every configuration tried: the geometry looks
+    /// architecture-singular (two legs on the same base and platform joints, for one), so that
+    /// no configuration is regular.
+    SingularEverywhere,
     /// The given start pose does not satisfy the start legs.
     PoseMismatch,
 }
@@ -213,13 +217,27 @@ impl core::fmt::Display for StartError {
             StartError::Solve(e) => write!(f, "{e}"),
             StartError::NoAssemblyMode => write!(f, "no assembly mode with the platform above the base was found for the start legs"),
             StartError::PoseMismatch => write!(f, "the start pose does not match the start legs (an error above 1 % of the platform size)"),
+            StartError::SingularEverywhere => write!(f, "the Jacobian ∂F/∂v is singular at every configuration tried: the geometry looks architecture-singular (two legs on the same base and platform joints, for one)"),
         }
     }
 }
 
+/// Why [`polish`] failed.
+#[derive(Clone, Copy, PartialEq)]
+enum Unpolished {
+    /// B was singular (or not finite) at an iterate.
+    Singular,
+    /// The iterates overflowed or did not settle.
+    Diverged,
+}
+
 /// Polishes a guess `v` for legs `x` by Newton's method (no branch guarantee: a guess, which
 /// `Start::new` then checks).
-fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f64; 18]> {
+fn polish<S: Mechanism<18, 6>>(
+    sys: &S,
+    v: [f64; 18],
+    x: &[f64; 6],
+) -> Result<[f64; 18], Unpolished> {
     let mut v = v;
     // Relative to the configuration's own size (1 only where it is 0).
     let scale = v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
@@ -228,20 +246,20 @@ fn polish<S: Mechanism<18, 6>>(sys: &S, v: [f64; 18], x: &[f64; 6]) -> Option<[f
     for _ in 0..60 {
         let mut f = [0.0; 18];
         sys.residual(&v, x, &mut f);
-        sys.factor(&v, x, &mut fac)?;
+        sys.factor(&v, x, &mut fac).ok_or(Unpolished::Singular)?;
         sys.solve(&fac, &mut f);
         let size = f.iter().fold(0.0f64, |m, d| m.max(d.abs()));
         if !size.is_finite() {
-            return None;
+            return Err(Unpolished::Diverged);
         }
         for i in 0..18 {
             v[i] -= f[i];
         }
         if size <= 1e-12 * scale {
-            return Some(v);
+            return Ok(v);
         }
     }
-    None
+    Err(Unpolished::Diverged)
 }
 
 /// The start configuration for legs `x`: at `pose` if given (it must match the legs), else
@@ -263,7 +281,7 @@ pub fn find_start<S: SixSix>(
             Err(SolveError::InconsistentStart { .. }) => {}
             other => return other.map_err(StartError::Solve),
         }
-        let v = polish(sys, guess, &x).ok_or(StartError::PoseMismatch)?;
+        let v = polish(sys, guess, &x).map_err(|_| StartError::PoseMismatch)?;
         let moved = v
             .iter()
             .zip(&guess)
@@ -281,6 +299,7 @@ pub fn find_start<S: SixSix>(
     });
     let base_top = base.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p[2]));
     let mut best: Option<([f64; 18], f64)> = None;
+    let mut regular_somewhere = false;
     for height in [0.3, 0.5, 0.7, 0.85, 1.0, 1.2] {
         for yaw in [0.0, 0.4, -0.4, 0.8, -0.8, 1.6, -1.6, core::f64::consts::PI] {
             // Centre the platform over the base centroid.
@@ -301,9 +320,14 @@ pub fn find_start<S: SixSix>(
                     ..r
                 },
             );
-            let Some(v) = polish(sys, guess, &x) else {
-                continue;
+            let v = match polish(sys, guess, &x) {
+                Ok(v) => v,
+                Err(why) => {
+                    regular_somewhere |= why != Unpolished::Singular;
+                    continue;
+                }
             };
+            regular_somewhere = true;
             let Some(p) = linkage::pose_from_unknowns(sys, &v) else {
                 continue;
             };
@@ -318,6 +342,10 @@ pub fn find_start<S: SixSix>(
             }
         }
     }
-    let (v, _) = best.ok_or(StartError::NoAssemblyMode)?;
+    let (v, _) = best.ok_or(if regular_somewhere {
+        StartError::NoAssemblyMode
+    } else {
+        StartError::SingularEverywhere
+    })?;
     Start::new(sys, v, x).map_err(StartError::Solve)
 }
