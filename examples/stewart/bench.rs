@@ -124,14 +124,17 @@ pub fn run(
             "points": rows.len(), "repetitions": repetitions, "failures_per_pass": failures / repetitions,
             "unproven_per_pass": certify.then_some(unproven / repetitions),
             "mean_us": mean, "median_us": pick(0.5), "p99_us": pick(0.99),
+            // Which of the solvers' twins ran (the answers are the same; the times are not).
+            "x86_64_v3": linkage::uses_x86_64_v3(),
         });
         print(&format!("{out}\n"))
     } else {
         print(&format!(
-            "{name}{}{}{}: {} points × {repetitions} passes, mean {mean:.3} µs, median {:.3} µs, p99 {:.3} µs per solve ({} not ok{} per pass)\n",
+            "{name}{}{}{}{}: {} points × {repetitions} passes, mean {mean:.3} µs, median {:.3} µs, p99 {:.3} µs per solve ({} not ok{} per pass)\n",
             if track { " --track" } else { "" },
             if certify { " --certify" } else { "" },
             if dense { " (dense LU)" } else { "" },
+            if linkage::uses_x86_64_v3() { " [x86-64-v3]" } else { "" },
             rows.len(),
             pick(0.5),
             pick(0.99),
