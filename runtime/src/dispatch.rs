@@ -24,12 +24,12 @@
 /// into the twin is compiled for it.
 #[inline(always)]
 pub(crate) fn fastest<R>(f: impl FnOnce() -> R) -> R {
-    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    if v3::chosen() {
+    if v3::TWIN && v3::chosen() {
         // SAFETY: the one condition of calling a `#[target_feature]` function, that the CPU
         // has its features, is what `chosen` has checked (it is never true otherwise). Worth
-        // its `unsafe`: see the measurements above.
-        #[allow(unsafe_code)]
+        // its `unsafe`: see the measurements above. (Where there is no twin, `run` is a safe
+        // function and this branch is compiled out.)
+        #[allow(unsafe_code, unused_unsafe)]
         return unsafe { v3::run(f) };
     }
     f()
@@ -43,24 +43,40 @@ pub(crate) fn fastest<R>(f: impl FnOnce() -> R) -> R {
 /// println!("x86-64-v3 twin: {}", linkage::uses_x86_64_v3());
 /// ```
 pub fn uses_x86_64_v3() -> bool {
-    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    return v3::chosen();
-    #[cfg(not(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2"))))]
-    return cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+    v3::chosen()
 }
 
 /// Runs the twin (`true`, where the CPU has it) or the code as built (`false`) from now on,
 /// in every thread; returns whether the twin is chosen. For the tests that compare the two.
 pub fn prefer_x86_64_v3(twin: bool) -> bool {
-    #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
-    return v3::prefer(twin);
-    #[cfg(not(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2"))))]
-    return twin && uses_x86_64_v3();
+    v3::prefer(twin)
+}
+
+/// Where there is no twin: a `no_std` build, another architecture, or a build whose target
+/// already has AVX2 (it is then what runs).
+#[cfg(not(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2"))))]
+mod v3 {
+    pub(super) const TWIN: bool = false;
+
+    pub(super) fn chosen() -> bool {
+        cfg!(all(target_arch = "x86_64", target_feature = "avx2"))
+    }
+
+    pub(super) fn prefer(twin: bool) -> bool {
+        twin && chosen()
+    }
+
+    #[inline(always)]
+    pub(super) fn run<R>(f: impl FnOnce() -> R) -> R {
+        f()
+    }
 }
 
 #[cfg(all(feature = "std", target_arch = "x86_64", not(target_feature = "avx2")))]
 mod v3 {
     use core::sync::atomic::{AtomicU8, Ordering};
+
+    pub(super) const TWIN: bool = true;
 
     const UNKNOWN: u8 = 0;
     const NO: u8 = 1;
