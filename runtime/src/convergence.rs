@@ -6,7 +6,9 @@
 ///
 /// A solve's answer is *converged* only at a point where the Newton correction, measured with
 /// B factored at that very point, is at most the tolerance (see `newton::newton`): then the
-/// residual, the error estimate and det B all belong to the returned point.
+/// residual, the error estimate and det B all belong to the returned point. (Newton–Raphson
+/// may measure it with a chord correction instead, where B was factored so near that it
+/// stands for the Newton correction: [`Chords`].)
 ///
 /// For intermediate points (a Newton-homotopy step), [`Self::reached`] also accepts a correction
 /// whose successor, extrapolated from the contraction so far (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≤ 0.1), would be
@@ -61,17 +63,27 @@ impl Convergence {
 }
 
 /// When a Newton run under the final rule may reuse its last factorisation for one correction
-/// (a chord, or simplified Newton, step) instead of factoring B again.
+/// (a chord, or simplified Newton, step) instead of factoring B again, and when such a
+/// correction may measure the answer.
 ///
 /// F has degree two in v, so Newton's corrections shrink as ‖Δₖ₊₁‖ ≈ q‖Δₖ‖²; q is estimated
-/// from the last pair of corrections. A chord step from the point after Δₖ, with B factored
-/// before Δₖ, shrinks the error by about 2q‖Δₖ‖ (B changed by that much, relatively) instead
-/// of squaring it. Where the next Newton correction is predicted above the tolerance but a
-/// chord step predicted to bring the error within it, the run takes the chord step and then
-/// the one Newton correction that measures the returned point: one factorisation instead of
-/// two. The answer is still judged by a correction with B factored at the returned point
-/// itself; a chord step only moves the point, and only when it contracts strongly
-/// ([`Chords::admits`]). Wrong predictions cost a correction, never the answer.
+/// from the last pair of corrections. B is affine in v, and over a distance d it changes, relative
+/// to itself, by about 2q·d. A chord step from the point after Δₖ, with B factored before Δₖ,
+/// shrinks the error by about 2q‖Δₖ‖ instead of squaring it. Where the next Newton correction
+/// is predicted above the tolerance but a chord step predicted to bring the error within it,
+/// the run takes the chord step ([`Chords::worthwhile`], [`Chords::admits`]): one factorisation
+/// instead of two.
+///
+/// The answer is judged by a correction measured at the returned point: the Newton correction
+/// with B factored there, or a chord correction with B factored at a point so near that B
+/// differs by at most [`Chords::MEASURES`] (0.1 %) as predicted ([`Chords::vouched`]: the
+/// simplified-Newton test of Deuflhard's affine-invariant Newton methods). The two differ by
+/// that share: the chord correction, enlarged by four times it, must be within the tolerance,
+/// and it is the error estimate reported. det B is then the one at the factored point, of the
+/// same sign as at the returned point (B within 0.1 % of it). Wrong predictions cost a
+/// correction, never the answer: a chord correction that does not vouch for the tolerance is
+/// followed by a Newton correction at the same point, and the stress suite checks every answer
+/// called converged against the root found in double-double arithmetic.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Chords {
     /// The estimate of q (NaN until two corrections are known).
@@ -91,6 +103,48 @@ impl Chords {
             q: f64::NAN,
             newton: f64::NAN,
         }
+    }
+
+    /// Largest predicted relative change of B between the point it was factored at and a point
+    /// whose chord correction is to stand for its Newton correction.
+    const MEASURES: f64 = 1e-3;
+
+    /// The relative change of B predicted over a distance `moved` (NaN while q is unknown).
+    fn change(&self, moved: f64) -> f64 {
+        2.0 * self.q * moved
+    }
+
+    /// The Newton correction predicted after one of `size` (NaN while q is unknown).
+    pub(crate) fn predicted(&self, size: f64) -> f64 {
+        self.q * size * size
+    }
+
+    /// The error left by a chord correction of `size` from a point `moved` from where B was
+    /// factored, as predicted.
+    pub(crate) fn left_by_chord(&self, size: f64, moved: f64) -> f64 {
+        self.change(moved) * size
+    }
+
+    /// Whether a chord correction at a point `moved` from where B was factored, whose error is
+    /// predicted at `error`, is likely to vouch for the tolerance ([`Self::vouched`]): worth
+    /// its residual and solve before the Newton correction that would otherwise measure it.
+    pub(crate) fn may_finish(&self, error: f64, moved: f64, tolerance: f64) -> bool {
+        // False while q is unknown (NaN).
+        self.change(moved) <= Self::MEASURES && error <= tolerance
+    }
+
+    /// The error estimate a chord correction of `size` measures at a point `moved` from where
+    /// B was factored, if it vouches for `tolerance`: B predicted to have changed by at most
+    /// [`Self::MEASURES`], and the correction enlarged by four times that change within the
+    /// tolerance (the Newton correction there is within the change of it).
+    pub(crate) fn vouched(&self, size: f64, moved: f64, tolerance: f64) -> Option<f64> {
+        let change = self.change(moved);
+        if !(change <= Self::MEASURES) {
+            return None;
+        }
+        let estimate = size / (1.0 - 4.0 * change);
+        // NaN sizes are not within it.
+        (estimate <= tolerance).then_some(estimate)
     }
 
     /// Records a Newton correction of `size` (the step after it to be taken).
@@ -226,6 +280,36 @@ mod tests {
             !c.worthwhile(2e-11, tol),
             "the next correction is predicted within it"
         );
+    }
+
+    #[test]
+    fn a_chord_correction_measures_the_answer_only_where_b_barely_changed() {
+        let tol = 1e-9;
+        let mut c = Chords::new();
+        assert_eq!(c.vouched(1e-12, 1e-5, tol), None, "q is not known yet");
+        assert!(!c.may_finish(0.0, 1e-5, tol));
+        c.newton(6.7e-2);
+        c.newton(9.6e-6);
+        // q ≈ 2.1e-3: the next Newton correction is predicted at 2e-13, and B changes by
+        // 2q·9.6e-6 ≈ 4e-8 over the step.
+        assert!(c.may_finish(c.predicted(9.6e-6), 9.6e-6, tol));
+        let estimate = c.vouched(2.6e-13, 9.6e-6, tol).unwrap();
+        assert!((2.6e-13..2.61e-13).contains(&estimate), "{estimate}");
+        assert_eq!(
+            c.vouched(1e-9, 9.6e-6, tol),
+            None,
+            "enlarged by the change of B, a correction at the tolerance exceeds it"
+        );
+        assert!(c.vouched(0.999e-9, 9.6e-6, tol).is_some());
+        // A point 1 mm from where B was factored: B changed by 0.4 %, too much to stand for
+        // the Newton correction there however small the chord correction.
+        assert_eq!(c.vouched(1e-15, 1.0, tol), None);
+        assert!(!c.may_finish(0.0, 1.0, tol));
+        assert!(
+            !c.may_finish(c.predicted(6.7e-2), 6.7e-2, tol),
+            "predicted above it"
+        );
+        assert_eq!(c.vouched(f64::NAN, 9.6e-6, tol), None);
     }
 
     #[test]

@@ -13,7 +13,8 @@ const MAX_STALLS: u32 = 3;
 /// How a Newton run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Ending {
-    /// Final rule: the correction measured at the returned point is within the tolerance.
+    /// Final rule: the correction measured at the returned point is within the tolerance (a
+    /// Newton correction, or a chord correction that stands for it: [`Chords`]).
     /// Intermediate rule: the point is within it as far as the contraction predicts.
     Converged,
     /// The corrections stopped decreasing at the rounding floor, above the tolerance.
@@ -30,7 +31,9 @@ pub(crate) enum Ending {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Rule {
     /// For an answer: stop at a point whose own correction is within the tolerance and return
-    /// that point, so that its error estimate and det B are measured there, not extrapolated.
+    /// that point, so that its error estimate is measured there, not extrapolated (with chord
+    /// steps, B may have been factored at a point so near that it is the same within 0.1 %:
+    /// [`Chords`]).
     Final,
     /// For a point on the way (a homotopy step): the extrapolated estimate suffices, and a
     /// stall at the rounding floor is good enough to go on from.
@@ -45,9 +48,12 @@ pub(crate) struct Newton<const N: usize> {
     pub v: [f64; N],
     pub ending: Ending,
     pub iterations: u32,
-    /// ‖B⁻¹F‖ at `v` (final rule), or its extrapolation (intermediate rule).
+    /// ‖B⁻¹F‖ at `v` (final rule; a chord correction enlarged by B's change if one measured
+    /// `v`), or its extrapolation (intermediate rule).
     pub estimate: f64,
-    /// det B at `v` (final rule), or at the iterate before the last correction (intermediate).
+    /// det B at `v` (final rule; where a chord correction measured `v`, at the point B was
+    /// factored, of the same sign), or at the iterate before the last correction
+    /// (intermediate).
     pub det: f64,
 }
 
@@ -147,6 +153,7 @@ fn newton_loop<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let generated = options.linear == Linear::Generated;
     let use_chords = shortcuts.chords && rule == Rule::Final && generated;
     let mut chords = Chords::new();
+    let mut finish_tried = false;
     // The inputs stay fixed: their sines and cosines are evaluated once, not in every
     // residual and factorisation.
     let mut turned = Turns::NONE;
@@ -223,23 +230,64 @@ fn newton_loop<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 current[i] -= c.delta[i];
             }
         }
-        if use_chords && chords.worthwhile(c.size, tolerance) {
+        if use_chords {
+            // Under the final rule, with B factored before the step just taken (`fac`): at
+            // most one chord step, then at most one chord correction to measure the point
+            // ([`Chords`]). Each chord is a residual and a solve, no factorisation.
             let newton_size = c.size;
-            if iterations >= options.max_iterations {
-                break Ending::Exhausted;
+            // How far the point now is from where B was factored.
+            let mut moved = newton_size;
+            let mut finish = chords.may_finish(chords.predicted(newton_size), moved, tolerance);
+            if chords.worthwhile(newton_size, tolerance) {
+                if iterations >= options.max_iterations {
+                    break Ending::Exhausted;
+                }
+                iterations += 1;
+                if c.chord(sys, &current, x, t, &fac).is_ok() {
+                    // The prediction was pessimistic: this correction may measure the point.
+                    if let Some(estimate) = chords.vouched(c.size, moved, tolerance) {
+                        return Newton {
+                            v: current,
+                            ending: Ending::Converged,
+                            iterations,
+                            estimate,
+                            det: c.det,
+                        };
+                    }
+                    // A chord correction that does not contract is dropped: B is factored
+                    // at the same point next.
+                    if c.size > tolerance && chords.admits(c.size) {
+                        for i in 0..N {
+                            current[i] -= c.delta[i];
+                        }
+                        moved += c.size;
+                        finish = chords.may_finish(
+                            chords.left_by_chord(c.size, moved),
+                            moved,
+                            tolerance,
+                        );
+                    }
+                }
             }
-            iterations += 1;
-            // A chord correction that fails or does not contract is dropped: B is factored
-            // at the same point next. So is one already within the tolerance: the prediction
-            // was pessimistic, and this point may be the answer, which only a Newton
-            // correction here can tell (near a singularity the next point may sit at the
-            // rounding floor, above the tolerance).
-            if c.chord(sys, &current, x, t, &fac).is_ok()
-                && c.size > tolerance
-                && chords.admits(c.size)
-            {
-                for i in 0..N {
-                    current[i] -= c.delta[i];
+            if finish && !finish_tried {
+                // Once a run: where one did not vouch, the next would rarely do better (a
+                // point at the rounding floor, a pessimistic q).
+                finish_tried = true;
+                if iterations >= options.max_iterations {
+                    break Ending::Exhausted;
+                }
+                iterations += 1;
+                let measured = c.chord(sys, &current, x, t, &fac).ok();
+                if let Some(estimate) =
+                    measured.and_then(|()| chords.vouched(c.size, moved, tolerance))
+                {
+                    return Newton {
+                        v: current,
+                        ending: Ending::Converged,
+                        iterations,
+                        estimate,
+                        det: c.det,
+                    };
                 }
             }
             previous = newton_size;

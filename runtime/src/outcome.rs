@@ -71,7 +71,8 @@ pub(crate) fn conclude<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let lambda = account.lambda;
     let status = match run.ending {
         Ending::Converged | Ending::Stalled => {
-            // `run.det` and `run.estimate` were measured at `run.v` itself.
+            // `run.det` and `run.estimate` were measured at `run.v` itself (or, where a chord
+            // correction measured it, with B factored so near that it stands for it).
             // Σv² once, for this check and the floor's prediction; where it overflows, the
             // size (rescaled) tells whether v is finite.
             let squares = squares(&run.v);
