@@ -22,6 +22,10 @@
 //! `velocity::twist` and `velocity::platform_jacobian` on the Stewart platform at home.
 //! `stewart`, `rps`, `rss_hexapod`: 1000 calls each of
 //! the generated factorisation, solve and residual at the mechanism's home configuration.
+//!
+//! On an x86-64 CPU with AVX2 the solvers run their x86-64-v3 twin (`linkage::uses_x86_64_v3`);
+//! with `COUNT_AS_BUILT=1` in the environment they run the code as built for the plain target,
+//! as on a CPU without it.
 
 use linkage::{newton_raphson, Linear, Mechanism, NewtonRaphson, Options, Start};
 use linkage_examples::twins::around;
@@ -32,6 +36,9 @@ use std::hint::black_box;
 const CALLS: usize = 1000;
 
 fn main() -> Result<(), String> {
+    if std::env::var_os("COUNT_AS_BUILT").is_some() {
+        linkage::__private::prefer_x86_64_v3(false);
+    }
     let mut args = std::env::args().skip(1);
     let what = args.next().unwrap_or_default();
     let path = args
