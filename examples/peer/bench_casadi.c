@@ -57,6 +57,9 @@ int main(int argc, char **argv) {
     casadi_real *w = malloc(sizeof(casadi_real) * (sz_w + 1));
     double v[18];
     static double times[MAX_POINTS * 4000];
+    /* Each row's fastest pass: preemption on a shared machine only ever adds time. */
+    static double best[MAX_POINTS];
+    for (int i = 0; i < MAX_POINTS; i++) best[i] = INFINITY;
     int count = 0, passes = 0, failures = 0, off_truth = 0;
     double err_sum = 0.0;
     double start = now_us();
@@ -67,7 +70,9 @@ int main(int argc, char **argv) {
             res[0] = v;
             double t0 = now_us();
             int flag = stewart_rf(arg, res, iw, w, 0);
-            times[count++] = now_us() - t0;
+            times[count] = now_us() - t0;
+            if (times[count] < best[i]) best[i] = times[count];
+            count++;
             if (passes == 0) {
                 double d = 0, s = 0;
                 for (int j = 0; j < 18; j++) { d += (v[j] - truth[i][j]) * (v[j] - truth[i][j]); s += truth[i][j] * truth[i][j]; }
@@ -83,7 +88,11 @@ int main(int argc, char **argv) {
     double mean = 0;
     for (int i = 0; i < count; i++) mean += times[i];
     mean /= count;
-    printf("{\"method\": \"casadi_fast_newton\", \"points\": %d, \"repetitions\": %d, \"mean_us\": %.4f, \"median_us\": %.4f, \"p99_us\": %.4f, \"failed\": %d, \"off_truth\": %d, \"mean_rel_error_ok\": %.3e}\n",
-           n, passes, mean, times[count / 2], times[(int)((count - 1) * 0.99)], failures, off_truth, err_sum / (n - failures - off_truth > 0 ? n - failures - off_truth : 1));
+    double best_mean = 0;
+    for (int i = 0; i < n; i++) best_mean += best[i];
+    best_mean /= n;
+    qsort(best, n, sizeof(double), cmp);
+    printf("{\"method\": \"casadi_fast_newton\", \"points\": %d, \"repetitions\": %d, \"mean_us\": %.4f, \"median_us\": %.4f, \"p99_us\": %.4f, \"best_of_passes_mean_us\": %.4f, \"best_of_passes_median_us\": %.4f, \"failed\": %d, \"off_truth\": %d, \"mean_rel_error_ok\": %.3e}\n",
+           n, passes, mean, times[count / 2], times[(int)((count - 1) * 0.99)], best_mean, best[(n - 1) / 2], failures, off_truth, err_sum / (n - failures - off_truth > 0 ? n - failures - off_truth : 1));
     return 0;
 }
