@@ -238,25 +238,20 @@ fn newton_loop<S: Mechanism<N, M>, const N: usize, const M: usize>(
             // How far the point now is from where B was factored.
             let mut moved = newton_size;
             let mut finish = chords.may_finish(chords.predicted(newton_size), moved, tolerance);
+            // The error estimate, where a chord correction vouches for the point.
+            let mut vouched = None;
             if chords.worthwhile(newton_size, tolerance) {
                 if iterations >= options.max_iterations {
                     break Ending::Exhausted;
                 }
                 iterations += 1;
                 if c.chord(sys, &current, x, t, &fac).is_ok() {
-                    // The prediction was pessimistic: this correction may measure the point.
-                    if let Some(estimate) = chords.vouched(c.size, moved, tolerance) {
-                        return Newton {
-                            v: current,
-                            ending: Ending::Converged,
-                            iterations,
-                            estimate,
-                            det: c.det,
-                        };
-                    }
-                    // A chord correction that does not contract is dropped: B is factored
-                    // at the same point next.
-                    if c.size > tolerance && chords.admits(c.size) {
+                    // The prediction may have been pessimistic: this correction may measure
+                    // the point.
+                    vouched = chords.vouched(c.size, moved, tolerance);
+                    // Else a chord correction that does not contract is dropped: B is
+                    // factored at the same point next.
+                    if vouched.is_none() && c.size > tolerance && chords.admits(c.size) {
                         for i in 0..N {
                             current[i] -= c.delta[i];
                         }
@@ -269,7 +264,7 @@ fn newton_loop<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     }
                 }
             }
-            if finish && !finish_tried {
+            if vouched.is_none() && finish && !finish_tried {
                 // Once a run: where one did not vouch, the next would rarely do better (a
                 // point at the rounding floor, a pessimistic q).
                 finish_tried = true;
@@ -277,18 +272,19 @@ fn newton_loop<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     break Ending::Exhausted;
                 }
                 iterations += 1;
-                let measured = c.chord(sys, &current, x, t, &fac).ok();
-                if let Some(estimate) =
-                    measured.and_then(|()| chords.vouched(c.size, moved, tolerance))
-                {
-                    return Newton {
-                        v: current,
-                        ending: Ending::Converged,
-                        iterations,
-                        estimate,
-                        det: c.det,
-                    };
-                }
+                vouched = c
+                    .chord(sys, &current, x, t, &fac)
+                    .ok()
+                    .and_then(|()| chords.vouched(c.size, moved, tolerance));
+            }
+            if let Some(estimate) = vouched {
+                return Newton {
+                    v: current,
+                    ending: Ending::Converged,
+                    iterations,
+                    estimate,
+                    det: c.det,
+                };
             }
             previous = newton_size;
             continue;
