@@ -371,3 +371,51 @@ fn prepared_newton_raphson_is_newton_raphson() {
         .collect();
     same(&h, &st, &targets);
 }
+
+/// Newton–Raphson's answers hold to the exact Newton correction at the returned point (F in
+/// double-double arithmetic, B factored there) and to det B's sign there, however the run
+/// measured them: by a Newton correction, or by a chord correction with B factored one
+/// correction before, where B is predicted to differ by at most 0.1 % (the chord's size,
+/// enlarged by four times that, is then the error estimate). From home to 100 targets around
+/// it on the 3-RPS, the 6-RSS hexapod and the Stewart platform, at tolerances from loose to
+/// the rounding floor.
+#[test]
+fn nr_answers_hold_to_the_exact_correction_however_measured() {
+    use linkage::NewtonRaphson;
+    use linkage_examples::twins::around;
+    use linkage_tests::invariants::ok_violation;
+
+    fn check<S: Mechanism<N, M> + Clone, const N: usize, const M: usize>(
+        name: &str,
+        sys: &S,
+        start: &Start<N, M>,
+        by: f64,
+    ) {
+        let nr = NewtonRaphson::new(sys.clone(), *start);
+        for tolerance in [1e-4, 1e-7, 1e-9, 1e-11] {
+            let options = Options {
+                tolerance,
+                ..Options::TIGHT
+            };
+            let mut met = 0;
+            for x in around(start.x(), by) {
+                let sol = nr.solve(&x, &options).unwrap();
+                if let Some(v) = ok_violation(sys, start.det(), &x, &sol, tolerance) {
+                    panic!("{name}, tolerance {tolerance:e}, x = {x:?}: {}", v.what);
+                }
+                met += usize::from(sol.status.meets_tolerance());
+            }
+            // Near home every target is regular: all of them meet a tolerance above the
+            // rounding floor.
+            if tolerance >= 1e-9 {
+                assert_eq!(met, 100, "{name}, tolerance {tolerance:e}");
+            }
+        }
+    }
+    let r = rps::Rps3::new();
+    check("3-RPS", &r, &rps::home_start(&r).unwrap(), 10.0);
+    let h = rss_hexapod::RssHexapod::new();
+    check("6-RSS", &h, &rss_hexapod::home_start(&h).unwrap(), 0.15);
+    let s = stewart::Stewart::new();
+    check("Stewart", &s, &stewart::home_start(&s).unwrap(), 10.0);
+}
