@@ -97,6 +97,9 @@ impl Chords {
     const REGIME: f64 = 0.01;
     /// Largest ratio of a chord correction to the Newton correction before it.
     const RATIO: f64 = 0.25;
+    /// Largest predicted relative change of B between the point it was factored at and a point
+    /// whose chord correction is to stand for its Newton correction.
+    const MEASURES: f64 = 1e-3;
 
     pub(crate) const fn new() -> Self {
         Chords {
@@ -104,10 +107,6 @@ impl Chords {
             newton: f64::NAN,
         }
     }
-
-    /// Largest predicted relative change of B between the point it was factored at and a point
-    /// whose chord correction is to stand for its Newton correction.
-    const MEASURES: f64 = 1e-3;
 
     /// The relative change of B predicted over a distance `moved` (NaN while q is unknown).
     fn change(&self, moved: f64) -> f64 {
