@@ -54,7 +54,7 @@ pub fn run(
     // B factored at home serves every row (B does not depend on the leg lengths).
     let from_home = linkage::NewtonRaphson::new(sys.clone(), start);
     let mut times: Vec<f64> = Vec::new();
-    // Each row's fastest pass, as `bench --method all` reports it.
+    // Each row's fastest pass ([`best_of_passes`]).
     let mut best = vec![f64::INFINITY; rows.len()];
     let (mut failures, mut unproven, mut repetitions) = (0usize, 0usize, 0usize);
     let began = Instant::now();
@@ -220,8 +220,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
     let setup = began.elapsed().as_secs_f64();
     let mut roots = Box::new(Roots::<18, CAPACITY>::new());
     let mut times: Vec<f64> = Vec::new();
-    // Each row's fastest pass: preemption on a shared machine only ever adds time, so the
-    // minimum over passes is the row's own cost.
+    // Each row's fastest pass ([`best_of_passes`]).
     let mut best = vec![f64::INFINITY; points.len()];
     let (mut incomplete, mut steps, mut real, mut repetitions) = (0usize, 0usize, 0usize, 0usize);
     let began = Instant::now();
