@@ -440,10 +440,14 @@ pub fn factor(
         .collect();
     let back = plan.statics.iter().enumerate().map(|(s, &(r, c, p))| {
         let wr = w(r);
-        // x_c = (b_r − Σ X x) / p; for p = −1 written Σ X x − b_r, without a negation.
+        // x_c = (b_r − Σ X x) / p; for p = −1 written Σ X x − b_r, without a negation, b_r
+        // after the first product. The products in the order the complement's back-substitution
+        // yields their unknowns (its last pivot first), so that the one solved last is the
+        // last operation, not the first of a chain waiting for it.
         let products: Vec<(bool, TokenStream)> = plan
             .cols
             .iter()
+            .rev()
             .filter_map(|&j| {
                 statics
                     .x
@@ -456,15 +460,15 @@ pub fn factor(
                 .iter()
                 .enumerate()
                 .map(|(k, (neg, t))| match (k, neg) {
-                    (0, false) => quote!(#t),
-                    (0, true) => quote!(-#t),
+                    (0, false) => quote!(#t - #wr),
+                    (0, true) => quote!(-#t - #wr),
                     (_, false) => quote!(+ #t),
                     (_, true) => quote!(- #t),
                 });
             return if products.is_empty() {
                 quote!(b[#c] = -#wr;)
             } else {
-                quote!(b[#c] = #(#sum)* - #wr;)
+                quote!(b[#c] = #(#sum)*;)
             };
         }
         let terms = products.iter().map(|(neg, t)| match neg {

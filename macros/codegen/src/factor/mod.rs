@@ -81,7 +81,7 @@ impl Symbolic {
     }
 
     /// Columns right of pivot `p` with an entry in its row: the pivot row's part of U.
-    pub fn right(&self, p: usize) -> impl Iterator<Item = usize> + '_ {
+    pub fn right(&self, p: usize) -> impl DoubleEndedIterator<Item = usize> + '_ {
         (p + 1..self.size()).filter(move |&j| self.filled[p][j])
     }
 
