@@ -18,28 +18,8 @@ die() {
     exit 1
 }
 
-# 1. LinuxCNC (without recommended packages: those pull in a real-time kernel and docs).
-packages=(linuxcnc-uspace linuxcnc-uspace-dev)
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ "${#missing[@]}" -gt 0 ]; then
-    [ "$(id -u)" -eq 0 ] || die "${missing[*]} not installed and not root: run apt-get install -y --no-install-recommends ${missing[*]}"
-    echo "== installing ${missing[*]}"
-    t0=$SECONDS
-    export DEBIAN_FRONTEND=noninteractive
-    # A stale package list makes the install fail: update it once, then install.
-    apt-get update -q >/dev/null || die "apt-get update failed"
-    apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null \
-        || die "apt-get install ${missing[*]} failed"
-    echo "installed in $((SECONDS - t0)) s"
-fi
-for tool in linuxcnc halcmd rtapi_app; do
-    command -v "$tool" >/dev/null || die "$tool not found after installing ${packages[*]}"
-done
-python3=/usr/bin/python3
-"$python3" -c 'import linuxcnc, hal' 2>/dev/null || die "$python3 cannot import LinuxCNC's linuxcnc and hal modules"
+# 1. LinuxCNC, installed where it is missing.
+bash "$here/install.sh" || exit 1
 rtlib="$(dirname "$(dpkg -L linuxcnc-uspace | grep '/modules/genhexkins.so$' | head -1)")"
 [ -d "$rtlib" ] || die "LinuxCNC's module directory not found (no genhexkins.so)"
 
