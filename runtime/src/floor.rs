@@ -12,10 +12,10 @@
 //! 1.5–2.8e-9 mm off near Stewart-platform singularities (det B at 1e-5 to 1e-6 of home's),
 //! and within 1e-11 mm up to 1.4e-10 mm off on a planar 3-RPR.
 //!
-//! So where the floor may come near the tolerance — near what the `f64` correction leaves under
-//! it: a correction just within the tolerance leaves little — the answer's correction is measured again
-//! with F evaluated in double-double arithmetic ([`vouch`]): to first order that correction is
-//! the distance to the root, whatever the `f64` rounding, and steps of it refine the point
+//! So where the floor may come near what the `f64` correction leaves under the tolerance (a
+//! correction just within it leaves little), the answer's correction is measured again with F
+//! evaluated in double-double arithmetic ([`vouch`]): to first order that correction is the
+//! distance to the root, whatever the `f64` rounding, and steps of it refine the point
 //! (Newton's method with an accurate residual, B factored at each point and of the start's
 //! sign), each measured again. The answer is converged only if the last measure is within the
 //! tolerance. Where is "near" is predicted without that work ([`may_reach`]) from a floor
