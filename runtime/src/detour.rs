@@ -4,8 +4,9 @@
 //! At the last point before the fold, B is nearly singular; its left null vector w (wᵀB ≈ 0,
 //! found by inverse iteration) gives the singular surface's normal in joint space,
 //! n = (∂F/∂x)ᵀ w, since along the surface wᵀ(B dv + (∂F/∂x) dx) = 0 forces n·dx ≈ 0. The
-//! detour steps from there along ±n, to the side the straight segment came from, then heads
-//! for the target. Every segment is pseudo-arc-length continuation, which refuses to pass a
+//! detour leaves the straight segment a little before that point (solved afresh: the last
+//! point before a fold is where continuation's steps are least sure), steps toward an offset
+//! from it along ±n, to the side the straight segment came from, then heads for the target. Every segment is pseudo-arc-length continuation, which refuses to pass a
 //! fold, so whatever is reached is connected to the start by a nonsingular path: it is on the
 //! start's branch. It is the valid solution for a machine that moves along that path (see the
 //! README on path dependence).
@@ -16,6 +17,10 @@ use crate::lu::Lu;
 use crate::math::norm;
 use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
 
+/// How far back from the last point before the fold (a share of the way to it) the detour
+/// leaves the straight segment.
+const BACK_OFF: f64 = 1e-3;
+
 /// A solve that may have gone around a fold.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Detoured<const N: usize, const M: usize> {
@@ -25,8 +30,9 @@ pub struct Detoured<const N: usize, const M: usize> {
     /// then the detour's, `Converged` or, where rounding near the singular surface stopped the
     /// last Newton run short of the tolerance, `ToleranceNotMet`.
     pub via: Option<[f64; M]>,
-    /// Where the detour left the straight segment (the last point before the fold): the path
-    /// taken is start → `left_at` → `via` → target.
+    /// Where the detour left the straight segment (a thousandth of the way back from the last
+    /// point continuation accepted before the fold): the path taken is start → `left_at` →
+    /// `via` → target.
     pub left_at: Option<[f64; M]>,
 }
 
@@ -97,17 +103,24 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let remaining: f64 = norm(&core::array::from_fn::<f64, M, _>(|j| {
         target[j] - x_fold[j]
     }));
-    // The last point continuation accepted before the fold: on the start's branch (det B is
-    // measured here, and must still have the start's sign).
-    let det_here = det_b(sys, &straight.v, &x_fold);
-    if !(det_here * start.det() > 0.0) {
+    // The corner the detour leaves from: not the last point continuation accepted before the
+    // fold, which may lie just past a singularity next to it (PH stepped over one, det B of
+    // the start's sign again, in the stress suite's
+    // `known_cases_detour_from_past_a_singularity`), but a point solved afresh a thousandth of
+    // the way back, short of what the straight segment met. It must be reached, with det B of
+    // the start's sign.
+    let l_back = l * (1.0 - BACK_OFF);
+    let x_back: [f64; M] = core::array::from_fn(|j| x0[j] + l_back * dx[j]);
+    let back = arc_length(sys, start, &x_back, options)?;
+    let det_here = det_b(sys, &back.v, &x_back);
+    if !(back.is_ok() && det_here * start.det() > 0.0) {
         return Ok(Detoured {
             solution: straight,
             via: None,
             left_at: None,
         });
     }
-    let here = Start::accepted(straight.v, x_fold, det_here, *start.floor());
+    let here = Start::accepted(back.v, x_back, det_here, *start.floor());
     let mut near = None;
     for share in [0.1, 0.25, 0.5, 1.0] {
         let via: [f64; M] = core::array::from_fn(|j| x_fold[j] + side * share * remaining * n[j]);
@@ -134,16 +147,20 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
         if second.is_ok() || matches!(second.status, Status::ToleranceNotMet { .. }) {
             let solution = Solution {
                 steps_accepted: straight.steps_accepted
+                    + back.steps_accepted
                     + first.steps_accepted
                     + second.steps_accepted,
                 steps_rejected: straight.steps_rejected
+                    + back.steps_rejected
                     + first.steps_rejected
                     + second.steps_rejected,
                 newton_iterations: straight.newton_iterations
+                    + back.newton_iterations
                     + first.newton_iterations
                     + second.newton_iterations,
-                // Each leg's ratios are to det B at its own start.
-                min_det_ratio: straight
+                // Each leg's ratios are to det B at its own start; the straight segment went
+                // on past the corner, which is not the path taken.
+                min_det_ratio: back
                     .min_det_ratio
                     .min(first.min_det_ratio * (det_here / start.det()).abs())
                     .min(second.min_det_ratio * (det_mid / start.det()).abs()),
@@ -152,7 +169,7 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
             let detoured = Detoured {
                 solution,
                 via: Some(via),
-                left_at: Some(x_fold),
+                left_at: Some(x_back),
             };
             if second.is_ok() {
                 return Ok(detoured);

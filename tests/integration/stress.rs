@@ -270,18 +270,16 @@ fn known_cases_two_folds_in_one_step() {
     );
 }
 
-/// Open (found on 2026-11-29 at ×5 with `LINKAGE_STRESS_SEED=424242`): the straight segment
-/// of a random 6-6 platform meets a singularity at λ ≈ 0.36288565 (the oracle, natural
-/// continuation in steps down to 1e-5 of the segment, stops there with det B of the other
-/// sign just ahead, whatever its step), where PH to nearby targets on the same line ends
-/// `StepTooSmall`; PH to the far target stepped past it, accepted a point at λ = 0.36288629
-/// with det B of the start's sign and reported `Fold` at 0.36288678. `arc_length_detour`
-/// leaves from that point and returns `Converged`: an answer the oracle cannot connect to the
-/// start without meeting the singularity. Ignored until PH's step control is mended; run it
-/// with `cargo test -p linkage-tests --test integration known_cases_open -- --ignored`.
+/// At ×5 with `LINKAGE_STRESS_SEED=424242`: the straight segment of a random 6-6 platform
+/// meets a singularity at λ ≈ 0.36288565 (the oracle, natural continuation in steps down to
+/// 1e-5 of the segment, stops there with det B of the other sign just ahead, whatever its
+/// step), where PH to nearby targets on the same line ends `StepTooSmall`; PH to the far
+/// target stepped past it, accepted a point at λ = 0.36288629 with det B of the start's sign
+/// and reported `Fold` at 0.36288678. `arc_length_detour` left from that point and returned
+/// `Converged`: an answer the oracle could not connect to the start without meeting the
+/// singularity. The detour now leaves from a point solved afresh a thousandth of the way back.
 #[test]
-#[ignore = "open: PH steps past a singularity next to a fold, and the detour leaves from there"]
-fn known_cases_open_detour_from_past_a_singularity() {
+fn known_cases_detour_from_past_a_singularity() {
     forward_kinematics(
         &Run::listed("forward_kinematics_by_continuation", 424242, &[4255]),
         fk::Solvers::Continuation,
