@@ -111,15 +111,17 @@ pub fn arc_length_detour<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // the start's sign.
     let l_back = l * (1.0 - BACK_OFF);
     let x_back: [f64; M] = core::array::from_fn(|j| x0[j] + l_back * dx[j]);
-    let back = arc_length(sys, start, &x_back, options)?;
-    let det_here = det_b(sys, &back.v, &x_back);
-    if !(back.is_ok() && det_here * start.det() > 0.0) {
+    let Some((back, det_here)) = arc_length(sys, start, &x_back, options)
+        .ok()
+        .map(|back| (back, det_b(sys, &back.v, &x_back)))
+        .filter(|(back, det)| back.is_ok() && det * start.det() > 0.0)
+    else {
         return Ok(Detoured {
             solution: straight,
             via: None,
             left_at: None,
         });
-    }
+    };
     let here = Start::accepted(back.v, x_back, det_here, *start.floor());
     let mut near = None;
     for share in [0.1, 0.25, 0.5, 1.0] {
