@@ -6,9 +6,9 @@
 //! n = (∂F/∂x)ᵀ w, since along the surface wᵀ(B dv + (∂F/∂x) dx) = 0 forces n·dx ≈ 0. The
 //! detour leaves the straight segment a little before that point (solved afresh: the last
 //! point before a fold is where continuation's steps are least sure), steps toward an offset
-//! from it along ±n, to the side the straight segment came from, then heads for the target. Every segment is pseudo-arc-length continuation, which refuses to pass a
-//! fold, so whatever is reached is connected to the start by a nonsingular path: it is on the
-//! start's branch. It is the valid solution for a machine that moves along that path (see the
+//! from it along ±n, to the side the straight segment came from, then heads for the target.
+//! Every segment is pseudo-arc-length continuation, which refuses to pass a fold, so whatever
+//! is reached is connected to the start by a nonsingular path: it is on the start's branch. It is the valid solution for a machine that moves along that path (see the
 //! README on path dependence).
 
 use crate::arc_length::{arc_length, from_accepted};
