@@ -124,6 +124,10 @@ enum Command {
         /// Least time to spend timing, in seconds (at least 3 passes over the rows whatever it is).
         #[arg(long, default_value_t = 1.0, value_parser = timing_seconds)]
         seconds: f64,
+        /// Run the solvers as built for the plain target, not their x86-64-v3 twin (the
+        /// answers are the same; the time is that of a CPU without AVX2).
+        #[arg(long)]
+        as_built: bool,
     },
     /// Draw Fig. 7 (relative error per test point and method) as PNG.
     Errors {
@@ -251,15 +255,27 @@ fn main() -> ExitCode {
             dense,
             certify,
             seconds,
-        } => match method {
-            BenchMethod::All if certify => {
-                Err("--certify is not available with --method all".into())
+            as_built,
+        } => {
+            if as_built {
+                linkage::__private::prefer_x86_64_v3(false);
             }
-            BenchMethod::All => bench::run_all(geometry.as_deref(), &input, json, seconds),
-            BenchMethod::Ph => bench::run(Method::Ph, track, &input, json, dense, certify, seconds),
-            BenchMethod::Nh => bench::run(Method::Nh, track, &input, json, dense, certify, seconds),
-            BenchMethod::Nr => bench::run(Method::Nr, track, &input, json, dense, certify, seconds),
-        },
+            match method {
+                BenchMethod::All if certify => {
+                    Err("--certify is not available with --method all".into())
+                }
+                BenchMethod::All => bench::run_all(geometry.as_deref(), &input, json, seconds),
+                BenchMethod::Ph => {
+                    bench::run(Method::Ph, track, &input, json, dense, certify, seconds)
+                }
+                BenchMethod::Nh => {
+                    bench::run(Method::Nh, track, &input, json, dense, certify, seconds)
+                }
+                BenchMethod::Nr => {
+                    bench::run(Method::Nr, track, &input, json, dense, certify, seconds)
+                }
+            }
+        }
         Command::Errors { out, seed } => errors::run(&out, seed),
     };
     match result {

@@ -35,6 +35,28 @@ pub(crate) fn fastest<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
 
+/// Runs `twin` compiled for x86-64-v3 where the CPU has that level, else `plain` as built:
+/// [`fastest`] for work that is best written differently for the two (both should be
+/// `#[inline(always)]` closures), given `args` (what both would borrow).
+#[inline(always)]
+pub(crate) fn fastest_or<A, R>(
+    args: A,
+    twin: impl FnOnce(A) -> R,
+    plain: impl FnOnce(A) -> R,
+) -> R {
+    if v3::TWIN && v3::chosen() {
+        // SAFETY: as in `fastest`.
+        #[allow(unsafe_code, unused_unsafe)]
+        return unsafe {
+            v3::run(
+                #[inline(always)]
+                || twin(args),
+            )
+        };
+    }
+    plain(args)
+}
+
 /// Whether the solvers run their x86-64-v3 twin on this machine: `true` on an x86-64 CPU
 /// with AVX2 and BMI2 in a build with the `std` feature (or one built for that level).
 ///

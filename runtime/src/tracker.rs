@@ -92,6 +92,7 @@ struct Bend<const N: usize, const M: usize> {
 impl<const N: usize, const M: usize> Bend<N, M> {
     /// The bend expected for the input step `dx`: `s² dv` with `s` the projection of `dx`
     /// on the last input step (a step across it bends by the part along it only).
+    #[inline(always)]
     fn toward(&self, dx: &[f64; M]) -> Option<f64> {
         let (mut along, mut last) = (0.0, 0.0);
         for j in 0..M {
@@ -329,16 +330,35 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// B is factored at the returned point in `self.factor`, which is left unspecified when
     /// the fast path fails.
     fn fast(&mut self, x: &[f64; M], v: &mut [f64; N], iterations: &mut u32) -> Option<f64> {
-        crate::dispatch::fastest(
+        crate::dispatch::fastest_or(
+            (self, v, iterations),
             #[inline(always)]
-            || self.fast_here(x, v, iterations),
+            |(t, v, i)| {
+                t.fast_here(
+                    x,
+                    v,
+                    i,
+                    #[inline(always)]
+                    |s: &S, f: &S::Factor, b: &mut [f64; N]| s.solve(f, b),
+                )
+            },
+            // As built, the three solves inlined into one function spill more than two calls
+            // cost (`count track` as built: 3 072 instructions a sample inlined, BENCHMARKS.md).
+            #[inline(always)]
+            |(t, v, i)| t.fast_here(x, v, i, solve_out_of_line::<S, N, M>),
         )
     }
 
     /// [`Self::fast`]'s work, inlined into each of [`fastest`](crate::dispatch::fastest)'s
-    /// twins.
+    /// twins; `solve` is the predictor's and the chords' solve.
     #[inline(always)]
-    fn fast_here(&mut self, x: &[f64; M], v: &mut [f64; N], iterations: &mut u32) -> Option<f64> {
+    fn fast_here(
+        &mut self,
+        x: &[f64; M],
+        v: &mut [f64; N],
+        iterations: &mut u32,
+        solve: impl Fn(&S, &S::Factor, &mut [f64; N]),
+    ) -> Option<f64> {
         let tol = self.options.tolerance;
         let fac = match &mut self.factor {
             Some(f) => f,
@@ -359,14 +379,16 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         };
         self.sys
             .input_derivative_turned(&self.v, &self.x, t_last, &dx, &mut dv);
-        self.sys.solve(fac, &mut dv);
+        solve(&self.sys, fac, &mut dv);
         let step = size(&dv);
         if !step.is_finite() {
             return None;
         }
-        // The linear prediction, kept to measure this step's bend once it is accepted.
-        let linear: [f64; N] = core::array::from_fn(|i| v[i] - dv[i]);
-        *v = linear;
+        // The linear prediction (`self.v - dv`, which measures this step's bend once it is
+        // accepted: `v` starts as `self.v`).
+        for i in 0..N {
+            v[i] -= dv[i];
+        }
         // The bend the last step had, scaled to this one, where it is a small part of it.
         let mut bend = 0.0;
         if let Some(last) = &self.bend
@@ -395,7 +417,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             if chord {
                 let mut d = [0.0; N];
                 self.sys.residual_turned(v, x, t, &mut d);
-                self.sys.solve(fac, &mut d);
+                solve(&self.sys, fac, &mut d);
                 let size = size(&d);
                 let admitted = contraction.admits(size);
                 if !size.is_finite() || !(admitted || size <= tol) {
@@ -427,10 +449,11 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                         crate::floor::Vouched::Refined(w, _) => *v = w,
                         crate::floor::Vouched::Short(..) => return None,
                     }
-                    self.bend = Some(Bend {
-                        dv: core::array::from_fn(|i| v[i] - linear[i]),
-                        dx,
-                    });
+                    let mut bent = [0.0; N];
+                    for i in 0..N {
+                        bent[i] = v[i] - (self.v[i] - dv[i]);
+                    }
+                    self.bend = Some(Bend { dv: bent, dx });
                     if S::TURNS {
                         self.turns = (turned, *x);
                     }
@@ -466,6 +489,16 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             proof: None,
         }
     }
+}
+
+/// The generated solve, called rather than inlined.
+#[inline(never)]
+fn solve_out_of_line<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    f: &S::Factor,
+    b: &mut [f64; N],
+) {
+    sys.solve(f, b);
 }
 
 /// Whether a Newton correction that did not contract is rounding, not a corrector sliding
