@@ -1,8 +1,9 @@
 //! The hot loops compiled twice on x86-64: once for the target the crate is built for, once
 //! for the x86-64-v3 level (AVX2 and BMI2, as on every x86-64 CPU since 2013–2015), chosen at
 //! run time by the CPU ([`fastest`]). The twins: Newton's method (`newton.rs`), the chord
-//! correction's residual and solve (`correction.rs`), the tracker's fast path (`tracker.rs`)
-//! and the all-modes sparse LU's factorisation and solve (`modes/sparse_lu.rs`).
+//! correction's residual and solve (`correction.rs`), the tracker's fast path (`tracker.rs`;
+//! [`fastest_or`], for its plain build calls two solves that the twin inlines) and the
+//! all-modes sparse LU's factorisation and solve (`modes/sparse_lu.rs`).
 //!
 //! Why: the default x86-64 target has SSE2's two-operand instructions only, and an operation
 //! that must keep its source costs a register copy first; the generated factorisation keeps
