@@ -36,16 +36,21 @@ pub(crate) fn fastest<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
 
-/// Runs `twin` compiled for x86-64-v3 where the CPU has that level, else `plain` as built:
-/// [`fastest`] for work that is best written differently for the two (both should be
-/// `#[inline(always)]` closures), given `args` (what both would borrow).
+/// Runs `twin` compiled for x86-64-v3 where the CPU has that level, and `plain` as built where
+/// it has not: [`fastest`] for work best written differently for the two (both should be
+/// `#[inline(always)]` closures), given `args` (what both would borrow). Where there is no
+/// twin (a `no_std` build, another architecture, a build for AVX2) `twin` runs as built: the
+/// plain x86-64 level is the one `plain` was measured on.
 #[inline(always)]
 pub(crate) fn fastest_or<A, R>(
     args: A,
     twin: impl FnOnce(A) -> R,
     plain: impl FnOnce(A) -> R,
 ) -> R {
-    if v3::TWIN && v3::chosen() {
+    if !v3::TWIN {
+        return twin(args);
+    }
+    if v3::chosen() {
         // SAFETY: as in `fastest`.
         #[allow(unsafe_code, unused_unsafe)]
         return unsafe {

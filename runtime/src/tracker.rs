@@ -342,8 +342,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
                     |s: &S, f: &S::Factor, b: &mut [f64; N]| s.solve(f, b),
                 )
             },
-            // As built, the three solves inlined into one function spill more than two calls
-            // cost (`count track` as built: 3 072 instructions a sample inlined, BENCHMARKS.md).
+            // Built for the plain x86-64 level, the three solves inlined into one function
+            // spill more than two calls cost (`count track` as built: 3 072 instructions a
+            // sample inlined, 2 952 so; BENCHMARKS.md).
             #[inline(always)]
             |(t, v, i)| t.fast_here(x, v, i, solve_out_of_line::<S, N, M>),
         )
