@@ -350,8 +350,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         )
     }
 
-    /// [`Self::fast`]'s work, inlined into each of [`fastest`](crate::dispatch::fastest)'s
-    /// twins; `solve` is the predictor's and the chords' solve.
+    /// [`Self::fast`]'s work, inlined into each of
+    /// [`fastest_or`](crate::dispatch::fastest_or)'s closures; `solve` is the predictor's and
+    /// the chords' solve.
     #[inline(always)]
     fn fast_here(
         &mut self,
