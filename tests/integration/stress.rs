@@ -286,6 +286,21 @@ fn known_cases_detour_from_past_a_singularity() {
     );
 }
 
+/// At ×3 with `LINKAGE_STRESS_SEED=777` (`Linear::Dense`): on a path whose first-order travel
+/// is 3.2e6 (the start's B nearly singular across the legs' step), so that its points are
+/// computed to 3.15, a step ended 4.7e-4 short of λ = 1; the last step's corrector measured the
+/// accepted point's own error (3.6) against that step, refused it, and PH ended `StepTooSmall`
+/// at λ = 1 − 1.5e-10 on a segment with |det B|/|det0| ≥ 1 all along
+/// (`ph_refused_reachable_target`). Cured by taking a last step shorter than that accuracy as
+/// the final Newton run, as a path that short already was.
+#[test]
+fn known_cases_last_step_within_the_paths_accuracy() {
+    forward_kinematics(
+        &Run::listed("forward_kinematics_by_continuation", 777, &[4311]),
+        fk::Solvers::Continuation,
+    );
+}
+
 /// NH solved its last step at x0 + (x* − x0), an ulp from the target, and near a singularity
 /// the correction measured at the target was then 2–4× the tolerance (×10). Cured by solving
 /// the last step at the target itself.

@@ -198,6 +198,16 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     while account.accepted + account.rejected < options.max_steps {
         let step = control.next(length, &p, &t, previous.as_ref());
+        // A last step shorter than the accuracy the path's points are computed to (the step
+        // before ended within it of λ = 1) has nothing for continuation to resolve, as a path
+        // that short has not: the final Newton run is the step. Its corrector would measure
+        // the accepted point's own error against a step far shorter, and refuse it (seen: a
+        // last step of 4.7e-4 on a path whose points are computed to 3.2, refused at λ = 1 −
+        // 1.5e-10 with StepTooSmall).
+        if step.end && !(step.length > path.tol) {
+            account.lambda = 1.0;
+            return Ok(polish(sys, start, p.v, target, options, account));
+        }
         let corrected = path.correct(
             &step.predicted,
             &t,
