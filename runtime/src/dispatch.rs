@@ -47,20 +47,13 @@ pub(crate) fn fastest_or<A, R>(
     twin: impl FnOnce(A) -> R,
     plain: impl FnOnce(A) -> R,
 ) -> R {
-    if !v3::TWIN {
-        return twin(args);
+    if v3::TWIN && !v3::chosen() {
+        return plain(args);
     }
-    if v3::chosen() {
-        // SAFETY: as in `fastest`.
-        #[allow(unsafe_code, unused_unsafe)]
-        return unsafe {
-            v3::run(
-                #[inline(always)]
-                || twin(args),
-            )
-        };
-    }
-    plain(args)
+    fastest(
+        #[inline(always)]
+        || twin(args),
+    )
 }
 
 /// Whether the solvers run their x86-64-v3 twin on this machine: `true` on an x86-64 CPU
