@@ -23,6 +23,7 @@ mod partly_driven_cylinders;
 mod pcs;
 mod planar_rpr;
 mod planar_rrr;
+mod platform_centres;
 mod prs;
 mod published;
 mod rrs;

@@ -139,9 +139,12 @@ pub fn model(
         for &q in &l.members {
             if repr.get(q).is_none() {
                 let at = topo.home(q);
+                // A platform pivot's own name is its unknowns'.
+                let on_platform = platform.iter().any(|&(p, _)| PointId::of(p) == q);
+                let suffix = if on_platform { "_base" } else { "" };
                 let e = [0, 1, 2].map(|index| {
                     b.constant(
-                        format!("{}_{}", ["x", "y", "z"][index], topo.name(q)),
+                        format!("{}_{}{suffix}", ["x", "y", "z"][index], topo.name(q)),
                         crate::model::Recipe::Coordinate { point: at, index },
                     )
                 });
@@ -149,12 +152,19 @@ pub fn model(
             }
         }
     }
+    // A platform pivot that the base holds too (the centre of an `S` or `U`, a point of an `R`'s
+    // axis, joining the base to the platform) is solved for like every platform pivot, and
+    // stays where the base holds it.
+    let mut coincide: Vec<Vec3> = Vec::new();
     for (p, e) in platform {
-        repr.set(PointId::of(*p), Repr::Unknown(e.clone()));
+        let q = PointId::of(*p);
+        if let Some(Repr::Known(fixed)) = repr.get(q) {
+            coincide.push(crate::expr::vsub(e, fixed));
+        }
+        repr.set(q, Repr::Unknown(e.clone()));
     }
     let mut ok = true;
     // Links placed by an active pair from the base: their points in closed form (Table I).
-    let mut coincide: Vec<Vec3> = Vec::new();
     for &(pair, li) in explicit_pairs {
         let inputs: Vec<usize> = pair.inputs.iter().map(|i| i.index()).collect();
         for &input in &inputs {
@@ -222,7 +232,7 @@ pub fn model(
             }
         }
     }
-    // A platform pivot that an explicit link also carries: both positions coincide.
+    // A platform pivot that the base or an explicit link also carries: both positions coincide.
     for d in coincide {
         b.equations.extend(d.into_iter().filter(|e| e.degree() > 0));
     }
