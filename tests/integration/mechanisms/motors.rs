@@ -4,7 +4,7 @@
 //! rotations the conventions promise.
 
 use super::mobility_line;
-use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Status};
+use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Start, Status};
 use linkage_tests::{check_jacobians, Rng};
 
 linkage::mechanism! {
@@ -65,15 +65,19 @@ fn spherical_motor_turns_by_yaw_pitch_roll() {
 fn gimbal_turns_about_its_two_axes() {
     let gimbal = Gimbal::new();
     assert!(mobility_line(Gimbal::LISTING).contains("M = 9 + 2 − 9 = 2"));
-    let start = gimbal.home_start().unwrap();
-    check_jacobians(&gimbal, start.v(), start.x());
-    let mut rng = Rng::new(92);
+    turns_as_a_gimbal(&gimbal, &gimbal.home_start().unwrap(), 92);
+}
+
+/// A gimbal centred at the origin, its first axis +z on the base and its second +y at home:
+/// the inputs (a, b) turn the platform by Rz(a)·Ry(b), a yaw of a, then a pitch of b.
+pub(super) fn turns_as_a_gimbal<S: Mechanism<9, 2>>(gimbal: &S, start: &Start<9, 2>, seed: u64) {
+    check_jacobians(gimbal, start.v(), start.x());
+    let mut rng = Rng::new(seed);
     for _ in 0..50 {
         let x = [0, 1].map(|_| rng.uniform(-1.0, 1.0));
-        let sol = arc_length(&gimbal, &start, &x, &Options::TIGHT).unwrap();
+        let sol = arc_length(gimbal, start, &x, &Options::TIGHT).unwrap();
         assert_eq!(sol.status, Status::Converged);
-        let got = pose_from_unknowns(&gimbal, &sol.v).unwrap();
-        // Rz(a)·Ry(b): a yaw of a, then a pitch of b.
+        let got = pose_from_unknowns(gimbal, &sol.v).unwrap();
         let want = Pose::from_euler(x[0], x[1], 0.0, [0.0; 3]);
         for i in 0..3 {
             assert!(
