@@ -447,9 +447,7 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
     // 1e-6 mm, or what rounding alone allows the model's answer where its ∂F/∂v is
     // ill-conditioned, up to 1e-3 mm (a wrong model is off by the step's own size,
     // millimetres; 2e-4 is the most seen, in 220 steps).
-    let tolerance = model_side::rounding_reach(&model, &home, &x, &v)
-        .max(1e-6)
-        .min(1e-3);
+    let tolerance = model_side::rounding_reach(&model, &home, &x, &v).clamp(1e-6, 1e-3);
     for (p, pt) in model.points.iter().enumerate() {
         let got = [0, 1, 2].map(|a| v[model.unknown(p, a)]);
         let want = oracle
