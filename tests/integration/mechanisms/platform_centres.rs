@@ -7,6 +7,7 @@
 
 use super::{check_inverse, mobility_line};
 use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Status};
+use linkage_tests::vec3::matmul;
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
@@ -42,15 +43,6 @@ linkage::mechanism! {
     chain leg3 = base - S(B3) - P(active L3) - S(P3) - platform;
 }
 
-/// The rotation of `p` in the world frame.
-fn rotation(p: &Pose) -> [[f64; 3]; 3] {
-    p.rotation
-}
-
-fn product(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
 #[test]
 fn a_motor_centred_on_a_platform_pivot_turns_about_it() {
     let motor = CentredMotor::new();
@@ -66,7 +58,7 @@ fn a_motor_centred_on_a_platform_pivot_turns_about_it() {
         let got = pose_from_unknowns(&motor, &sol.v).unwrap();
         // The inputs turn the platform from its home orientation, about C = (10, 20, 30).
         let turn = Pose::from_euler(x[0], x[1], x[2], [0.0; 3]);
-        let want = product(&rotation(&turn), &rotation(&home));
+        let want = matmul(&turn.rotation, &home.rotation);
         for i in 0..3 {
             assert!(max_diff(&got.rotation[i], &want[i]) < 1e-12, "{x:?}");
         }

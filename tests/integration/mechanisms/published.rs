@@ -655,10 +655,6 @@ fn exp3(w: [f64; 3]) -> M3 {
     })
 }
 
-fn matmul3(a: &M3, b: &M3) -> M3 {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
 /// Leg i's axes at home: base u, proximal v, platform w.
 fn eye_axes(i: usize) -> ([f64; 3], [f64; 3], [f64; 3]) {
     (E[i], E[(i + 1) % 3], E[(i + 2) % 3])
@@ -702,7 +698,7 @@ fn eye_reference(q: [f64; 3]) -> M3 {
             let inv_rows = [cross3(j[1], j[2]), cross3(j[2], j[0]), cross3(j[0], j[1])];
             let delta: [f64; 3] =
                 std::array::from_fn(|c| -(0..3).map(|k| inv_rows[k][c] * f[k]).sum::<f64>() / d);
-            r = matmul3(&exp3(delta), &r);
+            r = linkage_tests::vec3::matmul(&exp3(delta), &r);
         }
         assert!(done, "the reference did not converge at {qk:?}");
     }
