@@ -5,7 +5,9 @@
 //! and general chains of R, P, C, H, S, U with the active pair anywhere, some starting at a
 //! link of an earlier chain), 3-DOF platforms on three chains of five (R-P-S legs, square or
 //! oblique to their hinges, and general chains), chains with two actives or an active S or U,
-//! and serial arms of active pairs only. For each one the model must answer with a model or
+//! and serial arms of active pairs only; and (`random_mechanisms/overconstrained.rs`) planar
+//! and spherical mechanisms of R and P pairs, whose spatial equations are dependent: four-,
+//! five- and six-bars, platforms on two or three chains. For each one the model must answer with a model or
 //! an error, never a panic (and so must three token-level mutants of its text); where it gives
 //! a model, and the declared home passes the macro's check, the oracle
 //! (`random_mechanisms/screws.rs`: twists from the README's pair table, loop closure by least
@@ -14,9 +16,10 @@
 //! declaration puts them, and every input read where the README puts its zero.
 //!
 //! `cargo test -p linkage-codegen --test random_mechanisms -- --nocapture` prints the counts
-//! (of each half of the sweep: two tests, run side by side); `LINKAGE_STRESS=N` runs 250·N
-//! mechanisms instead of 8 (about half a second a mechanism in the test profile, which builds
-//! the generator at opt-level 1; `.ci/run` runs 250). A failure prints its seed and the
+//! (of each half of the spatial sweep and of the overconstrained one: three tests, run side by
+//! side); `LINKAGE_STRESS=N` runs 250·N spatial mechanisms instead of 8 (about half a second a
+//! mechanism in the test profile, which builds the generator at opt-level 1; `.ci/run` runs
+//! 250) and 100·N overconstrained ones instead of 4 (a twentieth of that each). A failure prints its seed and the
 //! declaration; `LINKAGE_SEED=S` runs that one alone and shows a refusal's declaration.
 //! `LINKAGE_SWEEP_FROM=K` starts the sweep at its K-th seed instead of the first: seeds no
 //! earlier run has tried, for a longer hunt.
@@ -28,6 +31,8 @@ mod finite;
 mod generator;
 #[path = "random_mechanisms/model_side.rs"]
 mod model_side;
+#[path = "random_mechanisms/overconstrained.rs"]
+mod overconstrained;
 #[path = "random_mechanisms/path.rs"]
 mod path;
 #[path = "random_mechanisms/screws.rs"]
@@ -38,26 +43,73 @@ use generator::{norm, sub, Mech, PLATFORM};
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-fn sweep() -> Vec<u64> {
-    if let Some(seed) = std::env::var("LINKAGE_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-    {
-        return vec![seed];
+/// The two sweeps: spatial mechanisms (`generator.rs`) and overconstrained ones, planar and
+/// spherical (`overconstrained.rs`), each with its own range of seeds.
+#[derive(Clone, Copy, PartialEq)]
+enum Sweep {
+    Spatial,
+    Overconstrained,
+}
+
+impl Sweep {
+    /// The first seed; a seed's range says which generator made it.
+    fn first_seed(self) -> u64 {
+        match self {
+            Sweep::Spatial => 0x5C4E_0000,
+            Sweep::Overconstrained => 0x0C0C_0000,
+        }
     }
-    let n = match std::env::var("LINKAGE_STRESS")
-        .ok()
-        .and_then(|s| s.parse::<u64>().ok())
-    {
-        Some(k) => 250 * k.max(1),
-        // A sample in the default run: the clean test suite stays under three minutes.
-        None => 8,
-    };
-    let from = std::env::var("LINKAGE_SWEEP_FROM")
-        .ok()
-        .and_then(|s| s.parse::<u64>().ok())
-        .unwrap_or(0);
-    (from..from + n).map(|i| 0x5C4E_0000 + i).collect()
+
+    fn of(seed: u64) -> Sweep {
+        if seed >> 24 == Sweep::Overconstrained.first_seed() >> 24 {
+            Sweep::Overconstrained
+        } else {
+            Sweep::Spatial
+        }
+    }
+
+    fn generate(self, seed: u64) -> Mech {
+        match self {
+            Sweep::Spatial => generator::generate(seed),
+            Sweep::Overconstrained => overconstrained::generate(seed),
+        }
+    }
+
+    /// The seeds to run: `LINKAGE_SEED` alone if it is of this sweep; else a sample by default
+    /// and 250·N (spatial) or 100·N (overconstrained: fewer shapes) with `LINKAGE_STRESS=N`,
+    /// from the `LINKAGE_SWEEP_FROM`-th seed.
+    fn seeds(self) -> Vec<u64> {
+        if let Some(seed) = std::env::var("LINKAGE_SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+        {
+            return if Sweep::of(seed) == self {
+                vec![seed]
+            } else {
+                Vec::new()
+            };
+        }
+        let per_stress = match self {
+            Sweep::Spatial => 250,
+            Sweep::Overconstrained => 100,
+        };
+        let n = match std::env::var("LINKAGE_STRESS")
+            .ok()
+            .and_then(|s| s.parse::<u64>().ok())
+        {
+            Some(k) => per_stress * k.max(1),
+            // A sample in the default run: the clean test suite stays under three minutes.
+            None => match self {
+                Sweep::Spatial => 8,
+                Sweep::Overconstrained => 4,
+            },
+        };
+        let from = std::env::var("LINKAGE_SWEEP_FROM")
+            .ok()
+            .and_then(|s| s.parse::<u64>().ok())
+            .unwrap_or(0);
+        (from..from + n).map(|i| self.first_seed() + i).collect()
+    }
 }
 
 /// What happened to each generated mechanism.
@@ -117,29 +169,35 @@ fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
         .unwrap_or_default()
 }
 
-// The sweep in two halves (alternate seeds), which the harness runs side by side.
+// The spatial sweep in two halves (alternate seeds), which the harness runs side by side
+// with each other and the overconstrained sweep.
 #[test]
 fn random_mechanisms_agree_with_screw_theory_at_home() {
-    sweep_half(0);
+    sweep_part(Sweep::Spatial, 0, 2);
 }
 
 #[test]
 fn random_mechanisms_agree_with_screw_theory_at_home_second_half() {
-    sweep_half(1);
+    sweep_part(Sweep::Spatial, 1, 2);
 }
 
-/// The seeds of [`sweep`] at even (`half` 0) or odd (1) positions, checked and reported.
-fn sweep_half(half: usize) {
+#[test]
+fn planar_and_spherical_mechanisms_agree_with_screw_theory_at_home() {
+    sweep_part(Sweep::Overconstrained, 0, 1);
+}
+
+/// The seeds of `sweep` at positions `part` modulo `parts`, checked and reported.
+fn sweep_part(sweep: Sweep, part: usize, parts: usize) {
     let mut counts = Counts::default();
-    let seeds = sweep();
-    // A single seed (`LINKAGE_SEED`) runs in the first half alone.
+    let seeds = sweep.seeds();
+    // A single seed (`LINKAGE_SEED`) runs in the first part alone.
     let mine = seeds
         .iter()
         .enumerate()
-        .filter(|(i, _)| i % 2 == half)
+        .filter(|(i, _)| i % parts == part)
         .map(|(_, s)| *s);
     for seed in mine {
-        let mech = generator::generate(seed);
+        let mech = sweep.generate(seed);
         let text = generator::render(&mech);
         counts.generated += 1;
         for c in &mech.chains {
@@ -159,8 +217,13 @@ fn sweep_half(half: usize) {
         return;
     }
     eprintln!(
-        "random mechanisms (half {half}): {} generated, {accepted} accepted, {refused} refused, {} checked against the oracle",
-        counts.generated, counts.checked
+        "random {} mechanisms (part {part} of {parts}): {} generated, {accepted} accepted, {refused} refused, {} checked against the oracle",
+        match sweep {
+            Sweep::Spatial => "spatial",
+            Sweep::Overconstrained => "planar and spherical",
+        },
+        counts.generated,
+        counts.checked
     );
     eprintln!(
         "accepted by family: {:?}; near a singularity, not compared: {}",
@@ -749,7 +812,7 @@ fn a_platform_placed_by_three_slides_keeps_well_conditioned_equations() {
 /// A seed's mechanism as the sweep generates it, checked as the sweep checks it, with a line
 /// of its declaration to make sure the generator still makes that one.
 fn check_seed(seed: u64, family: &str, line: &str) -> Counts {
-    let mech = generator::generate(seed);
+    let mech = Sweep::of(seed).generate(seed);
     let text = generator::render(&mech);
     assert_eq!(mech.family, family);
     assert!(text.contains(line), "the generator changed:\n{text}");
@@ -797,4 +860,19 @@ fn a_fold_within_the_step_stops_both_sides() {
         "chain c4 = base - P(active d4, axis = b30 -> b31",
     );
     assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 0, 1));
+}
+
+/// A planar six-bar whose two slides on the base have their axes declared on the sliders, on a
+/// base that declares no pivot: the model asked for a base point off each axis ("the rail
+/// `base` has no point off the axis to carry it: declare one"), although the base, fixed, has
+/// every point. It now adds its own (`model/general/prismatic.rs`). Found by the planar and
+/// spherical sweep.
+#[test]
+fn slides_on_a_base_that_declares_no_pivot_are_modelled() {
+    let counts = check_seed(
+        202113205,
+        "planar",
+        "chain c1 = base - P(passive, axis = k4 -> k5) - l1_1",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
 }

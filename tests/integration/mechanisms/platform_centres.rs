@@ -3,7 +3,7 @@
 //! declaration puts it; the model used to leave it free (no equation tied the platform's
 //! copy to the base's), and refused these mechanisms as having three freedoms too many. Found
 //! by the random-mechanism sweep (seed 1548618553: a platform on one active `S` at its own
-//! pivot).
+//! pivot). And a slide whose axis is the platform's own, on a base that declares no pivot.
 
 use super::{check_inverse, mobility_line};
 use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Status};
@@ -140,4 +140,40 @@ fn a_gimbal_centred_on_a_platform_pivot_turns_about_its_two_axes() {
     let x = [0.4, -0.3];
     let sol = arc_length(&gimbal, &start, &x, &Options::TIGHT).unwrap();
     check_inverse(&gimbal, &sol.v, &x, &x.map(|a| a + 0.05), 1e-9);
+}
+
+linkage::mechanism! {
+    /// A carriage sliding on a base that declares no pivot: the slide's axis A -> B is the
+    /// platform's own, so the base holds no point off it. The model used to ask for one
+    /// ("the rail `base` has no point off the axis to carry it: declare one"); the base is
+    /// fixed, so it now adds its own. Found by the planar and spherical sweep (seed 202113205:
+    /// a planar six-bar whose slides on the base had their axes on the sliders).
+    pub struct BareBaseCarriage;
+    base { }
+    platform(home = [0.5, 0.2, -0.1, 20.0, -10.0, 40.0]) {
+        A = [0.0, 0.0, 0.0], B = [0.0, 30.0, 0.0], P = [25.0, 10.0, 5.0],
+    }
+    chain slide = base - P(active s, axis = A -> B) - platform;
+}
+
+#[test]
+fn a_carriage_on_a_bare_base_slides_along_its_own_axis_without_turning() {
+    let carriage = BareBaseCarriage::new();
+    let start = carriage.home_start().unwrap();
+    assert_eq!(start.x(), &[0.0]);
+    check_jacobians(&carriage, start.v(), start.x());
+    let home = Pose::from_euler(0.5, 0.2, -0.1, [20.0, -10.0, 40.0]);
+    // The axis A -> B in the base frame: the platform's y turned by its home orientation.
+    let axis = [0, 1, 2].map(|i| home.rotation[i][1]);
+    for s in [-40.0, -3.5, 0.0, 0.25, 17.0, 120.0] {
+        let sol = arc_length(&carriage, &start, &[s], &Options::TIGHT).unwrap();
+        assert_eq!(sol.status, Status::Converged, "{s}");
+        let got = pose_from_unknowns(&carriage, &sol.v).unwrap();
+        for i in 0..3 {
+            assert!(max_diff(&got.rotation[i], &home.rotation[i]) < 1e-12, "{s}");
+        }
+        let want = [0, 1, 2].map(|i| home.translation[i] + s * axis[i]);
+        assert!(max_diff(&got.translation, &want) < 1e-10, "{s}: {got:?}");
+        check_inverse(&carriage, &sol.v, &[s], &[s + 1.0], 1e-9);
+    }
 }

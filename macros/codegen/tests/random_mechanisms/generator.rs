@@ -104,8 +104,22 @@ pub struct Chain {
     pub shape: String,
 }
 
+/// The motions the mechanism's pairs allow, as its axes are placed.
+#[derive(Clone, Copy, Debug)]
+pub enum Group {
+    /// Axes anywhere: a spatial mechanism.
+    Spatial,
+    /// Every R axis along `normal`, every slide square to it: a planar mechanism, three
+    /// freedoms to a loop where a spatial one has six, so its spatial equations are
+    /// dependent (`overconstrained.rs`).
+    Planar { normal: V3 },
+    /// Every R axis through `centre`: a spherical mechanism, likewise.
+    Spherical { centre: V3 },
+}
+
 pub struct Mech {
     pub family: &'static str,
+    pub group: Group,
     pub links: Vec<Link>,
     pub pivots: Vec<Pivot>,
     pub chains: Vec<Chain>,
@@ -119,15 +133,15 @@ pub fn uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
     lo + (hi - lo) * (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
-fn pick<T: Copy>(rng: &mut Rng, items: &[T]) -> T {
+pub fn pick<T: Copy>(rng: &mut Rng, items: &[T]) -> T {
     items[(rng.next_u64() % items.len() as u64) as usize]
 }
 
-fn chance(rng: &mut Rng, p: f64) -> bool {
+pub fn chance(rng: &mut Rng, p: f64) -> bool {
     uniform(rng, 0.0, 1.0) < p
 }
 
-fn random_unit(rng: &mut Rng) -> V3 {
+pub fn random_unit(rng: &mut Rng) -> V3 {
     loop {
         let v = [
             uniform(rng, -1.0, 1.0),
@@ -141,7 +155,7 @@ fn random_unit(rng: &mut Rng) -> V3 {
     }
 }
 
-fn shuffle<T>(rng: &mut Rng, items: &mut [T]) {
+pub fn shuffle<T>(rng: &mut Rng, items: &mut [T]) {
     for i in (1..items.len()).rev() {
         let j = (rng.next_u64() % (i as u64 + 1)) as usize;
         items.swap(i, j);
@@ -149,7 +163,7 @@ fn shuffle<T>(rng: &mut Rng, items: &mut [T]) {
 }
 
 impl Mech {
-    fn new(family: &'static str, rng: &mut Rng) -> Mech {
+    pub fn new(family: &'static str, rng: &mut Rng) -> Mech {
         let home = [
             uniform(rng, -0.4, 0.4),
             uniform(rng, -0.3, 0.3),
@@ -160,6 +174,7 @@ impl Mech {
         ];
         Mech {
             family,
+            group: Group::Spatial,
             links: vec![
                 Link {
                     name: "base".into(),
@@ -177,7 +192,7 @@ impl Mech {
         }
     }
 
-    fn pivot(&mut self, link: usize, at: V3) -> usize {
+    pub fn pivot(&mut self, link: usize, at: V3) -> usize {
         let prefix = match link {
             BASE => "b",
             PLATFORM => "g",
@@ -226,16 +241,44 @@ impl Mech {
         [0, 1, 2].map(|i| dot(r[i], local) + [tx, ty, tz][i])
     }
 
-    fn random_base_point(&self, rng: &mut Rng) -> V3 {
+    pub fn random_base_point(&self, rng: &mut Rng) -> V3 {
         let a = uniform(rng, 0.0, std::f64::consts::TAU);
         let r = uniform(rng, 110.0, 180.0);
         [r * a.cos(), r * a.sin(), uniform(rng, -10.0, 10.0)]
     }
 
-    fn random_platform_point(&self, rng: &mut Rng) -> V3 {
+    pub fn random_platform_point(&self, rng: &mut Rng) -> V3 {
         let a = uniform(rng, 0.0, std::f64::consts::TAU);
         let r = uniform(rng, 40.0, 80.0);
         self.platform_world([r * a.cos(), r * a.sin(), uniform(rng, -10.0, 10.0)])
+    }
+}
+
+/// The unit direction of a pair's axis through `at`: random for a spatial mechanism; a
+/// planar one's R along the normal (either way), its slides across it; a spherical one's
+/// axes through the centre.
+fn axis_direction(group: Group, kind: Kind, at: V3, rng: &mut Rng) -> V3 {
+    let sign = |rng: &mut Rng| if chance(rng, 0.5) { 1.0 } else { -1.0 };
+    match group {
+        Group::Spatial => random_unit(rng),
+        Group::Planar { normal } if kind == Kind::P => loop {
+            let r = random_unit(rng);
+            let across = sub(r, scale(dot(r, normal), normal));
+            if norm(across) > 0.3 {
+                break unit(across);
+            }
+        },
+        Group::Planar { normal } => scale(sign(rng), normal),
+        Group::Spherical { centre } => scale(sign(rng), unit_or_up(sub(at, centre))),
+    }
+}
+
+/// `a` scaled to length 1, or +z if it has none to speak of.
+fn unit_or_up(a: V3) -> V3 {
+    if norm(a) > 1e-9 {
+        unit(a)
+    } else {
+        [0.0, 0.0, 1.0]
     }
 }
 
@@ -280,7 +323,7 @@ fn general_pairs(rng: &mut Rng, freedoms: usize, actives: &[usize]) -> Vec<(Kind
 
 /// A general chain: every link between its pairs declared, each pair's pivots on one of the
 /// links it joins, joint locations scattered about the line from `start` to the platform.
-fn general_chain(
+pub fn general_chain(
     m: &mut Mech,
     rng: &mut Rng,
     from: usize,
@@ -307,6 +350,14 @@ fn general_chain(
             let t = k as f64 / (n - 1) as f64;
             let line = add(start, scale(t, sub(end, start)));
             add(line, scale(0.3 * span, random_unit(rng)))
+        };
+        // A spherical mechanism's axes run through its centre: a joint kept off it, so that
+        // the axis has a direction.
+        let at = match m.group {
+            Group::Spherical { centre } if norm(sub(at, centre)) < 40.0 => {
+                add(centre, scale(40.0, unit_or_up(sub(at, centre))))
+            }
+            _ => at,
         };
         // Pivots at the chain's ends mostly on the base (or the link it starts at) and the
         // platform, sometimes on the link beyond; in between on either link.
@@ -358,7 +409,7 @@ fn general_chain(
                 joint.axis = Some((first, second));
             }
             Kind::R | Kind::P | Kind::C | Kind::H => {
-                let u = random_unit(rng);
+                let u = axis_direction(m.group, kind, at, rng);
                 let o = owner(rng);
                 let a = add(at, scale(uniform(rng, -10.0, 10.0), u));
                 let first = m.pivot(o, a);
@@ -510,7 +561,7 @@ fn classic_chain(m: &mut Mech, rng: &mut Rng, five: bool) -> Chain {
 /// must be defined) or the rail of a slide between moving links (the model asks for a point
 /// off the rail's axis, to carry the slider's points off it): at least three off one line,
 /// adding pivots near it where they are not.
-fn locate_links_before_actives(m: &mut Mech, rng: &mut Rng) {
+pub fn locate_links_before_actives(m: &mut Mech, rng: &mut Rng) {
     let mut needed = Vec::new();
     for chain in &m.chains {
         for (k, j) in chain.joints.iter().enumerate() {
@@ -543,7 +594,7 @@ fn locate_links_before_actives(m: &mut Mech, rng: &mut Rng) {
 }
 
 /// Whether some three of the points span a triangle of fair size (sides ≳ 5, not flat).
-fn spans_a_plane(pts: &[V3]) -> bool {
+pub fn spans_a_plane(pts: &[V3]) -> bool {
     pts.iter().enumerate().any(|(i, a)| {
         pts[i + 1..].iter().enumerate().any(|(j, b)| {
             pts[i + j + 2..].iter().any(|c| {
@@ -558,7 +609,7 @@ fn spans_a_plane(pts: &[V3]) -> bool {
 }
 
 /// Whether every two pivots are apart (no coincident points by chance).
-fn pivots_apart(m: &Mech) -> bool {
+pub fn pivots_apart(m: &Mech) -> bool {
     m.pivots.iter().enumerate().all(|(i, a)| {
         m.pivots[i + 1..]
             .iter()

@@ -33,6 +33,9 @@ pub enum Addition {
     Copy { axis: PointId, end: usize },
     /// The rail's own point where a slide's axis origin, declared on the slider, is at home.
     RailOrigin { origin: PointId },
+    /// A point of the base one unit off a slide's axis (its tip `axis`), where the base holds
+    /// none off it.
+    OffAxis { axis: PointId },
 }
 
 pub struct Points {

@@ -94,6 +94,9 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
     let origin = rail_origin.unwrap_or(origin);
     topo.add_member(rail, origin);
     topo.add_member(rail, at);
+    if topo.links[rail].role == LinkRole::Base {
+        base_point_off_axis(b, topo, rail, origin, at);
+    }
     topo.joints[k].added.push(at);
     topo.joints[k].added.extend(rail_origin);
     if cylinder {
@@ -109,6 +112,48 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
         }
     }
     Ok(())
+}
+
+/// A slide on the base whose base holds no point off its axis (`base { }` with the axis
+/// declared on the slider, say): the base is fixed, so rather than ask for one it gets its own
+/// point one unit off the axis, along the base axis most nearly square to it at home, which
+/// carries the slider's points off the axis (see `equations`). A moving rail has no such point
+/// for free: one would be three more unknowns.
+fn base_point_off_axis(
+    b: &mut Builder,
+    topo: &mut Topology,
+    rail: usize,
+    origin: PointId,
+    tip: PointId,
+) {
+    let at = |q: PointId| Vector3::from(b.home(topo.home(q)));
+    let o = at(origin);
+    let axis = at(tip) - o;
+    let members = &topo.links[rail].members;
+    let scale = members
+        .iter()
+        .map(|&q| (at(q) - o).norm())
+        .fold(1.0f64, f64::max);
+    // `equations` counts a point off the axis beyond 1e-9 of the scale; one this near it would
+    // make a poor frame anyway.
+    if members
+        .iter()
+        .any(|&q| (at(q) - o).cross(&axis).norm() > 1e-6 * scale)
+    {
+        return;
+    }
+    let k = (0..3)
+        .min_by(|&i, &j| axis[i].abs().total_cmp(&axis[j].abs()))
+        .unwrap_or(0);
+    let mut by = [0.0; 3];
+    by[k] = 1.0;
+    let home = b.auto_point(Auto::Shift {
+        origin: topo.home(origin),
+        by,
+    });
+    let name = format!("{}_off", topo.name(tip));
+    let off = topo.points.add(Addition::OffAxis { axis: tip }, name, home);
+    topo.add_member(rail, off);
 }
 
 pub fn equations(
