@@ -5,6 +5,7 @@
 //! different declared homes of the same machine.
 
 mod all_modes;
+mod bennett;
 mod branch_hunt;
 mod calibrated_home;
 pub mod delta;
