@@ -5,9 +5,10 @@
 //! and general chains of R, P, C, H, S, U with the active pair anywhere, some starting at a
 //! link of an earlier chain), 3-DOF platforms on three chains of five (R-P-S legs, square or
 //! oblique to their hinges, and general chains), chains with two actives or an active S or U,
-//! and serial arms of active pairs only; and (`random_mechanisms/overconstrained.rs`) planar
-//! and spherical mechanisms of R and P pairs, whose spatial equations are dependent: four-,
-//! five- and six-bars, platforms on two or three chains. For each one the model must answer with a model or
+//! and serial arms of active pairs only; and (`random_mechanisms/overconstrained.rs`)
+//! overconstrained ones, whose spatial equations are dependent: planar and spherical four-,
+//! five- and six-bars and platforms on two or three chains of R and P pairs, and Bennett
+//! linkages. For each one the model must answer with a model or
 //! an error, never a panic (and so must three token-level mutants of its text); where it gives
 //! a model, and the declared home passes the macro's check, the oracle
 //! (`random_mechanisms/screws.rs`: twists from the README's pair table, loop closure by least
@@ -43,8 +44,8 @@ use generator::{norm, sub, Mech, PLATFORM};
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-/// The two sweeps: spatial mechanisms (`generator.rs`) and overconstrained ones, planar and
-/// spherical (`overconstrained.rs`), each with its own range of seeds.
+/// The two sweeps: spatial mechanisms (`generator.rs`) and overconstrained ones, planar,
+/// spherical and Bennett (`overconstrained.rs`), each with its own range of seeds.
 #[derive(Clone, Copy, PartialEq)]
 enum Sweep {
     Spatial,
@@ -182,7 +183,7 @@ fn random_mechanisms_agree_with_screw_theory_at_home_second_half() {
 }
 
 #[test]
-fn planar_and_spherical_mechanisms_agree_with_screw_theory_at_home() {
+fn overconstrained_mechanisms_agree_with_screw_theory_at_home() {
     sweep_part(Sweep::Overconstrained, 0, 1);
 }
 
@@ -220,7 +221,7 @@ fn sweep_part(sweep: Sweep, part: usize, parts: usize) {
         "random {} mechanisms (part {part} of {parts}): {} generated, {accepted} accepted, {refused} refused, {} checked against the oracle",
         match sweep {
             Sweep::Spatial => "spatial",
-            Sweep::Overconstrained => "planar and spherical",
+            Sweep::Overconstrained => "overconstrained",
         },
         counts.generated,
         counts.checked

@@ -206,7 +206,7 @@ impl Mech {
         self.pivots.len() - 1
     }
 
-    fn link(&mut self, name: String, length: Option<f64>) -> usize {
+    pub fn link(&mut self, name: String, length: Option<f64>) -> usize {
         self.links.push(Link { name, length });
         self.links.len() - 1
     }
@@ -217,7 +217,7 @@ impl Mech {
         name
     }
 
-    fn inputs_of(&mut self, kind: Kind) -> Vec<String> {
+    pub fn inputs_of(&mut self, kind: Kind) -> Vec<String> {
         match kind {
             Kind::R | Kind::H => vec![self.input("q")],
             Kind::P => vec![self.input("d")],

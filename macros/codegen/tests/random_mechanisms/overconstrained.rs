@@ -1,16 +1,17 @@
-//! Random planar and spherical mechanisms of R and P pairs: four-bars, five-bars, six-bars
-//! (a dyad from a link of an earlier chain), platforms on two or three chains of three pairs,
-//! and a platform with a dyad besides. As spatial mechanisms they are overconstrained: a loop
-//! of a planar or spherical mechanism has three freedoms where a spatial loop has six, so the
-//! model's spatial equations are dependent at every configuration and its rank test must keep
-//! an independent set that stays one along the motion. The mobility is known by the same count
-//! in three dimensions: a chain of p pairs from a placed link to the platform adds p − 3
-//! freedoms (the first, from the base, p).
+//! Random overconstrained mechanisms: planar and spherical ones of R and P pairs (four-bars,
+//! five-bars, six-bars with a dyad from a link of an earlier chain, platforms on two or three
+//! chains of three pairs, and a platform with a dyad besides), and Bennett linkages. As spatial
+//! mechanisms they are overconstrained: a loop of a planar or spherical mechanism has three
+//! freedoms where a spatial loop has six, a Bennett loop one where Grübler–Kutzbach counts −2,
+//! so the model's spatial equations are dependent at every configuration and its rank test
+//! must keep an independent set that stays one along the motion. The planar and spherical
+//! mobility is known by the same count in three dimensions: a chain of p pairs from a placed
+//! link to the platform adds p − 3 freedoms (the first, from the base, p).
 
 use crate::common::Rng;
 use crate::generator::{
-    add, chance, general_chain, locate_links_before_actives, pick, pivots_apart, random_unit,
-    scale, shuffle, spans_a_plane, uniform, Group, Kind, Mech, BASE, PLATFORM,
+    add, chance, dot, general_chain, locate_links_before_actives, pick, pivots_apart, random_unit,
+    scale, shuffle, spans_a_plane, uniform, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
 };
 
 /// Each shape: its chains' pair counts, and whether a chain starts at a placed link of an
@@ -46,9 +47,15 @@ fn pairs(rng: &mut Rng, active: &[bool], planar: bool) -> Vec<(Kind, bool)> {
     }
 }
 
-/// One random planar or spherical mechanism from `seed`.
+/// One random overconstrained mechanism from `seed`: a Bennett linkage for one seed in five,
+/// else a planar or spherical one.
 pub fn generate(seed: u64) -> Mech {
     let mut rng = Rng::new(seed);
+    // By the seed itself, so that the other seeds keep the mechanisms they had before
+    // Bennett linkages joined the sweep.
+    if seed % 5 == 4 {
+        return bennett(&mut rng);
+    }
     loop {
         let planar = chance(&mut rng, 0.5);
         let family = if planar { "planar" } else { "spherical" };
@@ -110,6 +117,151 @@ pub fn generate(seed: u64) -> Mech {
             m.pivot(PLATFORM, p);
         }
         locate_links_before_actives(&mut m, &mut rng);
+        if pivots_apart(&m) {
+            return m;
+        }
+    }
+}
+
+/// Rz(θ) · Tx(a) · Rx(α), a Denavit–Hartenberg step, as a rotation and a translation.
+fn dh(theta: f64, a: f64, alpha: f64) -> ([V3; 3], V3) {
+    let (st, ct) = theta.sin_cos();
+    let (sa, ca) = alpha.sin_cos();
+    (
+        [
+            [ct, -st * ca, st * sa],
+            [st, ct * ca, -ct * sa],
+            [0.0, sa, ca],
+        ],
+        [a * ct, a * st, 0.0],
+    )
+}
+
+/// The frame `(r, t)` followed by `(r2, t2)`.
+fn then(f: &([V3; 3], V3), g: &([V3; 3], V3)) -> ([V3; 3], V3) {
+    let (r, t) = f;
+    let (r2, t2) = g;
+    let rr = [0, 1, 2].map(|i| [0, 1, 2].map(|j| dot(r[i], [r2[0][j], r2[1][j], r2[2][j]])));
+    (rr, add(*t, [0, 1, 2].map(|i| dot(r[i], *t2))))
+}
+
+/// A Bennett linkage (tests/integration/mechanisms/bennett.rs): four R pairs on skew axes,
+/// links of lengths a, b, a, b and twists α, β, α, β with a / sin α = b / sin β, at a random
+/// crank angle, placed anywhere; one of its three moving links the platform, one joint driven.
+/// One freedom where Grübler–Kutzbach counts −2.
+fn bennett(rng: &mut Rng) -> Mech {
+    loop {
+        let mut m = Mech::new("bennett", rng);
+        let a = uniform(rng, 60.0, 150.0);
+        let alpha = uniform(rng, 0.35, 1.35);
+        let beta = uniform(rng, 0.35, 1.35);
+        let theta1 = uniform(rng, 0.5, 2.6);
+        let b = a * beta.sin() / alpha.sin();
+        let k = ((beta + alpha) / 2.0).sin() / ((beta - alpha) / 2.0).sin();
+        let theta2 = 2.0 * (k / (theta1 / 2.0).tan()).atan();
+        // Twists apart (equal ones make a planar parallelogram's degenerate cousin) and the
+        // loop away from its flat folds.
+        if (alpha - beta).abs() < 0.2 || theta2.sin().abs() < 0.3 || !(30.0..200.0).contains(&b) {
+            continue;
+        }
+        let placed = (
+            crate::generator::rotation(
+                uniform(rng, -3.0, 3.0),
+                uniform(rng, -1.5, 1.5),
+                uniform(rng, -3.0, 3.0),
+            ),
+            [
+                uniform(rng, -40.0, 40.0),
+                uniform(rng, -40.0, 40.0),
+                uniform(rng, 60.0, 140.0),
+            ],
+        );
+        let mut frames = vec![placed];
+        for (theta, len, twist) in [
+            (theta1, a, alpha),
+            (theta2, b, beta),
+            (std::f64::consts::TAU - theta1, a, alpha),
+        ] {
+            let next = then(frames.last().unwrap(), &dh(theta, len, twist));
+            frames.push(next);
+        }
+        // Loop link i (0 the base) between joints i and i + 1; joint j's axis is frame j − 1's
+        // z through its origin.
+        let p = 1 + (rng.next_u64() % 3) as usize;
+        let mut loop_links = vec![BASE];
+        let mut names = 1;
+        for i in 1..4 {
+            loop_links.push(if i == p {
+                PLATFORM
+            } else {
+                names += 1;
+                m.link(format!("l{names}"), None)
+            });
+        }
+        let driven = (rng.next_u64() % 4) as usize;
+        let mut joints = Vec::new();
+        for j in 0..4 {
+            let (r, o) = frames[j];
+            let z = [r[0][2], r[1][2], r[2][2]];
+            let z = if chance(rng, 0.5) { z } else { scale(-1.0, z) };
+            let s = uniform(rng, -20.0, 20.0);
+            let owner = if chance(rng, 0.5) {
+                loop_links[j]
+            } else {
+                loop_links[(j + 1) % 4]
+            };
+            let first = m.pivot(owner, add(o, scale(s, z)));
+            let second = m.pivot(owner, add(o, scale(s + uniform(rng, 15.0, 40.0), z)));
+            let inputs = if j == driven {
+                m.inputs_of(Kind::R)
+            } else {
+                Vec::new()
+            };
+            joints.push(Some(Joint {
+                kind: Kind::R,
+                inputs,
+                centre: None,
+                axis: Some((first, second)),
+                offset: None,
+                lead: None,
+            }));
+        }
+        // Two chains from the base to the platform, one each way round the loop.
+        let mut chain = |m: &mut Mech, name: &str, order: &[usize]| {
+            let mut links = vec![Some(BASE)];
+            let mut js = Vec::new();
+            let mut shape = Vec::new();
+            for &j in order {
+                let joint = joints[j].take().unwrap();
+                shape.push(if joint.inputs.is_empty() { "R" } else { "R*" });
+                js.push(joint);
+                // Joint j joins loop links j and j + 1: forwards it leads to j + 1, backwards
+                // (j, from loop link j + 1) to j.
+                let to = if order[0] == 0 { (j + 1) % 4 } else { j };
+                links.push(Some(loop_links[to]));
+            }
+            m.chains.push(Chain {
+                name: name.into(),
+                links,
+                joints: js,
+                shape: shape.join("-"),
+            });
+        };
+        let forwards: Vec<usize> = (0..p).collect();
+        let backwards: Vec<usize> = (p..4).rev().collect();
+        chain(&mut m, "c0", &forwards);
+        chain(&mut m, "c1", &backwards);
+        while !spans_a_plane(
+            &m.pivots
+                .iter()
+                .filter(|q| q.link == PLATFORM)
+                .map(|q| q.at)
+                .collect::<Vec<_>>(),
+        ) {
+            let q = m.random_platform_point(rng);
+            m.pivot(PLATFORM, q);
+        }
+        locate_links_before_actives(&mut m, rng);
         if pivots_apart(&m) {
             return m;
         }
