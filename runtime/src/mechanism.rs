@@ -202,12 +202,14 @@ pub trait Mechanism<const N: usize, const M: usize> {
     /// Joint inputs that put the platform pivots at `v` (inverse kinematics); where a chain
     /// has two solutions, the one nearest `reference`. Where every chain has a closed form
     /// (each reads one platform point), the inputs are returned only if with them every
-    /// equation on the platform's points alone holds to a thousandth of the scale
-    /// ([`InverseError::Inconsistent`] otherwise: the pivots are not one rigid placement, or a
-    /// point no closed form reads is elsewhere); a pose that close to the motion of a
-    /// mechanism of fewer freedoms gets the inputs for the points read, to be refined by
-    /// [`Start::new`](crate::Start::new). Otherwise the numerical inverse returns only inputs
-    /// that place the platform at `v` to 1e-9 of the scale. NaN, infinite or overflowing
+    /// equation on the platform's points alone holds to a thousandth of the scale, and, where
+    /// those equations do not hold the platform's shape, its points keep their declared
+    /// distances ([`InverseError::Inconsistent`] otherwise: the pivots are not one rigid
+    /// placement, or a point no closed form reads is elsewhere); a pose that close to the
+    /// motion of a mechanism of fewer freedoms gets the inputs for the points read, to be
+    /// refined by [`Start::new`](crate::Start::new). Where some chain has no closed form, or
+    /// links between hold the platform besides (a passive column), the numerical inverse
+    /// returns only inputs that place the platform at `v` to 1e-9 of the scale. NaN, infinite or overflowing
     /// values are [`InverseError::NonFinite`]. An input the equations hold only through its
     /// sine and cosine is returned within half a turn of its reference, and a reference
     /// beyond 2¹⁶ rad for it is [`InverseError::FarReference`].

@@ -33,6 +33,7 @@ mod slider_crank;
 mod spherical_wrist;
 mod translational_upu;
 mod triangle_platforms;
+mod tricept;
 mod upu_modes;
 
 use linkage::{Mechanism, Options};

@@ -24,13 +24,28 @@ pub fn body(model: &Model, has_home: bool, pattern: &[(usize, usize)]) -> TokenS
     let n = model.unknowns.len();
     let nnz = pattern.len();
     match numerical_input(model) {
+        // Every input has a closed form, but links between hold the platform too (a Tricept's
+        // passive column): only a search over their points can tell whether they reach the
+        // pose, so the numerical inverse, started from the closed forms' inputs, decides.
+        None if links_hold_the_platform(model) => numerical_body(model, has_home, 0, pattern),
         // Each closed form reads one point: the others must be where the inputs put them.
         None => {
             let rows = platform_rows(model, pattern, false)
                 .into_iter()
                 .map(|(r, entries)| quote!((#r, &[#(#entries),*])));
+            // Where the platform's own equations do not hold it rigid (a Tricept's platform
+            // is rigid through its column's points, which the caller need not give), its
+            // distances are checked instead: a platform out of shape has no inputs.
+            let distances = (!shape_in_rows(model, pattern)).then(|| {
+                quote! {
+                    if !::linkage::__private::platform_keeps_its_distances(self, v) {
+                        return Err(::linkage::InverseError::Inconsistent);
+                    }
+                }
+            });
             quote! {
             let out = self.closed_form_inputs(v, reference)?;
+            #distances
             const ROWS: &[(usize, &[usize])] = &[#(#rows),*];
             let mut f = [0.0; #n];
             self.residual(v, &out, &mut f);
@@ -65,6 +80,32 @@ fn platform_rows(
             (platform_only && (free_of_inputs || !fixed)).then_some((r, entries))
         })
         .collect()
+}
+
+/// Whether some equation ties a platform point to an unknown of the links between: a passive
+/// chain whose links are solved for holds the platform, beside the chains the closed forms
+/// read.
+fn links_hold_the_platform(model: &Model) -> bool {
+    use crate::expr::Var;
+    let held = 3 * model.points.len();
+    let n = model.unknowns.len();
+    model.equations.iter().any(|f| {
+        (0..held).any(|i| f.depends_on(Var::Unknown(i)))
+            && (held..n).any(|i| f.depends_on(Var::Unknown(i)))
+    })
+}
+
+/// Whether the equations on the platform's points alone that read no input hold its shape:
+/// as many as a rigid body of its points needs (3k − 6 for k ≥ 3 points, one for two), the
+/// rank test having kept them independent.
+fn shape_in_rows(model: &Model, pattern: &[(usize, usize)]) -> bool {
+    let k = model.points.len();
+    let needed = match k {
+        0 | 1 => 0,
+        2 => 1,
+        _ => 3 * k - 6,
+    };
+    platform_rows(model, pattern, true).len() >= needed
 }
 
 /// Where every chain has a closed form: the inherent `closed_form_inputs`, the inputs they
