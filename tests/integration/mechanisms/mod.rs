@@ -34,6 +34,7 @@ mod spherical_wrist;
 mod translational_upu;
 mod triangle_platforms;
 mod tricept;
+mod tripteron;
 mod upu_modes;
 
 use linkage::{Mechanism, Options};
