@@ -670,26 +670,10 @@ pub fn generate(seed: u64) -> Mech {
             } else {
                 // Some chains start at a declared link of an earlier chain (a link placed
                 // already, as the second rod of a delta's parallelogram starts at the crank).
-                let placed: Vec<usize> = (2..m.links.len())
-                    .filter(|&l| m.links[l].length.is_none())
-                    .collect();
+                let placed = placed_links(&m);
                 let pairs = general_pairs(&mut rng, f, &actives);
                 let (from, start) = if !placed.is_empty() && chance(&mut rng, 0.3) {
-                    let l = pick(&mut rng, &placed);
-                    let on: Vec<V3> = m
-                        .pivots
-                        .iter()
-                        .filter(|p| p.link == l)
-                        .map(|p| p.at)
-                        .collect();
-                    let near = on.first().copied().unwrap_or(m.random_base_point(&mut rng));
-                    (
-                        l,
-                        add(
-                            near,
-                            scale(uniform(&mut rng, 20.0, 40.0), random_unit(&mut rng)),
-                        ),
-                    )
+                    start_near(&m, &mut rng, &placed)
                 } else {
                     (BASE, m.random_base_point(&mut rng))
                 };
@@ -697,22 +681,49 @@ pub fn generate(seed: u64) -> Mech {
             };
             m.chains.push(chain);
         }
-        // A platform of fewer than three pivots off one line gets more (its frame).
-        while !spans_a_plane(
-            &m.pivots
-                .iter()
-                .filter(|p| p.link == PLATFORM)
-                .map(|p| p.at)
-                .collect::<Vec<_>>(),
-        ) {
-            let p = m.random_platform_point(&mut rng);
-            m.pivot(PLATFORM, p);
-        }
-        locate_links_before_actives(&mut m, &mut rng);
-        if pivots_apart(&m) {
+        if finish(&mut m, &mut rng) {
             return m;
         }
     }
+}
+
+/// The declared links of earlier chains (placed already), which a chain may start at.
+pub fn placed_links(m: &Mech) -> Vec<usize> {
+    (2..m.links.len())
+        .filter(|&l| m.links[l].length.is_none())
+        .collect()
+}
+
+/// A chain's start on one of the `placed` links: 20 to 40 from its first pivot.
+pub fn start_near(m: &Mech, rng: &mut Rng, placed: &[usize]) -> (usize, V3) {
+    let l = pick(rng, placed);
+    let near = m
+        .pivots
+        .iter()
+        .find(|p| p.link == l)
+        .map(|p| p.at)
+        // Drawn whether needed or not: the seeds' mechanisms stay as they were generated.
+        .unwrap_or(m.random_base_point(rng));
+    let off = scale(uniform(rng, 20.0, 40.0), random_unit(rng));
+    (l, add(near, off))
+}
+
+/// The chains declared: the platform's frame (a platform of fewer than three pivots off one
+/// line gets more), the links before active pairs located; whether every two pivots are apart
+/// (else the caller draws again).
+pub fn finish(m: &mut Mech, rng: &mut Rng) -> bool {
+    while !spans_a_plane(
+        &m.pivots
+            .iter()
+            .filter(|p| p.link == PLATFORM)
+            .map(|p| p.at)
+            .collect::<Vec<_>>(),
+    ) {
+        let p = m.random_platform_point(rng);
+        m.pivot(PLATFORM, p);
+    }
+    locate_links_before_actives(m, rng);
+    pivots_apart(m)
 }
 
 fn number(x: f64) -> String {

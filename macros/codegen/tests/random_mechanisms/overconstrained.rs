@@ -10,8 +10,8 @@
 
 use crate::common::Rng;
 use crate::generator::{
-    add, chance, dot, general_chain, locate_links_before_actives, pick, pivots_apart, random_unit,
-    scale, shuffle, spans_a_plane, uniform, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
+    add, chance, dot, finish, general_chain, pick, placed_links, random_unit, scale, shuffle,
+    start_near, uniform, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
 };
 
 /// Each shape: its chains' pair counts, and whether a chain starts at a placed link of an
@@ -87,37 +87,16 @@ pub fn generate(seed: u64) -> Mech {
             let chain_active = &active[next..next + n];
             next += n;
             let pairs = pairs(&mut rng, chain_active, planar);
-            let placed: Vec<usize> = (2..m.links.len())
-                .filter(|&l| m.links[l].length.is_none())
-                .collect();
+            let placed = placed_links(&m);
             let (from, start) = if from_placed && !placed.is_empty() {
-                let l = pick(&mut rng, &placed);
-                let near = m
-                    .pivots
-                    .iter()
-                    .find(|p| p.link == l)
-                    .map(|p| p.at)
-                    .unwrap_or(m.random_base_point(&mut rng));
-                let off = scale(uniform(&mut rng, 20.0, 40.0), random_unit(&mut rng));
-                (l, add(near, off))
+                start_near(&m, &mut rng, &placed)
             } else {
                 (BASE, m.random_base_point(&mut rng))
             };
             let chain = general_chain(&mut m, &mut rng, from, start, &pairs);
             m.chains.push(chain);
         }
-        while !spans_a_plane(
-            &m.pivots
-                .iter()
-                .filter(|p| p.link == PLATFORM)
-                .map(|p| p.at)
-                .collect::<Vec<_>>(),
-        ) {
-            let p = m.random_platform_point(&mut rng);
-            m.pivot(PLATFORM, p);
-        }
-        locate_links_before_actives(&mut m, &mut rng);
-        if pivots_apart(&m) {
+        if finish(&mut m, &mut rng) {
             return m;
         }
     }
@@ -251,18 +230,7 @@ fn bennett(rng: &mut Rng) -> Mech {
         let backwards: Vec<usize> = (p..4).rev().collect();
         chain(&mut m, "c0", &forwards);
         chain(&mut m, "c1", &backwards);
-        while !spans_a_plane(
-            &m.pivots
-                .iter()
-                .filter(|q| q.link == PLATFORM)
-                .map(|q| q.at)
-                .collect::<Vec<_>>(),
-        ) {
-            let q = m.random_platform_point(rng);
-            m.pivot(PLATFORM, q);
-        }
-        locate_links_before_actives(&mut m, rng);
-        if pivots_apart(&m) {
+        if finish(&mut m, rng) {
             return m;
         }
     }
