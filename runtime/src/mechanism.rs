@@ -209,10 +209,10 @@ pub trait Mechanism<const N: usize, const M: usize> {
     /// motion of a mechanism of fewer freedoms gets the inputs for the points read, to be
     /// refined by [`Start::new`](crate::Start::new). Where some chain has no closed form, or
     /// links between hold the platform besides (a passive column), the numerical inverse
-    /// returns only inputs that place the platform at `v` to 1e-9 of the scale. NaN, infinite or overflowing
-    /// values are [`InverseError::NonFinite`]. An input the equations hold only through its
-    /// sine and cosine is returned within half a turn of its reference, and a reference
-    /// beyond 2¹⁶ rad for it is [`InverseError::FarReference`].
+    /// returns only inputs that place the platform at `v` to 1e-9 of the scale. NaN, infinite
+    /// or overflowing values are [`InverseError::NonFinite`]. An input the equations hold only
+    /// through its sine and cosine is returned within half a turn of its reference, and a
+    /// reference beyond 2¹⁶ rad for it is [`InverseError::FarReference`].
     fn inverse(&self, v: &[f64; N], reference: &[f64; M]) -> Result<[f64; M], InverseError>;
     /// How far `v` is from satisfying the equations the generator left out as dependent at
     /// home (the listing's "dependent at home, implied by the above and left out"): the
