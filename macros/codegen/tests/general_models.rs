@@ -322,3 +322,24 @@ fn a_u_at_a_chain_end_takes_its_second_axis_from_its_own_links_pivots() {
         "the second axis point at {s:?}, expected {expected:?}"
     );
 }
+
+/// A U whose first axis is declared on the link after it (here the platform), first in its
+/// chain on a base with no pivots: nothing gives its second axis's direction (square to the
+/// first and to the line to the joint before, of which there is none). Refused, naming the
+/// link that lacks a pivot: the base, not "the link after it" as the message used to say.
+#[test]
+fn a_u_with_nothing_to_set_its_second_axis_names_the_link_that_lacks_a_pivot() {
+    let e = match model(quote! {
+        pub struct M;
+        base { }
+        platform { A = [0.0, 0.0, 0.0], B = [0.0, 30.0, 0.0], P = [25.0, 10.0, 5.0] }
+        chain c = base - U(A, axis = A -> B, active a b) - platform;
+    }) {
+        Ok(_) => panic!("a U with no second axis accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.contains("no joint precedes it and `base` has no other pivot of its own"),
+        "{e}"
+    );
+}

@@ -71,9 +71,19 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             .map(|(m, _)| m)
     });
     let Some(towards) = towards else {
+        // The first axis on the link after the pair (its other link the one before) looks back
+        // along the chain.
+        let (next, follows) = if other == j.after {
+            ("next", "follows")
+        } else {
+            ("previous", "precedes")
+        };
         return Err(err(
             p.token.span(),
-            "the second axis of this `U` is perpendicular to the first and to the line from its centre to the next joint's, but no joint follows it and the link after it has no other pivot",
+            format!(
+                "the second axis of this `U` is perpendicular to the first and to the line from its centre to the {next} joint's, but no joint {follows} it and {} has no other pivot of its own to give the line: declare one",
+                named(&topo.links[other])
+            ),
         ));
     };
     let auto = b.auto_point(Auto::Normal {
