@@ -157,6 +157,22 @@ impl Expr {
         }
     }
 
+    /// The size rounding is relative to in evaluating the expression: its value with every
+    /// term of a sum taken by its size (sines and cosines as 1). An equation whose derivatives
+    /// are all rounding-small against it is one that holds identically there.
+    pub fn magnitude(&self, v: &[f64], x: &[f64], c: &[f64]) -> f64 {
+        match self {
+            Expr::Num(n) => n.abs(),
+            Expr::Unknown(i) => v[*i].abs(),
+            Expr::Input(i) => x[*i].abs(),
+            Expr::Constant(i) => c[*i].abs(),
+            Expr::Sum(ts) => ts.iter().map(|t| t.magnitude(v, x, c)).sum(),
+            Expr::Product(fs) => fs.iter().map(|f| f.magnitude(v, x, c)).product(),
+            Expr::Square(e) => e.magnitude(v, x, c).powi(2),
+            Expr::Sin(_) | Expr::Cos(_) => 1.0,
+        }
+    }
+
     /// Flattens sums and products, folds numbers, drops neutral elements, and writes
     /// `-2*(a - b)` as `2*(b - a)` so that derivatives read like the paper's Table A1.
     pub fn simplify(self) -> Expr {

@@ -877,3 +877,19 @@ fn slides_on_a_base_that_declares_no_pivot_are_modelled() {
     );
     assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
 }
+
+/// A spherical four-bar with a passive ball joint at its centre, declared on the base, whose
+/// platform an active R turns about an axis through that centre: refused as locked ("1 active
+/// joint variable but mobility 0"). The ball's equations hold identically (its point is on
+/// both axes of the link that carries it), but their coefficients off the axes were rounding,
+/// 1e-16, which the rank test's row scaling blew up to a row of size 1 and an extra rank. Rows
+/// of rounding alone are now zero (`simplify/rank.rs`). Found by the overconstrained sweep.
+#[test]
+fn a_redundant_ball_at_a_spherical_centre_adds_no_constraint() {
+    let counts = check_seed(
+        202113033,
+        "spherical",
+        "chain c2 = base - S(b8) - platform;",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
+}

@@ -47,7 +47,15 @@ const DEPENDENT: f64 = 1e-8;
 /// Such a row may wait until its class's rows that add more are in (see [`at_home`]).
 const WEAK: f64 = 1e-3;
 
+/// Below this fraction of the rounding scale (an equation's [`Expr::magnitude`] over the
+/// length scale), a row is rounding alone: the equation holds identically at home, whatever
+/// the unknowns. (A ball joint at a spherical mechanism's centre, held by a link an active R
+/// turns about an axis through it: its coefficients off the axes are 1e-16, and scaled up to
+/// a row of size 1 they added a random rank, refusing the mechanism as locked.)
+const ROUNDING: f64 = 1e-12;
+
 fn rows(equations: &[Expr], vars: &[Var], v: &[f64], x: &[f64], c: &[f64]) -> Vec<Vec<f64>> {
+    let length = 1.0 + v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
     equations
         .iter()
         .map(|f| {
@@ -57,7 +65,9 @@ fn rows(equations: &[Expr], vars: &[Var], v: &[f64], x: &[f64], c: &[f64]) -> Ve
                 .collect();
             // Scale each row: an equation's units (mm or mm²) must not decide its rank.
             let s = row.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-            if s > 0.0 {
+            if s * length <= ROUNDING * f.magnitude(v, x, c) {
+                vec![0.0; row.len()]
+            } else if s > 0.0 {
                 row.iter().map(|a| a / s).collect()
             } else {
                 row
@@ -200,5 +210,30 @@ mod tests {
         // is kept, the second class's row is then dependent.
         let ranked = at_home(&equations, &[vec![0, 1], vec![2]], 2, 0, &v, &[], &[]);
         assert_eq!(ranked.kept, [0, 1]);
+    }
+
+    /// An equation that holds identically at home, its coefficients rounding (1e-17, against
+    /// terms of 100): its row is zero, not rounding scaled up to a row of size 1, which would
+    /// add a rank the mechanism does not have.
+    #[test]
+    fn a_row_of_rounding_alone_adds_no_rank() {
+        let (x, y) = (Expr::Unknown(0), Expr::Unknown(1));
+        let equations = vec![
+            Expr::minus(Expr::plus(x.clone(), y.clone()), Expr::Num(1.0)),
+            Expr::Sum(vec![
+                Expr::times(Expr::Num(1e-17), x.clone()),
+                Expr::times(Expr::Num(-2e-17), y.clone()),
+                Expr::Constant(0),
+                Expr::Constant(1).negated(),
+            ]),
+        ];
+        let (v, c) = ([0.25, 0.75], [100.0, 100.0]);
+        let ranked = at_home(&equations, &[vec![0, 1]], 2, 0, &v, &[], &c);
+        assert_eq!((ranked.kept.as_slice(), ranked.mobility), (&[0][..], 1));
+        // The same row with coefficients of its own size is a constraint.
+        let mut real = equations.clone();
+        real[1] = Expr::minus(x, Expr::times(Expr::Num(2.0), y));
+        let ranked = at_home(&real, &[vec![0, 1]], 2, 0, &v, &[], &c);
+        assert_eq!((ranked.kept.as_slice(), ranked.mobility), (&[0, 1][..], 0));
     }
 }

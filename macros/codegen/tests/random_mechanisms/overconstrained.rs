@@ -1,6 +1,7 @@
 //! Random overconstrained mechanisms: planar and spherical ones of R and P pairs (four-bars,
 //! five-bars, six-bars with a dyad from a link of an earlier chain, platforms on two or three
-//! chains of three pairs, and a platform with a dyad besides), and Bennett linkages. As spatial
+//! chains of three pairs, and a platform with a dyad besides; a spherical one in three with a
+//! passive ball joint at its centre too), and Bennett linkages. As spatial
 //! mechanisms they are overconstrained: a loop of a planar or spherical mechanism has three
 //! freedoms where a spatial loop has six, a Bennett loop one where Grübler–Kutzbach counts −2,
 //! so the model's spatial equations are dependent at every configuration and its rank test
@@ -95,6 +96,30 @@ pub fn generate(seed: u64) -> Mech {
             };
             let chain = general_chain(&mut m, &mut rng, from, start, &pairs);
             m.chains.push(chain);
+        }
+        // For one spherical seed in three (by the seed: the others keep their mechanisms), a
+        // passive ball joint at the centre besides, joining the base to the platform: it
+        // allows what the chains allow, so it adds dependent equations and no freedom.
+        if let (Group::Spherical { centre }, 0) = (m.group, seed % 3) {
+            let owner = if chance(&mut rng, 0.5) {
+                BASE
+            } else {
+                PLATFORM
+            };
+            let ball = m.pivot(owner, centre);
+            m.chains.push(Chain {
+                name: format!("c{}", m.chains.len()),
+                links: vec![Some(BASE), Some(PLATFORM)],
+                joints: vec![Joint {
+                    kind: Kind::S,
+                    inputs: Vec::new(),
+                    centre: Some(ball),
+                    axis: None,
+                    offset: None,
+                    lead: None,
+                }],
+                shape: "S@centre".into(),
+            });
         }
         if finish(&mut m, &mut rng) {
             return m;
