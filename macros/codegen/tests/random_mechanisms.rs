@@ -893,3 +893,18 @@ fn a_redundant_ball_at_a_spherical_centre_adds_no_constraint() {
     );
     assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
 }
+
+/// A spherical five-bar with a redundant ball joint at its centre, declared on the base, whose
+/// platform two active R turn (one from the base, one from the link it places): refused ("the
+/// active `R` joins `l0_1` to `platform`, which are both placed by inputs already"). The ball's
+/// point is on both turns' axes: where the platform carries it, it stays whatever the inputs,
+/// so the model needs no equation for it. Found by the overconstrained sweep.
+#[test]
+fn a_redundant_ball_on_the_axes_of_two_driven_turns_is_not_a_constraint() {
+    let counts = check_seed(
+        202125597,
+        "spherical",
+        "chain c0 = base - R(active q0, axis = b0 -> b1) - l0_1 - R(active q1, axis = k2 -> k3) - platform;",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
+}

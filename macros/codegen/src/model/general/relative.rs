@@ -231,6 +231,17 @@ pub fn equations(
             }
             continue;
         }
+        // A base point the link after holds too (a ball joint's centre), which this pair's
+        // turn and the carrier's leave where it is: both sides are the same point for every
+        // input, and the equation would hold identically (a spherical mechanism's redundant
+        // ball at its centre, carried by turns about axes through it).
+        let on_base = topo
+            .links
+            .iter()
+            .any(|l| l.role == LinkRole::Base && l.holds(q));
+        if on_base && turns_leave(b, topo, k, q) {
+            continue;
+        }
         let at = topo.home(q);
         let t = motion.coefficients(b, &carrier, at, &format!("_{}_{link_tag}", topo.name(q)))?;
         let placed = carrier.place(&t);
@@ -252,6 +263,27 @@ pub fn equations(
         }
     }
     Ok(j.after)
+}
+
+/// Whether active pair `k` and what places the link before it leave point `q` where it is:
+/// `k` a turn (R, S, U) about an axis or centre at `q`, and the link before it the base or a
+/// link an active R on the base turns about an axis through `q`.
+fn turns_leave(b: &Builder, topo: &Topology, k: usize, q: PointId) -> bool {
+    let j = &topo.joints[k];
+    let turn = |p: &Pair| matches!(p.kind, PairKind::R | PairKind::S | PairKind::U);
+    if !turn(j.pair) || !stays(b, topo, j.pair, &j.added, q) {
+        return false;
+    }
+    if topo.links[j.before].role == LinkRole::Base {
+        return true;
+    }
+    topo.joints.iter().any(|jj| {
+        jj.after == j.before
+            && topo.links[jj.before].role == LinkRole::Base
+            && jj.pair.active
+            && jj.pair.kind == PairKind::R
+            && stays(b, topo, jj.pair, &jj.added, q)
+    })
 }
 
 /// Whether the motion of pair `p` leaves point `q` where it is: its own pivots and the points
