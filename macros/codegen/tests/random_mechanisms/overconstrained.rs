@@ -1,7 +1,8 @@
 //! Random overconstrained mechanisms: planar and spherical ones of R and P pairs (four-bars,
 //! five-bars, six-bars with a dyad from a link of an earlier chain, platforms on two or three
 //! chains of three pairs, and a platform with a dyad besides; a spherical one in three with a
-//! passive ball joint at its centre too), and Bennett linkages. As spatial
+//! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges),
+//! and Bennett linkages. As spatial
 //! mechanisms they are overconstrained: a loop of a planar or spherical mechanism has three
 //! freedoms where a spatial loop has six, a Bennett loop one where Grübler–Kutzbach counts −2,
 //! so the model's spatial equations are dependent at every configuration and its rank test
@@ -12,7 +13,7 @@
 use crate::common::Rng;
 use crate::generator::{
     add, chance, dot, finish, general_chain, pick, placed_links, random_unit, scale, shuffle,
-    start_near, uniform, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
+    start_near, sub, uniform, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
 };
 
 /// Each shape: its chains' pair counts, and whether a chain starts at a placed link of an
@@ -75,6 +76,19 @@ pub fn generate(seed: u64) -> Mech {
             }
         };
         let shape = pick(&mut rng, &SHAPES);
+        // For one seed in five, a planar one is a 3-RPR instead: legs whose slide runs between
+        // their hinges' centres (no axis of its own), each driven (by the seed: the others
+        // keep their mechanisms).
+        if let (Group::Planar { normal }, 2) = (m.group, seed % 5) {
+            for c in 0..3 {
+                let leg = rpr_leg(&mut m, &mut rng, normal, c);
+                m.chains.push(leg);
+            }
+            if finish(&mut m, &mut rng) {
+                return m;
+            }
+            continue;
+        }
         // Σ p − 3 (chains − 1) freedoms, each driven by one active pair placed at random.
         let total: usize = shape.iter().map(|(p, _)| p).sum();
         let mobility = total - 3 * (shape.len() - 1);
@@ -124,6 +138,44 @@ pub fn generate(seed: u64) -> Mech {
         if finish(&mut m, &mut rng) {
             return m;
         }
+    }
+}
+
+/// A planar R-P-R leg from the base to the platform: hinges along `normal` at a base point
+/// and a platform point in one plane square to it, the active slide between their centres.
+fn rpr_leg(m: &mut Mech, rng: &mut Rng, normal: V3, c: usize) -> Chain {
+    let a = m.random_base_point(rng);
+    let g = m.random_platform_point(rng);
+    // The platform's hinge moved into the base hinge's plane: the leg then stays in it.
+    let g = add(g, scale(-dot(sub(g, a), normal), normal));
+    let hinge = |m: &mut Mech, rng: &mut Rng, link: usize, at: V3| {
+        let s = uniform(rng, 15.0, 40.0);
+        let first = m.pivot(link, at);
+        let second = m.pivot(link, add(at, scale(s, normal)));
+        Joint {
+            kind: Kind::R,
+            inputs: Vec::new(),
+            centre: None,
+            axis: Some((first, second)),
+            offset: None,
+            lead: None,
+        }
+    };
+    let base = hinge(m, rng, BASE, a);
+    let slide = Joint {
+        kind: Kind::P,
+        inputs: m.inputs_of(Kind::P),
+        centre: None,
+        axis: None,
+        offset: chance(rng, 0.5).then(|| uniform(rng, -40.0, 40.0)),
+        lead: None,
+    };
+    let platform = hinge(m, rng, PLATFORM, g);
+    Chain {
+        name: format!("c{c}"),
+        links: vec![Some(BASE), None, None, Some(PLATFORM)],
+        joints: vec![base, slide, platform],
+        shape: "R-P*-R".into(),
     }
 }
 
