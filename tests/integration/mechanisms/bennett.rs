@@ -6,7 +6,7 @@
 //! closed form (Denavit–Hartenberg frames, a and α then b and β): θ3 = 2π − θ1,
 //! θ4 = 2π − θ2 and tan(θ1/2) tan(θ2/2) = sin((β + α)/2) / sin((β − α)/2).
 
-use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use super::{check_inverse, mobility_line, point, GENERAL_MODEL};
 use linkage::{arc_length, Mechanism, Status};
 use linkage_tests::{check_jacobians, max_diff};
 
@@ -87,17 +87,6 @@ fn carried(theta1: f64, p: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| f[i][3] + (0..3).map(|j| f[i][j] * local[j]).sum::<f64>())
 }
 
-fn point<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    _: &S,
-    v: &[f64; N],
-    name: &str,
-) -> [f64; 3] {
-    let points = S::POINTS;
-    let i = points.iter().position(|p| *p == name).unwrap();
-    let n = points.len();
-    [v[i], v[n + i], v[2 * n + i]]
-}
-
 const PLATFORM: [(&str, [f64; 3]); 3] = [
     (
         "P1",
@@ -157,7 +146,7 @@ fn bennett_forward_kinematics_against_the_closed_form() {
         let sol = arc_length(&bennett, &start, &x, &GENERAL_MODEL).unwrap();
         assert_eq!(sol.status, Status::Converged, "θ1 {theta1}");
         for (name, at) in PLATFORM {
-            let got = point(&bennett, &sol.v, name);
+            let got = point::<Bennett, 15, 1>(&sol.v, name);
             let want = carried(theta1, at);
             assert!(
                 max_diff(&got, &want) < 1e-7,

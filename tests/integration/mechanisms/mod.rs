@@ -126,3 +126,18 @@ pub fn identity_within(r: &[[f64; 3]; 3], tol: f64) {
         }
     }
 }
+
+/// The point `name` at `v`, in the base frame.
+pub fn point<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    v: &[f64; N],
+    name: &str,
+) -> [f64; 3] {
+    ["x", "y", "z"].map(|c| {
+        let u = format!("{c}_{name}");
+        let i = S::UNKNOWNS
+            .iter()
+            .position(|n| *n == u)
+            .unwrap_or_else(|| panic!("{}: no unknown {u} in {:?}", S::NAME, S::UNKNOWNS));
+        v[i]
+    })
+}

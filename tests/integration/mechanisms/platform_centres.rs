@@ -5,7 +5,7 @@
 //! by the random-mechanism sweep (seed 1548618553: a platform on one active `S` at its own
 //! pivot). And a slide whose axis is the platform's own, on a base that declares no pivot.
 
-use super::{check_inverse, mobility_line};
+use super::{check_inverse, mobility_line, point};
 use linkage::{arc_length, pose_from_unknowns, Mechanism, Options, Pose, Status};
 use linkage_tests::vec3::matmul;
 use linkage_tests::{check_jacobians, max_diff, Rng};
@@ -95,12 +95,7 @@ fn a_leg_wrist_turns_about_its_platform_pivot_and_meets_its_leg_lengths() {
     assert!(mobility_line(LegWrist::LISTING).contains("M = 12 + 3 − 12 = 3"));
     let start = wrist.home_start().unwrap();
     check_jacobians(&wrist, start.v(), start.x());
-    let points = LegWrist::POINTS;
-    let at = |v: &[f64; 12], name: &str| -> [f64; 3] {
-        let i = points.iter().position(|p| *p == name).unwrap();
-        let n = points.len();
-        [v[i], v[n + i], v[2 * n + i]]
-    };
+    let at = |v: &[f64; 12], name: &str| point::<LegWrist, 12, 3>(v, name);
     let base = [[100.0, 40.0, 0.0], [-84.6, 66.6, 0.0], [-15.4, -106.6, 0.0]];
     let mut rng = Rng::new(94);
     for _ in 0..40 {

@@ -6,22 +6,11 @@
 //! this file's own equations in joint angles (not the generated point equations); and every
 //! assembly mode `AllModes` finds against the same reference.
 
+use super::point;
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
 use linkage::modes::{AllModes, Complex, EndpointKind, ModesOptions, Roots};
 use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Status, Tracker};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
-
-/// The point `name` at `v`, in the base frame.
-fn point<S: Mechanism<N, M>, const N: usize, const M: usize>(v: &[f64; N], name: &str) -> [f64; 3] {
-    ["x", "y", "z"].map(|c| {
-        let u = format!("{c}_{name}");
-        let i = S::UNKNOWNS
-            .iter()
-            .position(|n| *n == u)
-            .unwrap_or_else(|| panic!("{}: no unknown {u} in {:?}", S::NAME, S::UNKNOWNS));
-        v[i]
-    })
-}
 
 fn rot2(p: [f64; 2], a: f64) -> [f64; 2] {
     let (s, c) = a.sin_cos();

@@ -9,7 +9,7 @@ use super::{check_inverse, mobility_line, GENERAL_MODEL};
 use linkage::{
     arc_length, pose_from_unknowns, unknowns_from_pose, InverseError, Mechanism, Pose, Status,
 };
-use linkage_tests::vec3::{add, matmul, sub};
+use linkage_tests::vec3::{add, dot, matmul, sub};
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
@@ -66,7 +66,7 @@ fn legs(pose: &Pose) -> [f64; 3] {
         let p = PLATFORM[k];
         let turned = [0, 1, 2].map(|i| (0..3).map(|j| pose.rotation[i][j] * p[j]).sum::<f64>());
         let d = sub(add(turned, pose.translation), BASE[k]);
-        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+        dot(d, d).sqrt()
     })
 }
 
