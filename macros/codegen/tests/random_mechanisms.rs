@@ -291,15 +291,24 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
     let closure = screws::closure(mech);
     let verdict = screws::verdict(&closure);
     let inputs = mech.inputs.len();
-    let regular =
-        verdict.mobility == inputs && verdict.platform_free < 1e-6 && verdict.condition > 1e-4;
+    let undefined = screws::undefined_u(mech);
+    let loose = screws::loose_pivots(mech, &closure);
+    let regular = !undefined
+        && verdict.mobility == inputs
+        && verdict.platform_free < 1e-6
+        && loose < 1e-6
+        && verdict.condition > 1e-4;
     // What the oracle makes of a mechanism the model refuses, next to the refusal's message.
     let view = if regular {
         "oracle: regular".to_string()
+    } else if undefined {
+        "oracle: a U's second axis is undefined".to_string()
     } else if verdict.mobility != inputs {
         format!("oracle: mobility {} for {inputs} inputs", verdict.mobility)
     } else if verdict.platform_free >= 1e-6 {
         "oracle: the inputs leave the platform free".to_string()
+    } else if loose >= 1e-6 {
+        "oracle: the inputs leave a link's pivots free".to_string()
     } else {
         "oracle: near a singularity".to_string()
     };
@@ -316,7 +325,7 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
             // Run alone (`LINKAGE_SEED`), a refusal shows its declaration and the oracle's view.
             if std::env::var("LINKAGE_SEED").is_ok() {
                 eprintln!(
-                    "{text}\n{e}\noracle: mobility {} (idle {}), platform free {:.1e}, condition {:.1e}",
+                    "{text}\n{e}\noracle: mobility {} (idle {}), platform free {:.1e}, pivots free {loose:.1e}, condition {:.1e}",
                     verdict.mobility, verdict.idle, verdict.platform_free, verdict.condition
                 );
             }
@@ -340,13 +349,14 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
     }
     *counts.accepted.entry(mech.family.to_string()).or_default() += 1;
     // The oracle's mobility: the model accepted the inputs as one per freedom.
-    if verdict.mobility != inputs || verdict.platform_free > 1e-6 {
+    if undefined || verdict.mobility != inputs || verdict.platform_free > 1e-6 || loose > 1e-6 {
         return Err(format!(
-            "the model accepts {} inputs; the oracle counts mobility {} (idle {}), platform free {:.1e}",
+            "the model accepts {} inputs; the oracle counts mobility {} (idle {}), platform free {:.1e}, pivots free {loose:.1e}{}",
             model.inputs.len(),
             verdict.mobility,
             verdict.idle,
-            verdict.platform_free
+            verdict.platform_free,
+            if undefined { ", a U's second axis undefined" } else { "" }
         ));
     }
     let mut names = model.inputs.clone();

@@ -395,8 +395,9 @@ pub fn general_chain(
             }
             Kind::U => {
                 // The first axis on the link before (the README's case); the centre on either
-                // link, the axis's first point at the centre or elsewhere on the axis.
-                let u = random_unit(rng);
+                // link, the axis's first point at the centre or elsewhere on the axis. In a
+                // planar or spherical mechanism the first axis is one of its turns'.
+                let u = axis_direction(m.group, kind, at, rng);
                 let o = owner(rng);
                 let centre = m.pivot(o, at);
                 let first = if o == before && chance(rng, 0.5) {

@@ -12,8 +12,8 @@
 
 use crate::common::Rng;
 use crate::generator::{
-    add, chance, dot, finish, general_chain, pick, placed_links, random_unit, scale, shuffle,
-    start_near, sub, uniform, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
+    add, chance, cross, dot, finish, general_chain, norm, pick, placed_links, random_unit, scale,
+    shuffle, start_near, sub, uniform, unit, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
 };
 
 /// Each shape: its chains' pair counts, and whether a chain starts at a placed link of an
@@ -29,34 +29,52 @@ const SHAPES: [&[(usize, bool)]; 6] = [
 
 /// The pairs of one chain: R only in a spherical mechanism; R or P in a planar one, at most two
 /// slides (three would leave the chain no turn), in a random order. `active[k]` marks the
-/// active pairs.
-fn pairs(rng: &mut Rng, active: &[bool], planar: bool) -> Vec<(Kind, bool)> {
+/// active pairs. Where `mixed`, a passive R is now and then an S, a U or a C instead: in a loop
+/// of turns about one normal (or one centre) the rest of the loop lets each turn only as an R
+/// does (the S about its centre's normal or the line to the centre, the U about its first axis,
+/// along the normal or through the centre, the C with its slide held), which the model must find
+/// from dependent equations.
+fn pairs(rng: &mut Rng, active: &[bool], planar: bool, mixed: bool) -> Vec<(Kind, bool)> {
     loop {
         let seq: Vec<(Kind, bool)> = active
             .iter()
             .map(|&a| {
                 let kind = if planar && chance(rng, 0.35) {
                     Kind::P
+                } else if mixed && !a && chance(rng, 0.4) {
+                    pick(rng, &[Kind::S, Kind::U, Kind::C])
                 } else {
                     Kind::R
                 };
                 (kind, a)
             })
             .collect();
-        if seq.iter().filter(|(k, _)| *k == Kind::P).count() <= 2.min(seq.len() - 1) {
+        let slides = seq
+            .iter()
+            .filter(|(k, _)| matches!(k, Kind::P | Kind::C))
+            .count();
+        // Two balls in a row would leave the link between them free to spin.
+        let spins = seq
+            .windows(2)
+            .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S);
+        if slides <= 2.min(seq.len() - 1) && !spins {
             return seq;
         }
     }
 }
 
-/// One random overconstrained mechanism from `seed`: a Bennett linkage for one seed in five,
-/// else a planar or spherical one.
+/// One random overconstrained mechanism from `seed`: a Bennett linkage for one seed in ten, a
+/// line-symmetric Bricard linkage for another, else a planar or spherical one.
 pub fn generate(seed: u64) -> Mech {
     let mut rng = Rng::new(seed);
     // By the seed itself, so that the other seeds keep the mechanisms they had before
     // Bennett linkages joined the sweep.
-    if seed % 5 == 4 {
+    if seed % 10 == 4 {
         return bennett(&mut rng);
+    }
+    // Half the seeds that were Bennett's (the rest keep their mechanisms).
+    if seed % 10 == 9 {
+        return bricard(&mut rng);
     }
     loop {
         let planar = chance(&mut rng, 0.5);
@@ -76,6 +94,9 @@ pub fn generate(seed: u64) -> Mech {
             }
         };
         let shape = pick(&mut rng, &SHAPES);
+        // S, U and C pairs among the passive turns for one seed in five (by the seed: the
+        // others keep their mechanisms).
+        let mixed = seed % 5 == 1;
         // For one seed in five, a planar one is a 3-RPR instead: legs whose slide runs between
         // their hinges' centres (no axis of its own), each driven (by the seed: the others
         // keep their mechanisms).
@@ -101,7 +122,7 @@ pub fn generate(seed: u64) -> Mech {
         for &(n, from_placed) in shape {
             let chain_active = &active[next..next + n];
             next += n;
-            let pairs = pairs(&mut rng, chain_active, planar);
+            let pairs = pairs(&mut rng, chain_active, planar, mixed);
             let placed = placed_links(&m);
             let (from, start) = if from_placed && !placed.is_empty() {
                 start_near(&m, &mut rng, &placed)
@@ -241,74 +262,126 @@ fn bennett(rng: &mut Rng) -> Mech {
             let next = then(frames.last().unwrap(), &dh(theta, len, twist));
             frames.push(next);
         }
-        // Loop link i (0 the base) between joints i and i + 1; joint j's axis is frame j − 1's
-        // z through its origin.
-        let p = 1 + (rng.next_u64() % 3) as usize;
-        let mut loop_links = vec![BASE];
-        let mut names = 1;
-        for i in 1..4 {
-            loop_links.push(if i == p {
-                PLATFORM
-            } else {
-                names += 1;
-                m.link(format!("l{names}"), None)
-            });
-        }
-        let driven = (rng.next_u64() % 4) as usize;
-        let mut joints = Vec::new();
-        for j in 0..4 {
-            let (r, o) = frames[j];
-            let z = [r[0][2], r[1][2], r[2][2]];
-            let z = if chance(rng, 0.5) { z } else { scale(-1.0, z) };
-            let s = uniform(rng, -20.0, 20.0);
-            let owner = if chance(rng, 0.5) {
-                loop_links[j]
-            } else {
-                loop_links[(j + 1) % 4]
-            };
-            let first = m.pivot(owner, add(o, scale(s, z)));
-            let second = m.pivot(owner, add(o, scale(s + uniform(rng, 15.0, 40.0), z)));
-            let inputs = if j == driven {
-                m.inputs_of(Kind::R)
-            } else {
-                Vec::new()
-            };
-            joints.push(Some(Joint {
-                kind: Kind::R,
-                inputs,
-                centre: None,
-                axis: Some((first, second)),
-                offset: None,
-                lead: None,
-            }));
-        }
-        // Two chains from the base to the platform, one each way round the loop.
-        let mut chain = |m: &mut Mech, name: &str, order: &[usize]| {
-            let mut links = vec![Some(BASE)];
-            let mut js = Vec::new();
-            let mut shape = Vec::new();
-            for &j in order {
-                let joint = joints[j].take().unwrap();
-                shape.push(if joint.inputs.is_empty() { "R" } else { "R*" });
-                js.push(joint);
-                // Joint j joins loop links j and j + 1: forwards it leads to j + 1, backwards
-                // (j, from loop link j + 1) to j.
-                let to = if order[0] == 0 { (j + 1) % 4 } else { j };
-                links.push(Some(loop_links[to]));
-            }
-            m.chains.push(Chain {
-                name: name.into(),
-                links,
-                joints: js,
-                shape: shape.join("-"),
-            });
-        };
-        let forwards: Vec<usize> = (0..p).collect();
-        let backwards: Vec<usize> = (p..4).rev().collect();
-        chain(&mut m, "c0", &forwards);
-        chain(&mut m, "c1", &backwards);
+        // Joint j's axis is frame j − 1's z through its origin.
+        let axes: Vec<(V3, V3)> = frames[..4]
+            .iter()
+            .map(|(r, o)| (*o, [r[0][2], r[1][2], r[2][2]]))
+            .collect();
+        r_loop(&mut m, rng, &axes);
         if finish(&mut m, rng) {
             return m;
         }
     }
+}
+
+/// A line-symmetric Bricard linkage: six R pairs whose axes a half-turn about a line L maps
+/// joint i's to joint i + 3's, so that links i and i + 3 are alike (a, α and the offsets
+/// equal); one freedom where Grübler–Kutzbach counts 0 (Bricard 1927; Baker 1980). Three axes
+/// at random and L at random give a configuration of one; one of its five moving links the
+/// platform, one joint driven.
+fn bricard(rng: &mut Rng) -> Mech {
+    'again: loop {
+        let mut m = Mech::new("bricard", rng);
+        let c = [
+            uniform(rng, -30.0, 30.0),
+            uniform(rng, -30.0, 30.0),
+            uniform(rng, 80.0, 140.0),
+        ];
+        let d = random_unit(rng);
+        let half_turn = |v: V3| sub(scale(2.0 * dot(v, d), d), v);
+        let mut axes: Vec<(V3, V3)> = (0..3)
+            .map(|_| {
+                let p = [0, 1, 2].map(|i| c[i] + uniform(rng, -70.0, 70.0));
+                (p, random_unit(rng))
+            })
+            .collect();
+        for i in 0..3 {
+            let (p, u) = axes[i];
+            axes.push((add(c, half_turn(sub(p, c))), half_turn(u)));
+        }
+        // Neighbours well apart, in angle and in distance (a link of length and twist near
+        // zero is a degenerate loop, whose mobility the oracle cannot judge at home).
+        for i in 0..6 {
+            let (p, u) = axes[i];
+            let (q, w) = axes[(i + 1) % 6];
+            let n = cross(u, w);
+            if norm(n) < 0.3 || dot(sub(q, p), unit(n)).abs() < 15.0 {
+                continue 'again;
+            }
+        }
+        r_loop(&mut m, rng, &axes);
+        if finish(&mut m, rng) {
+            return m;
+        }
+    }
+}
+
+/// A single loop of R pairs on `axes` (each a point and a direction), joint j between loop
+/// links j − 1 and j with loop link 0 the base: a random one of the moving links the platform,
+/// one joint driven, each axis's two pivots on either link it joins, and two chains from the
+/// base to the platform, one each way round the loop.
+fn r_loop(m: &mut Mech, rng: &mut Rng, axes: &[(V3, V3)]) {
+    let n = axes.len();
+    // Loop link i (0 the base) between joints i and i + 1.
+    let p = 1 + (rng.next_u64() % (n as u64 - 1)) as usize;
+    let mut loop_links = vec![BASE];
+    let mut names = 1;
+    for i in 1..n {
+        loop_links.push(if i == p {
+            PLATFORM
+        } else {
+            names += 1;
+            m.link(format!("l{names}"), None)
+        });
+    }
+    let driven = (rng.next_u64() % n as u64) as usize;
+    let mut joints = Vec::new();
+    for (j, &(o, z)) in axes.iter().enumerate() {
+        let z = if chance(rng, 0.5) { z } else { scale(-1.0, z) };
+        let s = uniform(rng, -20.0, 20.0);
+        let owner = if chance(rng, 0.5) {
+            loop_links[j]
+        } else {
+            loop_links[(j + 1) % n]
+        };
+        let first = m.pivot(owner, add(o, scale(s, z)));
+        let second = m.pivot(owner, add(o, scale(s + uniform(rng, 15.0, 40.0), z)));
+        let inputs = if j == driven {
+            m.inputs_of(Kind::R)
+        } else {
+            Vec::new()
+        };
+        joints.push(Some(Joint {
+            kind: Kind::R,
+            inputs,
+            centre: None,
+            axis: Some((first, second)),
+            offset: None,
+            lead: None,
+        }));
+    }
+    let mut chain = |m: &mut Mech, name: &str, order: &[usize]| {
+        let mut links = vec![Some(BASE)];
+        let mut js = Vec::new();
+        let mut shape = Vec::new();
+        for &j in order {
+            let joint = joints[j].take().unwrap();
+            shape.push(if joint.inputs.is_empty() { "R" } else { "R*" });
+            js.push(joint);
+            // Joint j joins loop links j and j + 1: forwards it leads to j + 1, backwards
+            // (j, from loop link j + 1) to j.
+            let to = if order[0] == 0 { (j + 1) % n } else { j };
+            links.push(Some(loop_links[to]));
+        }
+        m.chains.push(Chain {
+            name: name.into(),
+            links,
+            joints: js,
+            shape: shape.join("-"),
+        });
+    };
+    let forwards: Vec<usize> = (0..p).collect();
+    let backwards: Vec<usize> = (p..n).rev().collect();
+    chain(m, "c0", &forwards);
+    chain(m, "c1", &backwards);
 }

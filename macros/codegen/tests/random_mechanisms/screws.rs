@@ -148,6 +148,8 @@ pub struct Closure {
     pub passive: DMatrix<f64>,
     pub input: DMatrix<f64>,
     pub platform: usize,
+    /// The links whose twists are the unknowns, in order (the platform first).
+    pub links: Vec<usize>,
 }
 
 /// A chain's stretch between two declared links: the links and its pairs' twists.
@@ -212,7 +214,44 @@ pub fn closure(m: &Mech) -> Closure {
         passive: a_pass,
         input: a_in,
         platform: 0,
+        links,
     }
+}
+
+/// Whether some U's first axis lies along its leg at home, where the README leaves its second
+/// axis undefined (the model must refuse it).
+pub fn undefined_u(m: &Mech) -> bool {
+    m.chains.iter().enumerate().any(|(ci, c)| {
+        c.joints.iter().enumerate().any(|(k, j)| {
+            if j.kind != Kind::U {
+                return false;
+            }
+            let centre = m.pivots[j.centre.unwrap()].at;
+            let (_, u1) = joint_axis(m, ci, k).unwrap();
+            let leg = sub(leg_end(m, ci, k, centre), centre);
+            norm(cross(u1, leg)) < 1e-7 * norm(leg)
+        })
+    })
+}
+
+/// The largest velocity (over [`UNIT`]) of a declared pivot of a moving link in any motion the
+/// inputs held allow: 0 when the inputs determine every pivot. An idle motion that moves none
+/// (a rod's spin about the line through its two balls) leaves nothing of the model's free; one
+/// that moves a pivot (a chain of seven freedoms with its ends held) leaves the model's
+/// unknowns undetermined.
+pub fn loose_pivots(m: &Mech, cl: &Closure) -> f64 {
+    let (_, _, basis) = kernel_dim(&cl.passive);
+    let mut loose: f64 = 0.0;
+    for c in 0..basis.ncols() {
+        for p in &m.pivots {
+            let Some(slot) = cl.links.iter().position(|&l| l == p.link) else {
+                continue;
+            };
+            let t: Twist = [0, 1, 2, 3, 4, 5].map(|i| basis[(6 * slot + i, c)]);
+            loose = loose.max(norm(point_velocity(&t, p.at)) / UNIT);
+        }
+    }
+    loose
 }
 
 /// What the oracle says at home.
@@ -315,7 +354,7 @@ pub fn platform_twist(cl: &Closure, xdot: &[f64]) -> Result<(Twist, f64), String
     Ok(([0, 1, 2, 3, 4, 5].map(|i| y[p + i]), residual))
 }
 
-/// The velocity of a point of the platform at `at`, under twist `t`.
+/// The velocity of a point of a link at `at` (its position at home) under the link's twist `t`.
 pub fn point_velocity(t: &Twist, at: V3) -> V3 {
     add(
         scale(UNIT, [t[3], t[4], t[5]]),
