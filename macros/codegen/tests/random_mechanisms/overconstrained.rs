@@ -1,14 +1,16 @@
 //! Random overconstrained mechanisms: planar and spherical ones of R and P pairs (four-bars,
 //! five-bars, six-bars with a dyad from a link of an earlier chain, platforms on two or three
 //! chains of three pairs, and a platform with a dyad besides; a spherical one in three with a
-//! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges),
-//! and Bennett linkages. As spatial
-//! mechanisms they are overconstrained: a loop of a planar or spherical mechanism has three
-//! freedoms where a spatial loop has six, a Bennett loop one where Grübler–Kutzbach counts −2,
-//! so the model's spatial equations are dependent at every configuration and its rank test
-//! must keep an independent set that stays one along the motion. The planar and spherical
-//! mobility is known by the same count in three dimensions: a chain of p pairs from a placed
-//! link to the platform adds p − 3 freedoms (the first, from the base, p).
+//! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges;
+//! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages,
+//! line-symmetric Bricard linkages, and platforms on two or three planar chains of different
+//! planes (Sarrus linkages and their kin). As spatial mechanisms they are overconstrained: a
+//! loop of a planar or spherical mechanism has three freedoms where a spatial loop has six, a
+//! Bennett loop one where Grübler–Kutzbach counts −2, a Bricard loop one where it counts 0, so
+//! the model's spatial equations are dependent at every configuration and its rank test must
+//! keep an independent set that stays one along the motion. The planar and spherical mobility
+//! is known by the same count in three dimensions: a chain of p pairs from a placed link to the
+//! platform adds p − 3 freedoms (the first, from the base, p).
 
 use crate::common::Rng;
 use crate::generator::{
@@ -64,7 +66,8 @@ fn pairs(rng: &mut Rng, active: &[bool], planar: bool, mixed: bool) -> Vec<(Kind
 }
 
 /// One random overconstrained mechanism from `seed`: a Bennett linkage for one seed in ten, a
-/// line-symmetric Bricard linkage for another, else a planar or spherical one.
+/// line-symmetric Bricard linkage or a platform on planar chains of different planes for one
+/// in twenty each, else a planar or spherical one.
 pub fn generate(seed: u64) -> Mech {
     let mut rng = Rng::new(seed);
     // By the seed itself, so that the other seeds keep the mechanisms they had before
@@ -72,9 +75,13 @@ pub fn generate(seed: u64) -> Mech {
     if seed % 10 == 4 {
         return bennett(&mut rng);
     }
-    // Half the seeds that were Bennett's (the rest keep their mechanisms).
-    if seed % 10 == 9 {
+    // Half the seeds that were Bennett's (the rest keep their mechanisms), shared by two
+    // families.
+    if seed % 20 == 9 {
         return bricard(&mut rng);
+    }
+    if seed % 20 == 19 {
+        return sarrus(&mut rng);
     }
     loop {
         let planar = chance(&mut rng, 0.5);
@@ -310,6 +317,52 @@ fn bricard(rng: &mut Rng) -> Mech {
             }
         }
         r_loop(&mut m, rng, &axes);
+        if finish(&mut m, rng) {
+            return m;
+        }
+    }
+}
+
+/// A platform on two or three chains of three pairs, each planar in a plane of its own: its R
+/// axes along that chain's normal, its slides square to it (a Sarrus linkage where all are R and
+/// there are two). Each chain allows the platform the planar motions of its plane; together
+/// they allow the translation along the one direction square to every normal, so one freedom
+/// where Grübler–Kutzbach counts 0 (two chains) or −3 (three, their normals square to one
+/// direction). One pair driven.
+fn sarrus(rng: &mut Rng) -> Mech {
+    loop {
+        let mut m = Mech::new("sarrus", rng);
+        let d = random_unit(rng);
+        let chains = if chance(rng, 0.5) { 2 } else { 3 };
+        let mut normals: Vec<V3> = Vec::new();
+        let mut seqs = Vec::new();
+        for _ in 0..chains {
+            // A normal square to d, at least 0.5 rad from the others.
+            let normal = loop {
+                let n = unit(cross(d, random_unit(rng)));
+                if normals.iter().all(|o| norm(cross(*o, n)) > 0.5) {
+                    break n;
+                }
+            };
+            normals.push(normal);
+            seqs.push(pairs(rng, &[false; 3], true, false));
+        }
+        // The driven pair one that moves: not a chain's only R, which turns as the platform
+        // does, not at all.
+        let movers: Vec<(usize, usize)> = (0..chains)
+            .flat_map(|c| (0..3).map(move |k| (c, k)))
+            .filter(|&(c, k)| {
+                seqs[c][k].0 == Kind::P || seqs[c].iter().filter(|p| p.0 == Kind::R).count() > 1
+            })
+            .collect();
+        let (c, k) = pick(rng, &movers);
+        seqs[c][k].1 = true;
+        for (normal, seq) in normals.into_iter().zip(&seqs) {
+            m.group = Group::Planar { normal };
+            let start = m.random_base_point(rng);
+            let chain = general_chain(&mut m, rng, BASE, start, seq);
+            m.chains.push(chain);
+        }
         if finish(&mut m, rng) {
             return m;
         }
