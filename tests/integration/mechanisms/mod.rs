@@ -11,6 +11,7 @@ mod calibrated_home;
 pub mod delta;
 mod delta_tools;
 mod delta_tracking;
+mod delta_universal;
 mod five_bar;
 mod four_bar;
 mod geometry_hunt;
