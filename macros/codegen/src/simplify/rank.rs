@@ -89,7 +89,8 @@ fn rank(rows: &[Vec<f64>]) -> usize {
 /// The rows kept, class by class in order: within a class, rows are taken in order while each
 /// adds more than `weak` of its size to the span; then the class's other rows, the one that
 /// adds the most first (pivoting), while one adds more than [`DEPENDENT`]. With `weak` at
-/// [`DEPENDENT`], every row is taken in its turn unless it depends on those before it.
+/// [`DEPENDENT`], every row is taken in its turn unless it depends on those before it; with
+/// `weak` infinite, by pivoting alone.
 fn select(b: &[Vec<f64>], classes: &[Vec<usize>], weak: f64) -> Vec<usize> {
     let mut kept = Vec::new();
     let mut basis: Vec<Vec<f64>> = Vec::new();
@@ -145,7 +146,8 @@ const NEARLY_SINGULAR: f64 = 1e-7;
 /// class (a partition of the indices); of dependent ones, the later is left out. Two choices
 /// of the rows (see `select`): each in its turn, and with the rows that add less than
 /// `WEAK` of themselves waiting for the rest of their class. The first is kept unless it is
-/// nearly singular at home (`NEARLY_SINGULAR`) and the second is better conditioned. `kept`
+/// nearly singular at home (`NEARLY_SINGULAR`) and the second is better conditioned; where
+/// both are, a third, by pivoting over all the rows, if it is better conditioned still. `kept`
 /// is in the equations' own order.
 pub fn at_home(
     equations: &[Expr],
@@ -163,12 +165,26 @@ pub fn at_home(
     let in_turn = select(&b, classes, DEPENDENT);
     let waiting = select(&b, classes, WEAK);
     let (turn, wait) = (condition(&b, &in_turn), condition(&b, &waiting));
-    let kept = if waiting.len() > in_turn.len()
+    let (kept, cond) = if waiting.len() > in_turn.len()
         || waiting.len() == in_turn.len() && turn < NEARLY_SINGULAR && wait > turn
     {
-        waiting
+        (waiting, wait)
     } else {
-        in_turn
+        (in_turn, turn)
+    };
+    // Both nearly singular: the rows chosen by pivoting alone, over every class, the one that
+    // adds the most first. (A spherical mechanism with a U whose second turn the loop locks:
+    // rows 6e-8 of themselves off the span were kept in their class's turn, 2e-9 ones later
+    // left out, and ∂F/∂v had σmin/σmax 1e-10 at home where all the equations give 7e-5.)
+    let kept = if cond < NEARLY_SINGULAR {
+        let pivoted = select(&b, &[classes.concat()], f64::INFINITY);
+        if pivoted.len() >= kept.len() && condition(&b, &pivoted) > cond {
+            pivoted
+        } else {
+            kept
+        }
+    } else {
+        kept
     };
     let full = rows(equations, &vars_all, v, x, c);
     Ranked {
@@ -206,10 +222,12 @@ mod tests {
         assert_eq!(ranked.kept, [0, 2]);
         assert_eq!(ranked.rank_v, 2);
         assert!(cond(&equations, &ranked.kept, &v) > 0.5);
-        // Across classes the order still decides: the barely independent row of the first class
-        // is kept, the second class's row is then dependent.
+        // Across classes the order decides both choices: the barely independent row of the
+        // first class is kept, the second class's row is then dependent. Both nearly singular,
+        // pivoting over every row decides instead.
         let ranked = at_home(&equations, &[vec![0, 1], vec![2]], 2, 0, &v, &[], &[]);
-        assert_eq!(ranked.kept, [0, 1]);
+        assert_eq!(ranked.kept, [0, 2]);
+        assert!(cond(&equations, &ranked.kept, &v) > 0.5);
     }
 
     /// An equation that holds identically at home, its coefficients rounding (1e-17, against

@@ -136,7 +136,20 @@ pub fn joint_twists(m: &Mech, chain: usize, k: usize) -> Vec<Twist> {
             let c = m.pivots[j.centre.unwrap()].at;
             let (_, u1) = axis.unwrap();
             let leg = sub(leg_end(m, chain, k, c), c);
-            let u2 = unit(cross(u1, leg));
+            // Where the leg is along the first axis (or has no length) the README leaves the
+            // second axis undefined ([`undefined_u`]): any square to the first stands in, so
+            // that the closure stays finite.
+            let n = cross(u1, leg);
+            let u2 = if norm(n) > 1e-9 * norm(leg) {
+                unit(n)
+            } else {
+                let e = if u1[0].abs() < 0.6 {
+                    [1.0, 0.0, 0.0]
+                } else {
+                    [0.0, 1.0, 0.0]
+                };
+                unit(cross(u1, e))
+            };
             vec![revolute(u1, c), revolute(u2, c)]
         }
     }
@@ -229,7 +242,7 @@ pub fn undefined_u(m: &Mech) -> bool {
             let centre = m.pivots[j.centre.unwrap()].at;
             let (_, u1) = joint_axis(m, ci, k).unwrap();
             let leg = sub(leg_end(m, ci, k, centre), centre);
-            norm(cross(u1, leg)) < 1e-7 * norm(leg)
+            !(norm(cross(u1, leg)) >= 1e-7 * norm(leg) && norm(leg) > 1e-9)
         })
     })
 }
@@ -279,7 +292,11 @@ fn kernel_dim(a: &DMatrix<f64>) -> (usize, f64, DMatrix<f64>) {
         cols,
         |r, c| if r < a.nrows() { a[(r, c)] } else { 0.0 },
     );
-    let svd = padded.svd(false, true);
+    // Bounded: nalgebra's `svd` iterates without limit, and loops for good on a matrix with a
+    // NaN; the sweep reports the seed of a panic.
+    let svd = padded
+        .try_svd(false, true, f64::EPSILON, 10_000)
+        .expect("the oracle's SVD does not converge");
     let s = &svd.singular_values;
     let vt = svd.v_t.unwrap();
     let max = s.max().max(1e-300);
