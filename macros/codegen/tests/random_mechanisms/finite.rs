@@ -93,12 +93,18 @@ fn joint_motion(m: &Mech, chain: usize, k: usize, q: &[f64]) -> Motion {
             let x = screw([1.0, 0.0, 0.0], c, q[2], 0.0);
             z.after(&y).after(&x)
         }
-        // About the first axis, then about the second as the link after holds it.
+        // About the axis the link before holds, then about the other as the link after holds
+        // it: the first axis first where it is on the link before, else the second.
         Kind::U => {
             let c = m.pivots[j.centre.unwrap()].at;
             let t = crate::screws::joint_twists(m, chain, k);
             let (u1, u2) = ([t[0][0], t[0][1], t[0][2]], [t[1][0], t[1][1], t[1][2]]);
-            screw(u1, c, q[0], 0.0).after(&screw(u2, c, q[1], 0.0))
+            let (first, second) = (screw(u1, c, q[0], 0.0), screw(u2, c, q[1], 0.0));
+            if crate::screws::axis_after(m, chain, k) {
+                second.after(&first)
+            } else {
+                first.after(&second)
+            }
         }
     }
 }

@@ -3,8 +3,9 @@
 //! chains of three pairs, and a platform with a dyad besides; a spherical one in three with a
 //! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges;
 //! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages,
-//! line-symmetric Bricard linkages, and platforms on two or three planar chains of different
-//! planes (Sarrus linkages and their kin). As spatial mechanisms they are overconstrained: a
+//! line-symmetric Bricard linkages, platforms on two or three planar chains of different
+//! planes (Sarrus linkages and their kin), and deltas of random geometry whose parallelograms
+//! turn on balls or on U pairs. As spatial mechanisms they are overconstrained: a
 //! loop of a planar or spherical mechanism has three freedoms where a spatial loop has six, a
 //! Bennett loop one where Grübler–Kutzbach counts −2, a Bricard loop one where it counts 0, so
 //! the model's spatial equations are dependent at every configuration and its rank test must
@@ -65,15 +66,18 @@ fn pairs(rng: &mut Rng, active: &[bool], planar: bool, mixed: bool) -> Vec<(Kind
     }
 }
 
-/// One random overconstrained mechanism from `seed`: a Bennett linkage for one seed in ten, a
-/// line-symmetric Bricard linkage or a platform on planar chains of different planes for one
-/// in twenty each, else a planar or spherical one.
+/// One random overconstrained mechanism from `seed`: a Bennett linkage, a delta of random
+/// geometry, a line-symmetric Bricard linkage or a platform on planar chains of different
+/// planes for one seed in twenty each, else a planar or spherical one.
 pub fn generate(seed: u64) -> Mech {
     let mut rng = Rng::new(seed);
     // By the seed itself, so that the other seeds keep the mechanisms they had before
     // Bennett linkages joined the sweep.
-    if seed % 10 == 4 {
+    if seed % 20 == 4 {
         return bennett(&mut rng);
+    }
+    if seed % 20 == 14 {
+        return delta(&mut rng);
     }
     // Half the seeds that were Bennett's (the rest keep their mechanisms), shared by two
     // families.
@@ -362,6 +366,83 @@ fn sarrus(rng: &mut Rng) -> Mech {
             let start = m.random_base_point(rng);
             let chain = general_chain(&mut m, rng, BASE, start, seq);
             m.chains.push(chain);
+        }
+        if finish(&mut m, rng) {
+            return m;
+        }
+    }
+}
+
+/// A delta of random geometry: three cranks, each on a hinge of random direction at a random
+/// base point and driven, carrying a parallelogram of two equal rods to the platform, its sides
+/// on the crank and on the platform along the hinge. The rods turn on balls (the delta as
+/// built with balls), or on U pairs whose first axes run along the hinge, on the crank and on
+/// the platform (overconstrained: each rod holds its spin and its angle across the
+/// parallelogram). Either way each parallelogram keeps the platform's side along its hinge, so
+/// the platform only translates: three freedoms where Grübler–Kutzbach counts 3 (balls, less
+/// the rods' idle spins) or −3 (U pairs).
+fn delta(rng: &mut Rng) -> Mech {
+    'again: loop {
+        let mut m = Mech::new("delta", rng);
+        for i in 0..3 {
+            let h = random_unit(rng);
+            let a = m.random_base_point(rng);
+            let r = random_unit(rng);
+            let arm = scale(uniform(rng, 60.0, 120.0), unit(sub(r, scale(dot(r, h), h))));
+            let w = uniform(rng, 30.0, 70.0);
+            let mid = add(a, arm);
+            let e = [add(mid, scale(w / 2.0, h)), add(mid, scale(-w / 2.0, h))];
+            let f1 = m.random_platform_point(rng);
+            let f = [f1, sub(f1, scale(w, h))];
+            // Rods of some length, across the parallelogram from their hinge's side.
+            let rod = norm(sub(f[0], e[0]));
+            if rod < 40.0 || norm(cross(unit(sub(f[0], e[0])), h)) < 0.3 {
+                continue 'again;
+            }
+            let balls = chance(rng, 0.5);
+            let crank = m.link(format!("crank{i}"), None);
+            let hinge = (m.pivot(BASE, a), m.pivot(BASE, add(a, scale(25.0, h))));
+            let ep = [m.pivot(crank, e[0]), m.pivot(crank, e[1])];
+            let fp = [m.pivot(PLATFORM, f[0]), m.pivot(PLATFORM, f[1])];
+            for side in 0..2 {
+                let other = 1 - side;
+                let end = |centre: usize, along: usize| Joint {
+                    kind: if balls { Kind::S } else { Kind::U },
+                    inputs: Vec::new(),
+                    centre: Some(centre),
+                    axis: (!balls).then_some((centre, along)),
+                    offset: None,
+                    lead: None,
+                };
+                let rod_link = m.link(format!("rod{i}_{side}"), balls.then_some(rod));
+                let mut links = vec![Some(crank), Some(rod_link), Some(PLATFORM)];
+                let mut joints = vec![end(ep[side], ep[other]), end(fp[side], fp[other])];
+                if side == 0 {
+                    links.insert(0, Some(BASE));
+                    joints.insert(
+                        0,
+                        Joint {
+                            kind: Kind::R,
+                            inputs: m.inputs_of(Kind::R),
+                            centre: None,
+                            axis: Some(hinge),
+                            offset: None,
+                            lead: None,
+                        },
+                    );
+                }
+                let pair = if balls { "S" } else { "U" };
+                m.chains.push(Chain {
+                    name: format!("c{}", m.chains.len()),
+                    links,
+                    shape: if side == 0 {
+                        format!("R*-{pair}-{pair}")
+                    } else {
+                        format!("{pair}-{pair}")
+                    },
+                    joints,
+                });
+            }
         }
         if finish(&mut m, rng) {
             return m;

@@ -33,14 +33,29 @@ pub enum Rate {
     Passive(usize),
 }
 
-/// The leg's far end from the centre of U pair `k` (the README's U, whose first axis the
-/// generator always puts on the link before): the centre of the nearest pair after it that
-/// has one (an S or U centre, an R's first axis pivot; P, C and H pairs passed over); where
-/// none follows, the pivot declared on the link right after the U (the "other link", not the
-/// chain's last link: they differ when a P, C or H follows) farthest from the centre.
+/// Whether U pair `k` of `chain` has its first axis's points on the link after it (the README
+/// allows either link), its second axis then fixed in the link before.
+pub fn axis_after(m: &Mech, chain: usize, k: usize) -> bool {
+    let c = &m.chains[chain];
+    let (a, _) = c.joints[k].axis.expect("a U has an axis");
+    c.links[k + 1] == Some(m.pivots[a].link) && c.links[k] != Some(m.pivots[a].link)
+}
+
+/// The leg's far end from the centre of U pair `k` (the README's U): the centre of the nearest
+/// pair on the other link's side that has one (after the U where its first axis is on the link
+/// before, before it where the axis is on the link after; an S or U centre, an R's first axis
+/// pivot; P, C and H pairs passed over); where there is none, the pivot declared on the other
+/// link (the one right after or before the U, not the chain's end: they differ when a P, C or H
+/// lies between) farthest from the centre.
 fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
     let c = &m.chains[chain];
-    for j in &c.joints[k + 1..] {
+    let after = axis_after(m, chain, k);
+    let side: Vec<&Joint> = if after {
+        c.joints[..k].iter().rev().collect()
+    } else {
+        c.joints[k + 1..].iter().collect()
+    };
+    for j in side {
         match (j.kind, j.centre, j.axis) {
             (Kind::S | Kind::U, Some(p), _) => return m.pivots[p].at,
             (Kind::R, _, Some((a, _))) => return m.pivots[a].at,
@@ -49,13 +64,14 @@ fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
     }
     // The generator leaves a link unnamed only inside a closed-form leg, where a centre
     // always follows a U.
-    let other = c.links[k + 1].expect("the link after a U with no centre after it is declared");
+    let other = c.links[if after { k } else { k + 1 }]
+        .expect("the other link of a U with no centre on its side is declared");
     m.pivots
         .iter()
         .filter(|p| p.link == other)
         .map(|p| p.at)
         .max_by(|a, b| norm(sub(*a, centre)).total_cmp(&norm(sub(*b, centre))))
-        .expect("the link after such a U has pivots")
+        .expect("the other link of such a U has pivots")
 }
 
 /// The centre a leg's slide runs from or to: an S or U centre, an R's first axis point.
