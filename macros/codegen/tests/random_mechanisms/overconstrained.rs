@@ -285,11 +285,12 @@ fn bennett(rng: &mut Rng) -> Mech {
     }
 }
 
-/// A line-symmetric Bricard linkage: six R pairs whose axes a half-turn about a line L maps
-/// joint i's to joint i + 3's, so that links i and i + 3 are alike (a, α and the offsets
-/// equal); one freedom where Grübler–Kutzbach counts 0 (Bricard 1927; Baker 1980). Three axes
-/// at random and L at random give a configuration of one; one of its five moving links the
-/// platform, one joint driven.
+/// A Bricard linkage: six R pairs in a loop, symmetric about a line (a half-turn about it maps
+/// joint i's axis to joint i + 3's, so links i and i + 3 are alike) or, for half the seeds,
+/// about a plane (a reflection in it maps joint 2's axis to 6's and 3's to 5's, joints 1 and 4
+/// in the plane); one freedom where Grübler–Kutzbach counts 0 (Bricard 1927; Baker 1980).
+/// Axes at random and the line or plane at random give a configuration of one; one of its five
+/// moving links the platform, one joint driven.
 fn bricard(rng: &mut Rng) -> Mech {
     'again: loop {
         let mut m = Mech::new("bricard", rng);
@@ -299,17 +300,33 @@ fn bricard(rng: &mut Rng) -> Mech {
             uniform(rng, 80.0, 140.0),
         ];
         let d = random_unit(rng);
-        let half_turn = |v: V3| sub(scale(2.0 * dot(v, d), d), v);
-        let mut axes: Vec<(V3, V3)> = (0..3)
-            .map(|_| {
-                let p = [0, 1, 2].map(|i| c[i] + uniform(rng, -70.0, 70.0));
-                (p, random_unit(rng))
-            })
-            .collect();
-        for i in 0..3 {
-            let (p, u) = axes[i];
-            axes.push((add(c, half_turn(sub(p, c))), half_turn(u)));
-        }
+        let random_axis = |rng: &mut Rng| {
+            let p = [0, 1, 2].map(|i| c[i] + uniform(rng, -70.0, 70.0));
+            (p, random_unit(rng))
+        };
+        let axes: Vec<(V3, V3)> = if chance(rng, 0.5) {
+            // A half-turn about the line through c along d.
+            let half_turn = |v: V3| sub(scale(2.0 * dot(v, d), d), v);
+            let first: Vec<(V3, V3)> = (0..3).map(|_| random_axis(rng)).collect();
+            let images: Vec<(V3, V3)> = first
+                .iter()
+                .map(|&(p, u)| (add(c, half_turn(sub(p, c))), half_turn(u)))
+                .collect();
+            [first, images].concat()
+        } else {
+            // A reflection in the plane through c square to d; axes 1 and 4 in it.
+            let mirror = |v: V3| sub(v, scale(2.0 * dot(v, d), d));
+            let in_plane = |rng: &mut Rng| loop {
+                let (p, u) = random_axis(rng);
+                if norm(flat(u, d)) > 0.3 {
+                    break (add(c, flat(sub(p, c), d)), unit(flat(u, d)));
+                }
+            };
+            let (a1, a4) = (in_plane(rng), in_plane(rng));
+            let (a2, a3) = (random_axis(rng), random_axis(rng));
+            let image = |(p, u): (V3, V3)| (add(c, mirror(sub(p, c))), mirror(u));
+            vec![a1, a2, a3, a4, image(a3), image(a2)]
+        };
         // Neighbours well apart, in angle and in distance (a link of length and twist near
         // zero is a degenerate loop, whose mobility the oracle cannot judge at home).
         for i in 0..6 {
@@ -325,6 +342,11 @@ fn bricard(rng: &mut Rng) -> Mech {
             return m;
         }
     }
+}
+
+/// `v` with its part along the unit `d` taken off: into the plane square to `d`.
+fn flat(v: V3, d: V3) -> V3 {
+    sub(v, scale(dot(v, d), d))
 }
 
 /// A platform on two or three chains of three pairs, each planar in a plane of its own: its R
