@@ -308,17 +308,23 @@ fn general_pairs(rng: &mut Rng, freedoms: usize, actives: &[usize]) -> Vec<(Kind
             }
         }
         shuffle(rng, &mut seq);
-        let slides = seq
-            .iter()
-            .filter(|(k, _)| matches!(k, Kind::P | Kind::C))
-            .count();
-        let spins = seq
-            .windows(2)
-            .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S);
-        if slides <= 2 && !spins {
+        if within_contract(&seq, 2) {
             return seq;
         }
     }
+}
+
+/// Whether a chain's pairs keep to the README's contract: at most `slides` slides (P, C), and
+/// no two S in a row (the rod between them would be free to spin).
+pub fn within_contract(seq: &[(Kind, bool)], slides: usize) -> bool {
+    let n = seq
+        .iter()
+        .filter(|(k, _)| matches!(k, Kind::P | Kind::C))
+        .count();
+    n <= slides
+        && !seq
+            .windows(2)
+            .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S)
 }
 
 /// A general chain: every link between its pairs declared, each pair's pivots on one of the

@@ -16,7 +16,8 @@
 use crate::common::Rng;
 use crate::generator::{
     add, chance, cross, dot, finish, general_chain, norm, pick, placed_links, random_unit, scale,
-    shuffle, start_near, sub, uniform, unit, Chain, Group, Joint, Kind, Mech, BASE, PLATFORM, V3,
+    shuffle, start_near, sub, uniform, unit, within_contract, Chain, Group, Joint, Kind, Mech,
+    BASE, PLATFORM, V3,
 };
 
 /// Each shape: its chains' pair counts, and whether a chain starts at a placed link of an
@@ -52,15 +53,7 @@ fn pairs(rng: &mut Rng, active: &[bool], planar: bool, mixed: bool) -> Vec<(Kind
                 (kind, a)
             })
             .collect();
-        let slides = seq
-            .iter()
-            .filter(|(k, _)| matches!(k, Kind::P | Kind::C))
-            .count();
-        // Two balls in a row would leave the link between them free to spin.
-        let spins = seq
-            .windows(2)
-            .any(|w| w[0].0 == Kind::S && w[1].0 == Kind::S);
-        if slides <= 2.min(seq.len() - 1) && !spins {
+        if within_contract(&seq, 2.min(seq.len() - 1)) {
             return seq;
         }
     }
