@@ -115,6 +115,9 @@ pub enum Group {
     Planar { normal: V3 },
     /// Every R axis through `centre`: a spherical mechanism, likewise.
     Spherical { centre: V3 },
+    /// Every R axis along `axis`, every slide oblique to it: chains of the Schoenflies motions
+    /// (three translations and turns about `axis`), four freedoms where a spatial loop has six.
+    Schoenflies { axis: V3 },
 }
 
 pub struct Mech {
@@ -256,7 +259,7 @@ impl Mech {
 
 /// The unit direction of a pair's axis through `at`: random for a spatial mechanism; a
 /// planar one's R along the normal (either way), its slides across it; a spherical one's
-/// axes through the centre.
+/// axes through the centre; a Schoenflies chain's R along its axis, its slides oblique to it.
 fn axis_direction(group: Group, kind: Kind, at: V3, rng: &mut Rng) -> V3 {
     let sign = |rng: &mut Rng| if chance(rng, 0.5) { 1.0 } else { -1.0 };
     match group {
@@ -270,6 +273,13 @@ fn axis_direction(group: Group, kind: Kind, at: V3, rng: &mut Rng) -> V3 {
         },
         Group::Planar { normal } => scale(sign(rng), normal),
         Group::Spherical { centre } => scale(sign(rng), unit_or_up(sub(at, centre))),
+        Group::Schoenflies { axis } if kind == Kind::P => loop {
+            let r = random_unit(rng);
+            if dot(r, axis).abs() > 0.3 {
+                break r;
+            }
+        },
+        Group::Schoenflies { axis } => scale(sign(rng), axis),
     }
 }
 

@@ -4,8 +4,9 @@
 //! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges;
 //! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages,
 //! line-symmetric Bricard linkages, platforms on two or three planar chains of different
-//! planes (Sarrus linkages and their kin), and deltas of random geometry whose parallelograms
-//! turn on balls or on U pairs. As spatial mechanisms they are overconstrained: a
+//! planes (Sarrus linkages and their kin), Schoenflies platforms on four chains of three
+//! parallel R and a slide, and deltas of random geometry whose parallelograms turn on balls or
+//! on U pairs. As spatial mechanisms they are overconstrained: a
 //! loop of a planar or spherical mechanism has three freedoms where a spatial loop has six, a
 //! Bennett loop one where Grübler–Kutzbach counts −2, a Bricard loop one where it counts 0, so
 //! the model's spatial equations are dependent at every configuration and its rank test must
@@ -60,8 +61,9 @@ fn pairs(rng: &mut Rng, active: &[bool], planar: bool, mixed: bool) -> Vec<(Kind
 }
 
 /// One random overconstrained mechanism from `seed`: a Bennett linkage, a delta of random
-/// geometry, a line-symmetric Bricard linkage or a platform on planar chains of different
-/// planes for one seed in twenty each, else a planar or spherical one.
+/// geometry or a Bricard linkage for one seed in twenty each, a platform on planar chains of
+/// different planes or a Schoenflies platform for one in forty each, else a planar or
+/// spherical one.
 pub fn generate(seed: u64) -> Mech {
     let mut rng = Rng::new(seed);
     // By the seed itself, so that the other seeds keep the mechanisms they had before
@@ -77,8 +79,11 @@ pub fn generate(seed: u64) -> Mech {
     if seed % 20 == 9 {
         return bricard(&mut rng);
     }
-    if seed % 20 == 19 {
+    if seed % 40 == 19 {
         return sarrus(&mut rng);
+    }
+    if seed % 40 == 39 {
+        return schoenflies(&mut rng);
     }
     loop {
         let planar = chance(&mut rng, 0.5);
@@ -458,6 +463,45 @@ fn delta(rng: &mut Rng) -> Mech {
                     joints,
                 });
             }
+        }
+        if finish(&mut m, rng) {
+            return m;
+        }
+    }
+}
+
+/// A Schoenflies platform: four chains of three R pairs along one axis and a slide oblique to
+/// it, in a random order, each with one pair driven. Each chain allows the platform the
+/// Schoenflies motions (three translations, turns about the axis) and no other, so the four
+/// leave it those four freedoms where Grübler–Kutzbach counts −2, the inputs fixing them.
+fn schoenflies(rng: &mut Rng) -> Mech {
+    loop {
+        let mut m = Mech::new("schoenflies", rng);
+        m.group = Group::Schoenflies {
+            axis: random_unit(rng),
+        };
+        // Every slide's rate is the platform's along the axis over the slide's share of it:
+        // two driven slides would drive one freedom twice.
+        let mut slide_driven = false;
+        for _ in 0..4 {
+            let mut seq = vec![
+                (Kind::R, false),
+                (Kind::R, false),
+                (Kind::R, false),
+                (Kind::P, false),
+            ];
+            shuffle(rng, &mut seq);
+            let driven = loop {
+                let k = (rng.next_u64() % 4) as usize;
+                if !(slide_driven && seq[k].0 == Kind::P) {
+                    break k;
+                }
+            };
+            slide_driven |= seq[driven].0 == Kind::P;
+            seq[driven].1 = true;
+            let start = m.random_base_point(rng);
+            let chain = general_chain(&mut m, rng, BASE, start, &seq);
+            m.chains.push(chain);
         }
         if finish(&mut m, rng) {
             return m;
