@@ -8,8 +8,8 @@
 //! and serial arms of active pairs only; and (`random_mechanisms/overconstrained.rs`)
 //! overconstrained ones, whose spatial equations are dependent: planar and spherical four-,
 //! five- and six-bars and platforms on two or three chains of R and P pairs (now and then an
-//! S, U or C among them), Bennett and line-symmetric Bricard linkages, platforms on planar
-//! chains of different planes (Sarrus), and deltas of random geometry with ball- or
+//! S, U or C among them), Bennett and Bricard linkages, platforms on planar chains of different
+//! planes (Sarrus), Schoenflies platforms, and deltas of random geometry with ball- or
 //! U-jointed parallelograms. For each one the model must answer with a model or
 //! an error, never a panic (and so must three token-level mutants of its text); where it gives
 //! a model, and the declared home passes the macro's check, the oracle
@@ -47,8 +47,8 @@ use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// The two sweeps: spatial mechanisms (`generator.rs`) and overconstrained ones, planar,
-/// spherical, Bennett, Bricard, Sarrus and delta (`overconstrained.rs`), each with its own
-/// range of seeds.
+/// spherical, Bennett, Bricard, Sarrus, Schoenflies and delta (`overconstrained.rs`), each with
+/// its own range of seeds.
 #[derive(Clone, Copy, PartialEq)]
 enum Sweep {
     Spatial,
