@@ -945,3 +945,22 @@ fn rows_barely_independent_in_their_turn_give_way_to_pivoting() {
     );
     assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
 }
+
+/// A Sarrus linkage whose driven hinge is near a dead point: the platform's translation has a
+/// maximum 0.011 rad from home, where everything but the driven chain stops. The path follower
+/// kept a step only where its answer was within half the predicted move of the prediction; the
+/// move shrinks to nothing there while the correction (the path's curvature) does not, so the
+/// model's side stopped at 0.22 of the step, where the oracle's joint values go on. It now also
+/// keeps a step whose correction is within twice what the curvature met so far predicts, where
+/// the tangent has shrunk (`random_mechanisms/path.rs`). Found by the overconstrained sweep; the
+/// model was not at fault (its platform translates along the one direction both chains allow,
+/// and all its equations hold along the way).
+#[test]
+fn a_driven_hinge_near_a_dead_point_is_followed_through_it() {
+    let counts = check_seed(
+        202152299,
+        "sarrus",
+        "chain c1 = base - R(active q0, axis = k6 -> k7) - l1_1",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
+}

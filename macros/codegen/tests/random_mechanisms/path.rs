@@ -61,6 +61,10 @@ pub fn follow(
     mut solve: impl FnMut(f64, Vec<f64>) -> Result<Vec<f64>, String>,
 ) -> Result<Vec<f64>, Stop> {
     let (mut t, mut s, mut h) = (0.0f64, start, FIRST);
+    // The largest correction over the square of its step among the steps kept by the
+    // prediction (the path's curvature as met so far), and the tangent's size at the start.
+    let mut curvature: Option<f64> = None;
+    let mut speed: Option<f64> = None;
     while t < 1.0 {
         let step = h.min(1.0 - t);
         let slope = tangent(t, &s).map_err(|why| Stop { at: t, why })?;
@@ -68,7 +72,22 @@ pub fn follow(
         let why = match solve(t + step, predicted.clone()) {
             Ok(next) => {
                 let (moved, corrected) = (apart(&predicted, &s), apart(&next, &predicted));
-                if corrected <= 0.5 * moved + ROUNDING {
+                let start_speed = *speed.get_or_insert(moved / step);
+                // Or, where the tangent has shrunk to less than half its size at the start,
+                // within twice what the curvature met so far predicts: where the path's
+                // tangent vanishes (a driven hinge near a dead point moves the rest to second
+                // order only: seed 202152299), the move shrinks and the correction does not,
+                // and no step would pass. Not where the tangent grows (a fold, across which a
+                // step would close on another assembly: seed 1548616563), nor by more than
+                // the curvature allows (a jump to another branch, a distance of its own).
+                let fits = corrected <= 0.5 * moved + ROUNDING;
+                let curved = moved / step < 0.5 * start_speed
+                    && curvature.is_some_and(|c| corrected <= 2.0 * c * step * step);
+                if fits || curved {
+                    if fits {
+                        let c = corrected / (step * step);
+                        curvature = Some(curvature.map_or(c, |k| k.max(c)));
+                    }
                     s = next;
                     t = if 1.0 - (t + step) < 1e-12 {
                         1.0
