@@ -2,17 +2,17 @@
 //! five-bars, six-bars with a dyad from a link of an earlier chain, platforms on two or three
 //! chains of three pairs, and a platform with a dyad besides; a spherical one in three with a
 //! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges;
-//! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages,
-//! line-symmetric Bricard linkages, platforms on two or three planar chains of different
+//! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages, line-
+//! and plane-symmetric Bricard linkages, platforms on two or three planar chains of different
 //! planes (Sarrus linkages and their kin), Schoenflies platforms on four chains of three
 //! parallel R and a slide, and deltas of random geometry whose parallelograms turn on balls or
-//! on U pairs. As spatial mechanisms they are overconstrained: a
-//! loop of a planar or spherical mechanism has three freedoms where a spatial loop has six, a
-//! Bennett loop one where Grübler–Kutzbach counts −2, a Bricard loop one where it counts 0, so
-//! the model's spatial equations are dependent at every configuration and its rank test must
-//! keep an independent set that stays one along the motion. The planar and spherical mobility
-//! is known by the same count in three dimensions: a chain of p pairs from a placed link to the
-//! platform adds p − 3 freedoms (the first, from the base, p).
+//! on U pairs. As spatial mechanisms they are overconstrained: a loop of a planar or spherical
+//! mechanism has three freedoms where a spatial loop has six, a Bennett loop one where
+//! Grübler–Kutzbach counts −2, a Bricard loop one where it counts 0, so the model's spatial
+//! equations are dependent at every configuration and its rank test must keep an independent
+//! set that stays one along the motion. The planar and spherical mobility is known by the same
+//! count in three dimensions: a chain of p pairs from a placed link to the platform adds p − 3
+//! freedoms (the first, from the base, p).
 
 use crate::common::Rng;
 use crate::generator::{
