@@ -4,8 +4,10 @@
 //! [`MAX_MULTIPLIER`] (or a pivot is zero or not finite), a call of the runtime's LU kernel.
 //!
 //! Both write their factors into the flat `[f64; _]` storage of the generated `Factor` type at
-//! the offsets of [`Region`]. The fixed order stores reciprocal pivots, so that its solve only
-//! multiplies.
+//! the offsets of [`Region`]. The fixed order stores reciprocal pivots and U's rows divided by
+//! their pivot (a unit diagonal), so that its solve only multiplies and the back-substitution
+//! has one multiplication and one subtraction, not two multiplications, between one unknown and
+//! the next.
 //!
 //! Finiteness: B is not finite when an entry is NaN or infinite. A non-finite value that flows
 //! into a later pivot makes the determinant non-finite; one that flows nowhere (a multiplier
@@ -90,6 +92,13 @@ pub fn fixed_factor(
                 assigned[i][i] = true;
             }
         }
+        // The pivot's last update, from the row whose pivot comes last, is written
+        // `(z_ip * z_pi) * r_p` rather than `m_ip * z_pi`: the product is ready before the
+        // reciprocal is, so that one multiplication and one subtraction, not two
+        // multiplications, lie between one pivot's reciprocal and the next pivot on the
+        // factorisation's critical path (the multiplier is still computed beside it, for the
+        // check and the solve). One multiplication more per pivot.
+        let last = (0..i).rev().find(|&p| lu.filled[i][p] && lu.filled[p][i]);
         for p in (0..i).filter(|&p| lu.filled[i][p]) {
             let recip = format_ident!("r{}", p);
             let m = format_ident!("m{}_{}", i, p);
@@ -113,7 +122,14 @@ pub fn fixed_factor(
             for j in right {
                 let target = z(i, j);
                 let u = z(p, j);
-                if assigned[i][j] {
+                if j == i && last == Some(p) {
+                    body.push(if assigned[i][j] {
+                        quote!(#target -= (#source * #u) * #recip;)
+                    } else {
+                        quote!(let mut #target = -((#source * #u) * #recip);)
+                    });
+                    assigned[i][j] = true;
+                } else if assigned[i][j] {
                     body.push(quote!(#target -= #m * #u;));
                 } else {
                     assigned[i][j] = true;
@@ -130,7 +146,9 @@ pub fn fixed_factor(
         for j in lu.right(i) {
             let u = z(i, j);
             let o = at[i][j].unwrap_or(0);
-            body.push(quote!(f[#o] = #u;));
+            // Stored divided by the pivot (U with a unit diagonal): the solve's
+            // back-substitution then needs no multiplication after its subtractions.
+            body.push(quote!(f[#o] = #u * #recip;));
             if below_empty {
                 sinks.push(quote!(#u));
             }
@@ -186,11 +204,10 @@ pub fn fixed_solve(
             body.push(quote!(#wi -= f[#o] * #wp;));
         }
     }
-    // Back-substitution solves the last pivot first: each row's terms are subtracted in the
-    // order their unknowns are solved (the highest pivot first), so that the unknown solved
-    // just before is the last operation before the reciprocal, not the first of a chain of
-    // subtractions that waits for it. A shorter dependency chain per unknown; the same
-    // operations.
+    // Back-substitution solves the last pivot first: `x_p = w_p r_p − Σ ũ_pj x_j` with U's
+    // rows stored divided by their pivot (ũ), each row's terms subtracted in the order their
+    // unknowns are solved (the highest pivot first), so that the unknown solved just before is
+    // the last operation, not the first of a chain of subtractions that waits for it.
     for p in (0..k).rev() {
         let wp = w(rows[p]);
         let terms: Vec<TokenStream> = lu
@@ -206,7 +223,7 @@ pub fn fixed_solve(
         body.push(if terms.is_empty() {
             quote!(#wp *= f[#o];)
         } else {
-            quote!(#wp = (#wp #(#terms)*) * f[#o];)
+            quote!(#wp = #wp * f[#o] #(#terms)*;)
         });
     }
     quote!(#(#body)*)

@@ -85,16 +85,22 @@ impl Symbolic {
         (p + 1..self.size()).filter(move |&j| self.filled[p][j])
     }
 
-    /// `(multiplier-adds, multiplications, divisions)` of the elimination.
+    /// `(multiplier-adds, multiplications, divisions)` of the elimination as emitted
+    /// (`crate::emit::lu`): a multiplication per multiplier and per entry of U (stored divided
+    /// by its pivot), and one more per pivot whose last update is written through its product.
     pub fn operations(&self) -> (usize, usize, usize) {
         let k = self.size();
         let (mut fma, mut mul) = (0, 0);
         for p in 0..k {
             let below = self.below(p).count();
-            mul += below;
-            fma += below * self.right(p).count();
+            let right = self.right(p).count();
+            mul += below + right;
+            fma += below * right;
         }
-        (fma, mul, k)
+        let through_product = (0..k)
+            .filter(|&i| (0..i).any(|p| self.filled[i][p] && self.filled[p][i]))
+            .count();
+        (fma, mul + through_product, k)
     }
 }
 
@@ -332,9 +338,11 @@ mod tests {
         };
         let s = Symbolic::of(arrow(0));
         assert!(s.filled.iter().flatten().all(|&f| f));
-        assert_eq!(s.operations(), (5, 3, 3));
+        // 3 multipliers, 3 entries of U divided by their pivot, 2 pivots updated last through
+        // their product.
+        assert_eq!(s.operations(), (5, 8, 3));
         let s = Symbolic::of(arrow(2));
         assert_eq!(s.filled, s.initial);
-        assert_eq!(s.operations(), (2, 2, 3));
+        assert_eq!(s.operations(), (2, 5, 3));
     }
 }
