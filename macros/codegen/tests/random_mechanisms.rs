@@ -131,6 +131,10 @@ struct Counts {
     /// link before is not the base.
     from_links: usize,
     inner_actives: usize,
+    /// U pairs whose first axis is on the link after them (their leg looks back), and of
+    /// those the active ones.
+    u_axes_after: usize,
+    active_u_axes_after: usize,
     /// Checked a finite step from home too; or not, both solves stopping at a fold on the way.
     stepped: usize,
     folds: usize,
@@ -236,8 +240,13 @@ fn sweep_part(sweep: Sweep, part: usize, parts: usize) {
         counts.accepted, counts.near_singular
     );
     eprintln!(
-        "checked: {} chains start at a declared link, {} active pairs are not on the base; {} a step from home too ({} met a fold on the way, model and oracle alike)",
-        counts.from_links, counts.inner_actives, counts.stepped, counts.folds
+        "checked: {} chains start at a declared link, {} active pairs are not on the base, {} U pairs have their first axis on the link after them ({} of them active); {} a step from home too ({} met a fold on the way, model and oracle alike)",
+        counts.from_links,
+        counts.inner_actives,
+        counts.u_axes_after,
+        counts.active_u_axes_after,
+        counts.stepped,
+        counts.folds
     );
     eprintln!("refused by message:");
     for (m, n) in &counts.refused {
@@ -457,11 +466,15 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
         }
     }
     // First order agrees: what it covered.
-    for c in &mech.chains {
+    for (ci, c) in mech.chains.iter().enumerate() {
         counts.from_links += usize::from(c.links[0] != Some(generator::BASE));
         for (k, j) in c.joints.iter().enumerate() {
             let inner = c.links[k] != Some(generator::BASE);
             counts.inner_actives += usize::from(inner && !j.inputs.is_empty());
+            if j.kind == generator::Kind::U && screws::axis_after(mech, ci, k) {
+                counts.u_axes_after += 1;
+                counts.active_u_axes_after += usize::from(!j.inputs.is_empty());
+            }
         }
     }
     // A finite step from home (0.05 rad, 2 mm each input, random signs): Newton on the model's

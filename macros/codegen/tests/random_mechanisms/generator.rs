@@ -129,6 +129,10 @@ pub struct Mech {
     pub home: [f64; 6],
     /// Every joint variable, once.
     pub inputs: Vec<String>,
+    /// Whether a general chain's U pair may carry its first axis on the link after it (the
+    /// README allows either link; its leg then looks back along the chain). Set by the seed,
+    /// so that the other seeds' mechanisms stay as they were generated.
+    pub u_axis_after: bool,
 }
 
 /// Uniform in [lo, hi).
@@ -192,6 +196,7 @@ impl Mech {
             chains: Vec::new(),
             home,
             inputs: Vec::new(),
+            u_axis_after: false,
         }
     }
 
@@ -410,18 +415,33 @@ pub fn general_chain(
                 joint.centre = Some(m.pivot(o, at));
             }
             Kind::U => {
-                // The first axis on the link before (the README's case); the centre on either
-                // link, the axis's first point at the centre or elsewhere on the axis. In a
-                // planar or spherical mechanism the first axis is one of its turns'.
+                // The first axis on the link before, or (for the seeds that allow it) on the
+                // link after; the centre on either link, the axis's first point at the centre or
+                // elsewhere on the axis. In a planar or spherical mechanism the first axis is
+                // one of its turns'.
                 let u = axis_direction(m.group, kind, at, rng);
                 let o = owner(rng);
+                let carrier = if m.u_axis_after && chance(rng, 0.5) {
+                    // Its leg looks back along the chain: mostly a pivot of the link before
+                    // to give it a direction where no pair before has a centre (without one
+                    // the model asks for it, and the oracle finds the U undefined).
+                    if chance(rng, 0.7) {
+                        m.pivot(
+                            before,
+                            add(at, scale(uniform(rng, 15.0, 30.0), random_unit(rng))),
+                        );
+                    }
+                    after
+                } else {
+                    before
+                };
                 let centre = m.pivot(o, at);
-                let first = if o == before && chance(rng, 0.5) {
+                let first = if o == carrier && chance(rng, 0.5) {
                     centre
                 } else {
-                    m.pivot(before, add(at, scale(uniform(rng, -30.0, -8.0), u)))
+                    m.pivot(carrier, add(at, scale(uniform(rng, -30.0, -8.0), u)))
                 };
-                let second = m.pivot(before, add(at, scale(uniform(rng, 10.0, 30.0), u)));
+                let second = m.pivot(carrier, add(at, scale(uniform(rng, 10.0, 30.0), u)));
                 joint.centre = Some(centre);
                 joint.axis = Some((first, second));
             }
@@ -650,6 +670,9 @@ pub fn generate(seed: u64) -> Mech {
             ],
         );
         let mut m = Mech::new(family, &mut rng);
+        // One seed in four (4 and 5 modulo 8: even and odd seeds, which the sweep's two parts
+        // share out): U pairs whose first axis may be on the link after them.
+        m.u_axis_after = matches!(seed % 8, 4 | 5);
         // Each entry: a chain's freedoms and its actives' variable counts.
         let plan: Vec<(usize, Vec<usize>)> = match family {
             "hexapod" => (0..6).map(|_| (6, vec![1])).collect(),

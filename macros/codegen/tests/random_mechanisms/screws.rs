@@ -46,8 +46,9 @@ pub fn axis_after(m: &Mech, chain: usize, k: usize) -> bool {
 /// before, before it where the axis is on the link after; an S or U centre, an R's first axis
 /// pivot; P, C and H pairs passed over); where there is none, the pivot declared on the other
 /// link (the one right after or before the U, not the chain's end: they differ when a P, C or H
-/// lies between) farthest from the centre.
-fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
+/// lies between) farthest from the centre; `None` where that link declares no pivot (the leg,
+/// and with it the second axis, is then undefined: the model must refuse it).
+fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> Option<V3> {
     let c = &m.chains[chain];
     let after = axis_after(m, chain, k);
     let side: Vec<&Joint> = if after {
@@ -57,8 +58,8 @@ fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
     };
     for j in side {
         match (j.kind, j.centre, j.axis) {
-            (Kind::S | Kind::U, Some(p), _) => return m.pivots[p].at,
-            (Kind::R, _, Some((a, _))) => return m.pivots[a].at,
+            (Kind::S | Kind::U, Some(p), _) => return Some(m.pivots[p].at),
+            (Kind::R, _, Some((a, _))) => return Some(m.pivots[a].at),
             _ => {}
         }
     }
@@ -71,7 +72,6 @@ fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> V3 {
         .filter(|p| p.link == other)
         .map(|p| p.at)
         .max_by(|a, b| norm(sub(*a, centre)).total_cmp(&norm(sub(*b, centre))))
-        .expect("the other link of such a U has pivots")
 }
 
 /// The centre a leg's slide runs from or to: an S or U centre, an R's first axis point.
@@ -151,7 +151,7 @@ pub fn joint_twists(m: &Mech, chain: usize, k: usize) -> Vec<Twist> {
         Kind::U => {
             let c = m.pivots[j.centre.unwrap()].at;
             let (_, u1) = axis.unwrap();
-            let leg = sub(leg_end(m, chain, k, c), c);
+            let leg = leg_end(m, chain, k, c).map_or([0.0; 3], |end| sub(end, c));
             // Where the leg is along the first axis (or has no length) the README leaves the
             // second axis undefined ([`undefined_u`]): any square to the first stands in, so
             // that the closure stays finite.
@@ -247,8 +247,9 @@ pub fn closure(m: &Mech) -> Closure {
     }
 }
 
-/// Whether some U's first axis lies along its leg at home, where the README leaves its second
-/// axis undefined (the model must refuse it).
+/// Whether some U's first axis lies along its leg at home, or it has no leg (no pair with a
+/// centre on the other link's side, and no pivot declared on that link), where the README
+/// leaves its second axis undefined (the model must refuse it).
 pub fn undefined_u(m: &Mech) -> bool {
     m.chains.iter().enumerate().any(|(ci, c)| {
         c.joints.iter().enumerate().any(|(k, j)| {
@@ -257,7 +258,10 @@ pub fn undefined_u(m: &Mech) -> bool {
             }
             let centre = m.pivots[j.centre.unwrap()].at;
             let (_, u1) = joint_axis(m, ci, k).unwrap();
-            let leg = sub(leg_end(m, ci, k, centre), centre);
+            let Some(end) = leg_end(m, ci, k, centre) else {
+                return true;
+            };
+            let leg = sub(end, centre);
             !(norm(cross(u1, leg)) >= 1e-7 * norm(leg) && norm(leg) > 1e-9)
         })
     })
