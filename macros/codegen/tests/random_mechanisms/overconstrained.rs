@@ -2,8 +2,8 @@
 //! five-bars, six-bars with a dyad from a link of an earlier chain, platforms on two or three
 //! chains of three pairs, and a platform with a dyad besides; a spherical one in three with a
 //! passive ball joint at its centre too; 3-RPR platforms, their slides between their hinges;
-//! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages, line-
-//! and plane-symmetric Bricard linkages, platforms on two or three planar chains of different
+//! for one seed in five, S, U and C pairs among the passive turns), Bennett linkages, Goldberg
+//! 5R linkages, line- and plane-symmetric Bricard linkages, platforms on two or three planar chains of different
 //! planes (Sarrus linkages and their kin), Schoenflies platforms on four chains of three
 //! parallel R and a slide, and deltas of random geometry whose parallelograms turn on balls or
 //! on U pairs. As spatial mechanisms they are overconstrained: a loop of a planar or spherical
@@ -62,8 +62,8 @@ fn pairs(rng: &mut Rng, active: &[bool], planar: bool, mixed: bool) -> Vec<(Kind
 
 /// One random overconstrained mechanism from `seed`: a Bennett linkage, a delta of random
 /// geometry or a Bricard linkage for one seed in twenty each, a platform on planar chains of
-/// different planes or a Schoenflies platform for one in forty each, else a planar or
-/// spherical one.
+/// different planes, a Schoenflies platform or a Goldberg 5R linkage for one in forty each,
+/// else a planar or spherical one.
 pub fn generate(seed: u64) -> Mech {
     let mut rng = Rng::new(seed);
     // By the seed itself, so that the other seeds keep the mechanisms they had before
@@ -84,6 +84,10 @@ pub fn generate(seed: u64) -> Mech {
     }
     if seed % 40 == 39 {
         return schoenflies(&mut rng);
+    }
+    // One planar or spherical seed in twenty (the rest keep their mechanisms).
+    if seed % 40 == 2 {
+        return goldberg(&mut rng);
     }
     loop {
         let planar = chance(&mut rng, 0.5);
@@ -276,6 +280,119 @@ fn bennett(rng: &mut Rng) -> Mech {
             .iter()
             .map(|(r, o)| (*o, [r[0][2], r[1][2], r[2][2]]))
             .collect();
+        r_loop(&mut m, rng, &axes);
+        if finish(&mut m, rng) {
+            return m;
+        }
+    }
+}
+
+/// The closing Bennett angle: with links (a, α) then (b, β) from a joint turned by θ, the next
+/// joint's angle (Bennett 1903; `bennett` above).
+fn bennett_next(theta: f64, alpha: f64, beta: f64) -> f64 {
+    let k = ((beta + alpha) / 2.0).sin() / ((beta - alpha) / 2.0).sin();
+    2.0 * (k / (theta / 2.0).tan()).atan()
+}
+
+/// A Goldberg 5R linkage (Goldberg 1943; Baker 1979): two Bennett linkages sharing a link
+/// (J4→J1, length b and twist β), the first of links a, b, a, b (joints J1–J4), the second of
+/// c, b, c, b (joints J1, J5, J6, J4), with a / sin α = b / sin β = c / sin γ. With the shared
+/// link, each moves on its own; fusing the two links that leave J1 (the first's to J2, the
+/// second's to J5) ties their motions, and taking the shared link away joins J4's two links by
+/// one R: a loop of five R (J2, J3, J4, J6, J5) that keeps one freedom where Grübler–Kutzbach
+/// counts −1. Both Bennett loops at random angles; one moving link the platform, one joint
+/// driven.
+fn goldberg(rng: &mut Rng) -> Mech {
+    use std::f64::consts::TAU;
+    'again: loop {
+        let mut m = Mech::new("goldberg", rng);
+        let b = uniform(rng, 60.0, 150.0);
+        let beta = uniform(rng, 0.35, 1.35);
+        let ratio = b / beta.sin();
+        // The other two links' twists, their lengths by the Bennett condition.
+        let alpha = uniform(rng, 0.35, 1.35);
+        let gamma = uniform(rng, 0.35, 1.35);
+        let (a, c) = (ratio * alpha.sin(), ratio * gamma.sin());
+        if (alpha - beta).abs() < 0.2
+            || (gamma - beta).abs() < 0.2
+            || (alpha - gamma).abs() < 0.2
+            || !(30.0..200.0).contains(&a)
+            || !(30.0..200.0).contains(&c)
+        {
+            continue;
+        }
+        let theta1 = uniform(rng, 0.5, 2.6);
+        let theta2 = bennett_next(theta1, alpha, beta);
+        let psi1 = uniform(rng, 0.5, 2.6);
+        let psi2 = bennett_next(psi1, gamma, beta);
+        if theta2.sin().abs() < 0.3 || psi2.sin().abs() < 0.3 {
+            continue;
+        }
+        // J1's frame, its x along the shared link's normal as it arrives at J1.
+        let j1 = (
+            crate::generator::rotation(
+                uniform(rng, -3.0, 3.0),
+                uniform(rng, -1.5, 1.5),
+                uniform(rng, -3.0, 3.0),
+            ),
+            [
+                uniform(rng, -40.0, 40.0),
+                uniform(rng, -40.0, 40.0),
+                uniform(rng, 60.0, 140.0),
+            ],
+        );
+        let walk = |steps: &[(f64, f64, f64)]| {
+            let mut frames = vec![j1];
+            for &(theta, len, twist) in steps {
+                let next = then(frames.last().unwrap(), &dh(theta, len, twist));
+                frames.push(next);
+            }
+            frames
+        };
+        // J1, J2, J3, J4 and back to J1; J1, J5, J6, J4 and back to J1.
+        let first = walk(&[
+            (theta1, a, alpha),
+            (theta2, b, beta),
+            (TAU - theta1, a, alpha),
+            (TAU - theta2, b, beta),
+        ]);
+        let second = walk(&[
+            (psi1, c, gamma),
+            (psi2, b, beta),
+            (TAU - psi1, c, gamma),
+            (TAU - psi2, b, beta),
+        ]);
+        let axis = |f: &([V3; 3], V3)| (f.1, [f.0[0][2], f.0[1][2], f.0[2][2]]);
+        // Both loops close on J1's frame, and meet at J4 on one axis (the test's own check of
+        // the construction).
+        for frames in [&first, &second] {
+            let (o, z) = axis(&frames[4]);
+            let (o1, z1) = axis(&j1);
+            assert!(
+                norm(sub(o, o1)) < 1e-9 * b && norm(sub(z, z1)) < 1e-9,
+                "a Bennett loop of the Goldberg linkage does not close"
+            );
+            let (o4, z4) = axis(&frames[3]);
+            let (f4, w4) = axis(&first[3]);
+            assert!(
+                norm(sub(o4, f4)) < 1e-9 * b && norm(sub(z4, w4)) < 1e-9,
+                "the Goldberg linkage's Bennett loops do not share J4"
+            );
+        }
+        // The loop of five: J2, J3, J4, J6, J5 (the fused link between J5 and J2).
+        let axes: Vec<(V3, V3)> = [first[1], first[2], first[3], second[2], second[1]]
+            .iter()
+            .map(axis)
+            .collect();
+        // Neighbours well apart, in angle and in distance.
+        for i in 0..5 {
+            let (p, u) = axes[i];
+            let (q, w) = axes[(i + 1) % 5];
+            let n = cross(u, w);
+            if norm(n) < 0.3 || dot(sub(q, p), unit(n)).abs() < 15.0 {
+                continue 'again;
+            }
+        }
         r_loop(&mut m, rng, &axes);
         if finish(&mut m, rng) {
             return m;
