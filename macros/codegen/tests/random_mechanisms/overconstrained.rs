@@ -247,25 +247,13 @@ fn bennett(rng: &mut Rng) -> Mech {
         let beta = uniform(rng, 0.35, 1.35);
         let theta1 = uniform(rng, 0.5, 2.6);
         let b = a * beta.sin() / alpha.sin();
-        let k = ((beta + alpha) / 2.0).sin() / ((beta - alpha) / 2.0).sin();
-        let theta2 = 2.0 * (k / (theta1 / 2.0).tan()).atan();
+        let theta2 = bennett_next(theta1, alpha, beta);
         // Twists apart (equal ones make a planar parallelogram's degenerate cousin) and the
         // loop away from its flat folds.
         if (alpha - beta).abs() < 0.2 || theta2.sin().abs() < 0.3 || !(30.0..200.0).contains(&b) {
             continue;
         }
-        let placed = (
-            crate::generator::rotation(
-                uniform(rng, -3.0, 3.0),
-                uniform(rng, -1.5, 1.5),
-                uniform(rng, -3.0, 3.0),
-            ),
-            [
-                uniform(rng, -40.0, 40.0),
-                uniform(rng, -40.0, 40.0),
-                uniform(rng, 60.0, 140.0),
-            ],
-        );
+        let placed = random_frame(rng);
         let mut frames = vec![placed];
         for (theta, len, twist) in [
             (theta1, a, alpha),
@@ -287,6 +275,34 @@ fn bennett(rng: &mut Rng) -> Mech {
     }
 }
 
+/// Whether a loop's neighbouring axes are well apart, in angle and in distance (a link of
+/// length and twist near zero is a degenerate loop, whose mobility the oracle cannot judge at
+/// home).
+fn neighbours_apart(axes: &[(V3, V3)]) -> bool {
+    (0..axes.len()).all(|i| {
+        let (p, u) = axes[i];
+        let (q, w) = axes[(i + 1) % axes.len()];
+        let n = cross(u, w);
+        norm(n) >= 0.3 && dot(sub(q, p), unit(n)).abs() >= 15.0
+    })
+}
+
+/// A frame placed at random above the base, for a spatial loop to start from.
+fn random_frame(rng: &mut Rng) -> ([V3; 3], V3) {
+    (
+        crate::generator::rotation(
+            uniform(rng, -3.0, 3.0),
+            uniform(rng, -1.5, 1.5),
+            uniform(rng, -3.0, 3.0),
+        ),
+        [
+            uniform(rng, -40.0, 40.0),
+            uniform(rng, -40.0, 40.0),
+            uniform(rng, 60.0, 140.0),
+        ],
+    )
+}
+
 /// The closing Bennett angle: with links (a, α) then (b, β) from a joint turned by θ, the next
 /// joint's angle (Bennett 1903; `bennett` above).
 fn bennett_next(theta: f64, alpha: f64, beta: f64) -> f64 {
@@ -304,7 +320,7 @@ fn bennett_next(theta: f64, alpha: f64, beta: f64) -> f64 {
 /// driven.
 fn goldberg(rng: &mut Rng) -> Mech {
     use std::f64::consts::TAU;
-    'again: loop {
+    loop {
         let mut m = Mech::new("goldberg", rng);
         let b = uniform(rng, 60.0, 150.0);
         let beta = uniform(rng, 0.35, 1.35);
@@ -329,18 +345,7 @@ fn goldberg(rng: &mut Rng) -> Mech {
             continue;
         }
         // J1's frame, its x along the shared link's normal as it arrives at J1.
-        let j1 = (
-            crate::generator::rotation(
-                uniform(rng, -3.0, 3.0),
-                uniform(rng, -1.5, 1.5),
-                uniform(rng, -3.0, 3.0),
-            ),
-            [
-                uniform(rng, -40.0, 40.0),
-                uniform(rng, -40.0, 40.0),
-                uniform(rng, 60.0, 140.0),
-            ],
-        );
+        let j1 = random_frame(rng);
         let walk = |steps: &[(f64, f64, f64)]| {
             let mut frames = vec![j1];
             for &(theta, len, twist) in steps {
@@ -384,14 +389,8 @@ fn goldberg(rng: &mut Rng) -> Mech {
             .iter()
             .map(axis)
             .collect();
-        // Neighbours well apart, in angle and in distance.
-        for i in 0..5 {
-            let (p, u) = axes[i];
-            let (q, w) = axes[(i + 1) % 5];
-            let n = cross(u, w);
-            if norm(n) < 0.3 || dot(sub(q, p), unit(n)).abs() < 15.0 {
-                continue 'again;
-            }
+        if !neighbours_apart(&axes) {
+            continue;
         }
         r_loop(&mut m, rng, &axes);
         if finish(&mut m, rng) {
@@ -442,15 +441,8 @@ fn bricard(rng: &mut Rng) -> Mech {
             let image = |(p, u): (V3, V3)| (add(c, mirror(sub(p, c))), mirror(u));
             vec![a1, a2, a3, a4, image(a3), image(a2)]
         };
-        // Neighbours well apart, in angle and in distance (a link of length and twist near
-        // zero is a degenerate loop, whose mobility the oracle cannot judge at home).
-        for i in 0..6 {
-            let (p, u) = axes[i];
-            let (q, w) = axes[(i + 1) % 6];
-            let n = cross(u, w);
-            if norm(n) < 0.3 || dot(sub(q, p), unit(n)).abs() < 15.0 {
-                continue 'again;
-            }
+        if !neighbours_apart(&axes) {
+            continue 'again;
         }
         r_loop(&mut m, rng, &axes);
         if finish(&mut m, rng) {
