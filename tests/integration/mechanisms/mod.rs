@@ -15,6 +15,7 @@ mod delta_universal;
 mod five_bar;
 mod four_bar;
 mod geometry_hunt;
+mod goldberg;
 mod home_by_inputs;
 mod linear_delta;
 mod motors;
