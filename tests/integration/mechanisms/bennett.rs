@@ -32,7 +32,8 @@ linkage::mechanism! {
     chain close = base - R(passive, axis = D -> Dz) - platform;
 }
 
-type M4 = [[f64; 4]; 4];
+/// A rigid motion as a 4×4 homogeneous matrix.
+pub(super) type M4 = [[f64; 4]; 4];
 
 const A: f64 = 100.0;
 const ALPHA: f64 = std::f64::consts::FRAC_PI_3;
@@ -43,7 +44,7 @@ fn beta() -> f64 {
     (B * ALPHA.sin() / A).asin()
 }
 
-fn mul(x: &M4, y: &M4) -> M4 {
+pub(super) fn mul(x: &M4, y: &M4) -> M4 {
     let mut z = [[0.0; 4]; 4];
     for i in 0..4 {
         for j in 0..4 {
@@ -54,7 +55,7 @@ fn mul(x: &M4, y: &M4) -> M4 {
 }
 
 /// Rz(θ) · Tx(a) · Rx(α).
-fn dh(theta: f64, a: f64, alpha: f64) -> M4 {
+pub(super) fn dh(theta: f64, a: f64, alpha: f64) -> M4 {
     let (st, ct) = theta.sin_cos();
     let (sa, ca) = alpha.sin_cos();
     [
@@ -65,10 +66,15 @@ fn dh(theta: f64, a: f64, alpha: f64) -> M4 {
     ]
 }
 
+/// A Bennett loop's next angle: from a joint turned by θ, with links (a, α) then (b, β).
+pub(super) fn next(theta: f64, alpha: f64, beta: f64) -> f64 {
+    let k = ((beta + alpha) / 2.0).sin() / ((beta - alpha) / 2.0).sin();
+    2.0 * (k / (theta / 2.0).tan()).atan()
+}
+
 /// θ2 at θ1, on the branch of home.
 fn theta2(theta1: f64) -> f64 {
-    let k = ((beta() + ALPHA) / 2.0).sin() / ((beta() - ALPHA) / 2.0).sin();
-    2.0 * (k / (theta1 / 2.0).tan()).atan()
+    next(theta1, ALPHA, beta())
 }
 
 /// The platform's (link 3's) frame at θ1.
@@ -77,14 +83,17 @@ fn platform_frame(theta1: f64) -> M4 {
     mul(&f2, &dh(std::f64::consts::TAU - theta1, A, ALPHA))
 }
 
-/// Where the platform carries `p` (its position at home) at θ1.
-fn carried(theta1: f64, p: [f64; 3]) -> [f64; 3] {
-    let (f, h) = (platform_frame(theta1), platform_frame(THETA1_HOME));
-    // Into the platform's frame at home (h is a rigid motion: its inverse is the transpose),
-    // then out of it at θ1.
+/// Where a link whose frame moves from `h` to `f` carries `p` (its position at `h`): into the
+/// frame at `h` (a rigid motion: its inverse is the transpose), then out of it at `f`.
+pub(super) fn carry(f: &M4, h: &M4, p: [f64; 3]) -> [f64; 3] {
     let d = [0, 1, 2].map(|i| p[i] - h[i][3]);
     let local = [0, 1, 2].map(|j| (0..3).map(|i| h[i][j] * d[i]).sum::<f64>());
     [0, 1, 2].map(|i| f[i][3] + (0..3).map(|j| f[i][j] * local[j]).sum::<f64>())
+}
+
+/// Where the platform carries `p` (its position at home) at θ1.
+fn carried(theta1: f64, p: [f64; 3]) -> [f64; 3] {
+    carry(&platform_frame(theta1), &platform_frame(THETA1_HOME), p)
 }
 
 const PLATFORM: [(&str, [f64; 3]); 3] = [

@@ -6,6 +6,7 @@
 //! second of c, γ, b, β (joints J1, J5, J6, J4), a / sin α = b / sin β = c / sin γ; at J1, the
 //! second loop's angle is the first's plus a constant δ (the fused links).
 
+use super::bennett::{carry, dh, mul, next, M4};
 use super::{check_inverse, mobility_line, point, GENERAL_MODEL};
 use linkage::{arc_length, Mechanism, Status};
 use linkage_tests::{check_jacobians, max_diff};
@@ -47,8 +48,6 @@ linkage::mechanism! {
     chain close = base - R(passive, axis = E -> Ez) - l56 - R(passive, axis = F -> Fz) - l64 - R(passive, axis = C -> Cz) - platform;
 }
 
-type M4 = [[f64; 4]; 4];
-
 const A: f64 = 100.0;
 const ALPHA: f64 = std::f64::consts::FRAC_PI_3;
 const B: f64 = 70.0;
@@ -62,34 +61,6 @@ fn beta() -> f64 {
 
 fn c() -> f64 {
     A * GAMMA.sin() / ALPHA.sin()
-}
-
-fn mul(x: &M4, y: &M4) -> M4 {
-    let mut z = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for j in 0..4 {
-            z[i][j] = (0..4).map(|k| x[i][k] * y[k][j]).sum();
-        }
-    }
-    z
-}
-
-/// Rz(θ) · Tx(a) · Rx(α).
-fn dh(theta: f64, a: f64, alpha: f64) -> M4 {
-    let (st, ct) = theta.sin_cos();
-    let (sa, ca) = alpha.sin_cos();
-    [
-        [ct, -st * ca, st * sa, a * ct],
-        [st, ct * ca, -ct * sa, a * st],
-        [0.0, sa, ca, 0.0],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-/// A Bennett loop's next angle: from a joint turned by θ, with links (a, α) then (b, β).
-fn next(theta: f64, alpha: f64, beta: f64) -> f64 {
-    let k = ((beta + alpha) / 2.0).sin() / ((beta - alpha) / 2.0).sin();
-    2.0 * (k / (theta / 2.0).tan()).atan()
 }
 
 /// The frames at J2, J3 and J4 of the first loop and at J5, J6 and J4 of the second, in the
@@ -109,10 +80,7 @@ fn frames(theta1: f64) -> [M4; 6] {
 /// Where the platform (fixed in J4's frame of the first loop) carries `p` (its position at
 /// home) at θ1.
 fn carried(theta1: f64, p: [f64; 3]) -> [f64; 3] {
-    let (f, h) = (frames(theta1)[2], frames(THETA1_HOME)[2]);
-    let d = [0, 1, 2].map(|i| p[i] - h[i][3]);
-    let local = [0, 1, 2].map(|j| (0..3).map(|i| h[i][j] * d[i]).sum::<f64>());
-    [0, 1, 2].map(|i| f[i][3] + (0..3).map(|j| f[i][j] * local[j]).sum::<f64>())
+    carry(&frames(theta1)[2], &frames(THETA1_HOME)[2], p)
 }
 
 /// The driven joint's angle (J2's, the first loop's θ2) less its value at home, at θ1.
