@@ -142,9 +142,9 @@ fn the_goldberg_linkage_has_one_freedom_by_rank_and_exact_jacobians() {
     check_jacobians(&goldberg, start.v(), start.x());
 }
 
-/// Continuation from home to θ1 (its input), against the closed form: `Some(true)` where the
-/// answer is ok and the closed form's, `Some(false)` where it is refused (not ok), and a panic
-/// where an answer labelled ok is not the closed form's.
+/// Continuation from home to θ1 (its input), against the closed form: `true` where the answer
+/// is ok and the closed form's, `false` where it is refused (not ok), and a panic where an
+/// answer labelled ok is not the closed form's.
 fn solved(goldberg: &Goldberg, start: &linkage::Start<N, 1>, theta1: f64) -> bool {
     let x = [input(theta1)];
     let sol = arc_length(goldberg, start, &x, &GENERAL_MODEL).unwrap();
@@ -165,37 +165,22 @@ fn solved(goldberg: &Goldberg, start: &linkage::Start<N, 1>, theta1: f64) -> boo
 }
 
 /// Driven from θ1 = 0.4 to 4.4 rad (the first loop folds flat at θ1 = 0, the second at
-/// θ1 = 2π − δ), each answer by continuation from home: every answer labelled ok is the closed
-/// form's, and every one from θ1 = 0.4 to 1.14 is ok. Beyond, a known defect (the ignored test
-/// below): the equations the rank test keeps at home (21 of the dependent set) turn singular at
-/// θ1 ≈ 1.158, where the mechanism is regular (its four passive joints' twists keep full rank,
-/// and the closed form satisfies every equation), so continuation stops there with a fold.
+/// θ1 = 2π − δ), each answer by continuation from home: every answer is ok and the closed
+/// form's. Finely from 1.0 to 1.4: the 21 equations the rank test kept at home, by their
+/// order alone, turned singular at θ1 ≈ 1.158, where the mechanism is regular (its four passive
+/// joints' twists keep full rank, and the closed form satisfies every equation), and
+/// continuation stopped there with a fold. The rank test now follows the motion from home and
+/// keeps equations that stay regular along it.
 #[test]
-fn goldberg_forward_kinematics_against_the_closed_form() {
-    let goldberg = Goldberg::new();
-    let start = goldberg.home_start().unwrap();
-    for k in 0..=20 {
-        let theta1 = 0.4 + 0.2 * k as f64;
-        let ok = solved(&goldberg, &start, theta1);
-        assert!(ok || theta1 > 1.14, "θ1 {theta1}: refused");
-    }
-    for k in 0..=37 {
-        let theta1 = 0.4 + 0.02 * k as f64;
-        assert!(solved(&goldberg, &start, theta1), "θ1 {theta1}: refused");
-    }
-}
-
-/// The whole motion from θ1 = 0.4 to 4.4 rad: fails today at θ1 ≈ 1.158, where the square
-/// system kept at home turns singular although the mechanism is regular (see above). The rank
-/// test would need to choose equations that stay independent along the motion, not at home
-/// alone.
-#[test]
-#[ignore = "known defect: the equations kept at home turn singular at θ1 ≈ 1.158 (BENCHMARKS.md)"]
 fn goldberg_is_followed_over_its_whole_motion() {
     let goldberg = Goldberg::new();
     let start = goldberg.home_start().unwrap();
     for k in 0..=20 {
         let theta1 = 0.4 + 0.2 * k as f64;
+        assert!(solved(&goldberg, &start, theta1), "θ1 {theta1}: refused");
+    }
+    for k in 0..=40 {
+        let theta1 = 1.0 + 0.01 * k as f64;
         assert!(solved(&goldberg, &start, theta1), "θ1 {theta1}: refused");
     }
 }

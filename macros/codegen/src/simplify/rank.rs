@@ -5,8 +5,11 @@
 //! and it undercounts their freedom. At a configuration where the mechanism is assembled, the
 //! rank of ∂F/∂(v, x) tells the truth: the mobility is `n + m − rank`, and ∂F/∂v must have full
 //! column rank for the inputs to fix the pose. Equations dependent on earlier ones there are
-//! dropped (listed as such), which leaves the square system the solvers need.
+//! dropped (listed as such), which leaves the square system the solvers need; the square
+//! system is then checked along the motion from home (`along`), and chosen again
+//! where it turns singular there and the mechanism does not.
 
+use super::derivatives::Derivatives;
 use crate::expr::{Expr, Var};
 use nalgebra::DMatrix;
 
@@ -38,7 +41,7 @@ fn off_span(basis: &[Vec<f64>], row: &[f64]) -> (f64, Vec<f64>) {
 }
 
 /// Below this fraction of its size off the span of the rows kept, a row is dependent on them.
-const DEPENDENT: f64 = 1e-8;
+pub(super) const DEPENDENT: f64 = 1e-8;
 
 /// Below this fraction a row is independent, but barely: kept in its turn, it makes the square
 /// system nearly singular at home and singular a small step away (a slide's second placement
@@ -52,29 +55,7 @@ const WEAK: f64 = 1e-3;
 /// the unknowns. (A ball joint at a spherical mechanism's centre, held by a link an active R
 /// turns about an axis through it: its coefficients off the axes are 1e-16, and scaled up to
 /// a row of size 1 they added a random rank, refusing the mechanism as locked.)
-const ROUNDING: f64 = 1e-12;
-
-fn rows(equations: &[Expr], vars: &[Var], v: &[f64], x: &[f64], c: &[f64]) -> Vec<Vec<f64>> {
-    let length = 1.0 + v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-    equations
-        .iter()
-        .map(|f| {
-            let row: Vec<f64> = vars
-                .iter()
-                .map(|&var| f.derivative(var).eval(v, x, c))
-                .collect();
-            // Scale each row: an equation's units (mm or mm²) must not decide its rank.
-            let s = row.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-            if s * length <= ROUNDING * f.magnitude(v, x, c) {
-                vec![0.0; row.len()]
-            } else if s > 0.0 {
-                row.iter().map(|a| a / s).collect()
-            } else {
-                row
-            }
-        })
-        .collect()
-}
+pub(super) const ROUNDING: f64 = 1e-12;
 
 fn rank(rows: &[Vec<f64>]) -> usize {
     if rows.is_empty() || rows[0].is_empty() {
@@ -147,8 +128,9 @@ const NEARLY_SINGULAR: f64 = 1e-7;
 /// of the rows (see `select`): each in its turn, and with the rows that add less than
 /// `WEAK` of themselves waiting for the rest of their class. The first is kept unless it is
 /// nearly singular at home (`NEARLY_SINGULAR`) and the second is better conditioned; where
-/// both are, a third, by pivoting over all the rows, if it is better conditioned still. `kept`
-/// is in the equations' own order.
+/// both are, a third, by pivoting over all the rows, if it is better conditioned still. Where
+/// equations are left out, the choice is followed along the motion and may give way to one
+/// that stays regular there (see `along`). `kept` is in the equations' own order.
 pub fn at_home(
     equations: &[Expr],
     classes: &[Vec<usize>],
@@ -161,7 +143,8 @@ pub fn at_home(
     let vars_v: Vec<Var> = (0..n).map(Var::Unknown).collect();
     let mut vars_all = vars_v.clone();
     vars_all.extend((0..m).map(Var::Input));
-    let b = rows(equations, &vars_v, v, x, c);
+    let by_v = Derivatives::new(equations, &vars_v);
+    let b = by_v.rows(v, x, c);
     let in_turn = select(&b, classes, DEPENDENT);
     let waiting = select(&b, classes, WEAK);
     let (turn, wait) = (condition(&b, &in_turn), condition(&b, &waiting));
@@ -186,11 +169,21 @@ pub fn at_home(
     } else {
         kept
     };
-    let full = rows(equations, &vars_all, v, x, c);
+    let full = Derivatives::new(equations, &vars_all).rows(v, x, c);
+    let by_x = Derivatives::new(equations, &vars_all[n..]);
+    let mobility = (n + m) as i64 - rank(&full) as i64;
+    // Equations left out and a square system kept: checked along the motion, where it may
+    // turn singular although the mechanism does not.
+    let kept = if kept.len() == n && kept.len() < equations.len() && mobility == m as i64 {
+        let rays = super::motion::rays(&by_v, &by_x, v, x, c);
+        super::along::steady(&by_v, classes, kept, &rays, c)
+    } else {
+        kept
+    };
     Ranked {
         rank_v: kept.len(),
         kept,
-        mobility: (n + m) as i64 - rank(&full) as i64,
+        mobility,
     }
 }
 
@@ -199,7 +192,7 @@ mod tests {
     use super::*;
 
     fn cond(equations: &[Expr], kept: &[usize], v: &[f64]) -> f64 {
-        let b = rows(equations, &[Var::Unknown(0), Var::Unknown(1)], v, &[], &[]);
+        let b = Derivatives::new(equations, &[Var::Unknown(0), Var::Unknown(1)]).rows(v, &[], &[]);
         let m = DMatrix::from_fn(kept.len(), 2, |i, j| b[kept[i]][j]);
         let sv = m.singular_values();
         sv.min() / sv.max()
@@ -253,5 +246,28 @@ mod tests {
         real[1] = Expr::minus(x, Expr::times(Expr::Num(2.0), y));
         let ranked = at_home(&real, &[vec![0, 1]], 2, 0, &v, &[], &c);
         assert_eq!((ranked.kept.as_slice(), ranked.mobility), (&[0, 1][..], 0));
+    }
+
+    /// On the motion u = t, w = 0 (from home t = 0), the equations u − t, w (1 − u) + (u − t)
+    /// and w: the first two, kept at home in their turn, turn singular at u = 1 (their det is
+    /// 1 − u), where the mechanism is regular; the first and third do not. The choice along
+    /// the motion keeps them. With w (2 + u²) instead, the choice at home stays.
+    #[test]
+    fn a_choice_that_turns_singular_along_the_motion_gives_way() {
+        let (u, w, t) = (Expr::Unknown(0), Expr::Unknown(1), Expr::Input(0));
+        let along = Expr::minus(u.clone(), t.clone());
+        let equations = |g: Expr| {
+            vec![
+                along.clone(),
+                Expr::plus(Expr::times(w.clone(), g), along.clone()),
+                w.clone(),
+            ]
+        };
+        let turning = equations(Expr::minus(Expr::Num(1.0), u.clone()));
+        let ranked = at_home(&turning, &[vec![0, 1, 2]], 2, 1, &[0.0, 0.0], &[0.0], &[]);
+        assert_eq!((ranked.kept.as_slice(), ranked.mobility), (&[0, 2][..], 1));
+        let steady = equations(Expr::plus(Expr::Num(2.0), u.square()));
+        let ranked = at_home(&steady, &[vec![0, 1, 2]], 2, 1, &[0.0, 0.0], &[0.0], &[]);
+        assert_eq!((ranked.kept.as_slice(), ranked.mobility), (&[0, 1][..], 1));
     }
 }

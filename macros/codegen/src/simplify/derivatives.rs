@@ -1,0 +1,87 @@
+//! The constraint Jacobian's entries, differentiated once and evaluated at many
+//! configurations: at home by the rank test, along the motion by its check.
+
+use super::rank::ROUNDING;
+use super::tape::Tape;
+use crate::expr::{Expr, Var};
+
+/// ∂F/∂v's (or ∂F/∂x's) entries, sparse.
+pub struct Derivatives<'a> {
+    pub equations: &'a [Expr],
+    /// For each equation, the columns of its nonzero derivatives.
+    columns_of: Vec<Vec<usize>>,
+    /// The nonzero derivatives, row by row.
+    tape: Tape,
+    pub columns: usize,
+}
+
+/// A matrix's rows, sparse: each row's columns and values.
+pub type Sparse = Vec<Vec<(usize, f64)>>;
+
+impl<'a> Derivatives<'a> {
+    pub fn new(equations: &'a [Expr], vars: &[Var]) -> Self {
+        let entries: Vec<Vec<(usize, Expr)>> = equations
+            .iter()
+            .map(|f| {
+                vars.iter()
+                    .enumerate()
+                    .map(|(k, &var)| (k, f.derivative(var)))
+                    .filter(|(_, d)| !d.is_zero())
+                    .collect()
+            })
+            .collect();
+        Derivatives {
+            equations,
+            tape: Tape::new(entries.iter().flatten().map(|(_, d)| d)),
+            columns_of: entries
+                .iter()
+                .map(|row| row.iter().map(|(k, _)| *k).collect())
+                .collect(),
+            columns: vars.len(),
+        }
+    }
+
+    /// The operations an evaluation takes.
+    pub fn size(&self) -> usize {
+        self.tape.len()
+    }
+
+    /// The matrix at `(v, x)`.
+    pub fn sparse(&self, v: &[f64], x: &[f64], c: &[f64]) -> Sparse {
+        let mut values = Vec::new();
+        self.tape.eval(v, x, c, &mut values);
+        let mut values = values.into_iter();
+        self.columns_of
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|&k| (k, values.next().unwrap_or(0.0)))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The rows at `(v, x)`, dense, each scaled to its largest entry: an equation's units (mm
+    /// or mm²) must not decide its rank. A row of rounding alone (see [`ROUNDING`]) is zero.
+    pub fn rows(&self, v: &[f64], x: &[f64], c: &[f64]) -> Vec<Vec<f64>> {
+        let length = 1.0 + v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        self.equations
+            .iter()
+            .zip(self.sparse(v, x, c))
+            .map(|(f, entries)| {
+                let mut row = vec![0.0; self.columns];
+                for (k, d) in entries {
+                    row[k] = d;
+                }
+                let s = row.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+                if s * length <= ROUNDING * f.magnitude(v, x, c) {
+                    vec![0.0; row.len()]
+                } else if s > 0.0 {
+                    row.iter().map(|a| a / s).collect()
+                } else {
+                    row
+                }
+            })
+            .collect()
+    }
+}
