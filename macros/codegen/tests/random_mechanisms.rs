@@ -477,9 +477,14 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
             }
         }
     }
-    // A finite step from home (0.05 rad, 2 mm each input, random signs): Newton on the model's
-    // F from home against the oracle's own loop closure, both following home's branch along
-    // the way (`random_mechanisms/path.rs`).
+    // A finite step from home (0.05 rad, 2 mm each input, random signs; `LINKAGE_SWEEP_REACH`
+    // times that, for a longer look): Newton on the model's F from home against the oracle's
+    // own loop closure, both following home's branch along the way
+    // (`random_mechanisms/path.rs`).
+    let reach = std::env::var("LINKAGE_SWEEP_REACH")
+        .ok()
+        .and_then(|s| s.parse::<f64>().ok())
+        .unwrap_or(1.0);
     let step: Vec<f64> = mech
         .inputs
         .iter()
@@ -490,11 +495,12 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
                 -1.0
             };
             let length = name.starts_with('d') || name.starts_with('z');
-            sign * if length { 2.0 } else { 0.05 }
+            sign * reach * if length { 2.0 } else { 0.05 }
         })
         .collect();
-    // Shortened where the platform moves more than 2 mm for it to first order (a random
-    // mechanism can be near a fold of its own, where neither solve follows the step).
+    // Shortened where the platform moves more than 2 mm (times the reach) for it to first
+    // order (a random mechanism can be near a fold of its own, where neither solve follows the
+    // step).
     let by_model = |step: &[f64]| -> Vec<f64> {
         model
             .inputs
@@ -506,7 +512,10 @@ fn check(seed: u64, mech: &Mech, text: &str, counts: &mut Counts) -> Result<(), 
         .iter()
         .map(|(_, _, d)| norm(*d))
         .fold(0.0, f64::max);
-    let step: Vec<f64> = step.iter().map(|s| s * (2.0 / moved).min(1.0)).collect();
+    let step: Vec<f64> = step
+        .iter()
+        .map(|s| s * (2.0 * reach / moved).min(1.0))
+        .collect();
     let x: Vec<f64> = home
         .x
         .iter()

@@ -73,10 +73,10 @@ fn crossings(rays: &[Ray], kept: &[usize]) -> Vec<(usize, usize)> {
     out
 }
 
-/// The rows chosen class by class, by pivoting over all `samples` at once: next, the class's
-/// row whose part off the span of the rows chosen is largest at the configuration where it is
-/// smallest, while that is more than [`DEPENDENT`] of the row.
-fn pivoted(samples: &[&Rows], classes: &[Vec<usize>]) -> Vec<usize> {
+/// `n` rows chosen class by class, by pivoting over all `samples` at once (home first): next,
+/// the class's row whose part off the span of the rows chosen is largest at the configuration
+/// where it is smallest, among those more than [`DEPENDENT`] of themselves off it at home.
+fn pivoted(samples: &[&Rows], classes: &[Vec<usize>], n: usize) -> Vec<usize> {
     let norm = |r: &[f64]| r.iter().map(|a| a * a).sum::<f64>().sqrt();
     // Each sample's rows, less their parts along the rows chosen (Gram–Schmidt, updated as
     // each row is chosen), and each row's own size there.
@@ -89,18 +89,20 @@ fn pivoted(samples: &[&Rows], classes: &[Vec<usize>]) -> Vec<usize> {
     let mut kept = Vec::new();
     for class in classes {
         let mut open: Vec<usize> = class.clone();
-        loop {
-            let score = |i: usize| {
-                (0..samples.len())
-                    .map(|s| norm(&left[s][i]) / size[s][i].max(1e-300))
-                    .fold(f64::INFINITY, f64::min)
-            };
+        while kept.len() < n {
+            let part = |s: usize, i: usize| norm(&left[s][i]) / size[s][i].max(1e-300);
             let best = open
                 .iter()
                 .enumerate()
-                .map(|(k, &i)| (k, score(i)))
+                .filter(|(_, &i)| part(0, i) > DEPENDENT)
+                .map(|(k, &i)| {
+                    let worst = (0..samples.len())
+                        .map(|s| part(s, i))
+                        .fold(f64::INFINITY, f64::min);
+                    (k, worst)
+                })
                 .max_by(|a, b| a.1.total_cmp(&b.1));
-            let Some((k, _)) = best.filter(|(_, s)| *s > DEPENDENT) else {
+            let Some((k, _)) = best else {
                 break;
             };
             let i = open.swap_remove(k);
@@ -139,6 +141,7 @@ pub fn steady(
         .flat_map(|(r, ray)| (0..ray.len()).map(move |k| (r, k)))
         .collect();
     let stride = all.len().div_ceil(CHOOSE_OVER).max(1);
+    // Home first: (0, 0), where every ray starts, sorts first.
     let mut chosen: Vec<(usize, usize)> = all.iter().copied().step_by(stride).collect();
     for &(r, k) in &home {
         chosen.extend([(r, k), (r, k + 1)]);
@@ -152,8 +155,8 @@ pub fn steady(
     let samples: Vec<&Rows> = samples.iter().collect();
     let n = kept.len();
     [
-        pivoted(&samples, classes),
-        pivoted(&samples, &[classes.concat()]),
+        pivoted(&samples, classes, n),
+        pivoted(&samples, &[classes.concat()], n),
     ]
     .into_iter()
     .filter(|choice| choice.len() == n)
