@@ -24,10 +24,10 @@ const TRAVEL: f64 = 1.5;
 /// And after this many steps, wherever it is,
 const STEPS: usize = 40;
 
-/// or once the rays together have evaluated this many expression nodes (equations and their
-/// derivatives): a bound on the compile time (about 0.1 s) that only systems of large
-/// expressions reach, followed less far. (A random general chain of 135 equations, 125 000
-/// nodes in its Jacobian, took 2.4 s for its twelve rays before.)
+/// or once the rays together have done this many operations (expression nodes evaluated, and
+/// n³/6 a factorisation): a bound on the compile time (about 0.1 s) that only large systems
+/// reach, followed less far. (A random general chain of 135 equations, 125 000 nodes in its
+/// Jacobian, took 2.4 s for its twelve rays before.)
 const WORK: usize = 20_000_000;
 
 /// Each chord correction at most this fraction of the one before. (Chord corrections
@@ -140,7 +140,9 @@ impl System<'_> {
 
     /// B = ∂F/∂v at `(v, x)`, factored.
     fn factor(&self, v: &[f64], x: &[f64]) -> Option<Factored> {
-        self.work.set(self.work.get() + self.by_v.size());
+        let n = self.by_v.columns;
+        self.work
+            .set(self.work.get() + self.by_v.size() + n * n * n / 6);
         let b = self.by_v.sparse(v, x, self.c);
         let normal = Normal::new(&b, self.by_v.columns)?;
         Some((b, normal))
