@@ -1,9 +1,18 @@
 //! The constraint Jacobian's entries, differentiated once and evaluated at many
 //! configurations: at home by the rank test, along the motion by its check.
 
-use super::rank::ROUNDING;
 use super::tape::Tape;
 use crate::expr::{Expr, Var};
+
+/// Below this fraction of its size off the span of the rows kept, a row is dependent on them.
+pub const DEPENDENT: f64 = 1e-8;
+
+/// Below this fraction of the rounding scale (an equation's [`Expr::magnitude`] over the
+/// length scale), a row is rounding alone: the equation holds identically at home, whatever
+/// the unknowns. (A ball joint at a spherical mechanism's centre, held by a link an active R
+/// turns about an axis through it: its coefficients off the axes are 1e-16, and scaled up to
+/// a row of size 1 they added a random rank, refusing the mechanism as locked.)
+pub const ROUNDING: f64 = 1e-12;
 
 /// ∂F/∂v's (or ∂F/∂x's) entries, sparse.
 pub struct Derivatives<'a> {

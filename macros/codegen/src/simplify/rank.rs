@@ -9,7 +9,7 @@
 //! system is then checked along the motion from home (`along`), and chosen again
 //! where it turns singular there and the mechanism does not.
 
-use super::derivatives::Derivatives;
+use super::derivatives::{Derivatives, DEPENDENT};
 use crate::expr::{Expr, Var};
 use nalgebra::DMatrix;
 
@@ -40,22 +40,13 @@ fn off_span(basis: &[Vec<f64>], row: &[f64]) -> (f64, Vec<f64>) {
     )
 }
 
-/// Below this fraction of its size off the span of the rows kept, a row is dependent on them.
-pub(super) const DEPENDENT: f64 = 1e-8;
-
-/// Below this fraction a row is independent, but barely: kept in its turn, it makes the square
+/// Below this fraction of its size off the span of the rows kept (above [`DEPENDENT`]), a row is
+/// independent, but barely: kept in its turn, it makes the square
 /// system nearly singular at home and singular a small step away (a slide's second placement
 /// of the platform held by the x of one point whose x hardly moves for the turn it must stop:
 /// 4e-6 off the span, ∂F/∂v singular within 0.08 mm of home, where the mechanism is regular).
 /// Such a row may wait until its class's rows that add more are in (see [`at_home`]).
 const WEAK: f64 = 1e-3;
-
-/// Below this fraction of the rounding scale (an equation's [`Expr::magnitude`] over the
-/// length scale), a row is rounding alone: the equation holds identically at home, whatever
-/// the unknowns. (A ball joint at a spherical mechanism's centre, held by a link an active R
-/// turns about an axis through it: its coefficients off the axes are 1e-16, and scaled up to
-/// a row of size 1 they added a random rank, refusing the mechanism as locked.)
-pub(super) const ROUNDING: f64 = 1e-12;
 
 fn rank(rows: &[Vec<f64>]) -> usize {
     if rows.is_empty() || rows[0].is_empty() {
