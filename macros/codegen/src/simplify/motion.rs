@@ -6,10 +6,11 @@
 //! linkage the 21 equations kept at home turned singular 0.056 rad of the input away, where
 //! the mechanism is regular: continuation stopped there with a fold. So the motion is followed
 //! from home, each input in turn both ways, the others held: predictor along the tangent,
-//! Gauss–Newton on all the equations (consistent on the motion, so it converges quadratically
-//! where the mechanism is regular), the step halved where it does not contract. A ray ends at
-//! a fold or a singularity of the mechanism (the step shrinks to nothing), after a travel of
-//! [`TRAVEL`] length scales, or after [`STEPS`] steps.
+//! chord Gauss–Newton on all the equations (consistent on the motion, so least squares meets
+//! them where the mechanism is regular; ∂F/∂v factored once a step, where it starts), the step
+//! halved where the corrections do not contract. A ray ends at a fold or a singularity of the
+//! mechanism (the step shrinks to nothing), after a travel of [`TRAVEL`] length scales, after
+//! [`STEPS`] steps, or when the work allowed ([`WORK`]) is spent.
 
 use super::derivatives::{Derivatives, Sparse};
 use super::tape::Tape;

@@ -40,12 +40,12 @@ fn off_span(basis: &[Vec<f64>], row: &[f64]) -> (f64, Vec<f64>) {
     )
 }
 
-/// Below this fraction of its size off the span of the rows kept (above [`DEPENDENT`]), a row is
-/// independent, but barely: kept in its turn, it makes the square
-/// system nearly singular at home and singular a small step away (a slide's second placement
-/// of the platform held by the x of one point whose x hardly moves for the turn it must stop:
-/// 4e-6 off the span, ∂F/∂v singular within 0.08 mm of home, where the mechanism is regular).
-/// Such a row may wait until its class's rows that add more are in (see [`at_home`]).
+/// Below this fraction of its size off the span of the rows kept (above [`DEPENDENT`]), a row
+/// is independent, but barely: kept in its turn, it makes the square system nearly singular at
+/// home and singular a small step away (a slide's second placement of the platform held by
+/// the x of one point whose x hardly moves for the turn it must stop: 4e-6 off the span, ∂F/∂v
+/// singular within 0.08 mm of home, where the mechanism is regular). Such a row may wait until
+/// its class's rows that add more are in (see [`at_home`]).
 const WEAK: f64 = 1e-3;
 
 fn rank(rows: &[Vec<f64>]) -> usize {
