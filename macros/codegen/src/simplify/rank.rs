@@ -161,11 +161,11 @@ pub fn at_home(
         kept
     };
     let full = Derivatives::new(equations, &vars_all).rows(v, x, c);
-    let by_x = Derivatives::new(equations, &vars_all[n..]);
     let mobility = (n + m) as i64 - rank(&full) as i64;
     // Equations left out and a square system kept: checked along the motion, where it may
     // turn singular although the mechanism does not.
     let kept = if kept.len() == n && kept.len() < equations.len() && mobility == m as i64 {
+        let by_x = Derivatives::new(equations, &vars_all[n..]);
         let rays = super::motion::rays(&by_v, &by_x, v, x, c);
         super::along::steady(&by_v, classes, kept, &rays, c)
     } else {
