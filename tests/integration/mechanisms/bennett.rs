@@ -7,7 +7,7 @@
 //! θ4 = 2π − θ2 and tan(θ1/2) tan(θ2/2) = sin((β + α)/2) / sin((β − α)/2).
 
 use super::{check_inverse, mobility_line, point, GENERAL_MODEL};
-use linkage::{arc_length, Mechanism, Status};
+use linkage::{arc_length, Mechanism, Status, Tracker};
 use linkage_tests::{check_jacobians, max_diff};
 
 // a = 100, α = 60°, b = 70, β = asin(0.7 sin 60°) ≈ 37.3°, at θ1 = 1 rad: each axis's point
@@ -70,6 +70,17 @@ pub(super) fn dh(theta: f64, a: f64, alpha: f64) -> M4 {
 pub(super) fn next(theta: f64, alpha: f64, beta: f64) -> f64 {
     let k = ((beta + alpha) / 2.0).sin() / ((beta - alpha) / 2.0).sin();
     2.0 * (k / (theta / 2.0).tan()).atan()
+}
+
+/// [`next`] continuous in θ (whole turns added): near ±(π − θ), the sign that of
+/// sin((β − α)/2), from which it differs by less than π (twice the angle between
+/// (sin(θ/2), k cos(θ/2)) and (sin(θ/2), ±cos(θ/2)), one quadrant; k the ratio of sines in
+/// [`next`]).
+pub(super) fn next_unwrapped(theta: f64, alpha: f64, beta: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let wrapped = next(theta, alpha, beta);
+    let near = ((beta - alpha) / 2.0).sin().signum() * (PI - theta);
+    wrapped + TAU * ((near - wrapped) / TAU).round()
 }
 
 /// θ2 at θ1, on the branch of home.
@@ -143,14 +154,16 @@ fn the_bennett_linkage_has_one_freedom_by_rank_and_exact_jacobians() {
     check_jacobians(&bennett, start.v(), start.x());
 }
 
-/// Driven from θ1 = 0.3 to 2.9 rad (the loop folds flat at θ1 = 0), each answer by
-/// continuation from home against the closed form.
+/// Driven over two whole turns, θ1 from −5.3 to 7.3 rad, each answer by continuation from
+/// home against the closed form. The loop lies flat at θ1 = 0 and π (θ2 = π, 0): regular
+/// there all the same (tan(θ1/2) tan(θ2/2) is smooth through them, and the three passive
+/// joints' twists keep full rank all round), so continuation goes through.
 #[test]
 fn bennett_forward_kinematics_against_the_closed_form() {
     let bennett = Bennett::new();
     let start = bennett.home_start().unwrap();
-    for k in 0..=26 {
-        let theta1 = 0.3 + 0.1 * k as f64;
+    for k in 0..=63 {
+        let theta1 = -5.3 + 0.2 * k as f64;
         let x = [theta1 - THETA1_HOME];
         let sol = arc_length(&bennett, &start, &x, &GENERAL_MODEL).unwrap();
         assert_eq!(sol.status, Status::Converged, "θ1 {theta1}");
@@ -164,4 +177,50 @@ fn bennett_forward_kinematics_against_the_closed_form() {
         }
         check_inverse(&bennett, &sol.v, &x, &[x[0] + 0.05], 1e-8);
     }
+}
+
+/// θ1 at time `t` (s) of a trajectory that turns a loop's first joint back and forth over
+/// about three turns either way from home, at up to 13 rad/s.
+pub(super) fn turning(t: f64) -> f64 {
+    THETA1_HOME + 7.0 * (0.9 * t).sin() + 3.0 * (2.3 * t).sin()
+}
+
+/// The tracker from `start` at 1 kHz for 8 s along [`turning`], the input at each sample
+/// `input(θ1)`:
+/// every sample answered, its platform points (`platform`, at home) where `carried` puts
+/// them at θ1, to 1e-7.
+pub(super) fn tracked_over_turns<S: Mechanism<N, 1> + Clone, const N: usize>(
+    sys: &S,
+    start: linkage::Start<N, 1>,
+    input: impl Fn(f64) -> f64,
+    carried: impl Fn(f64, [f64; 3]) -> [f64; 3],
+    platform: &[(&str, [f64; 3])],
+) {
+    let mut tracker = Tracker::new(sys.clone(), start, GENERAL_MODEL);
+    for k in 0..=8000 {
+        let theta1 = turning(k as f64 * 1e-3);
+        let sample = tracker
+            .update(&[input(theta1)])
+            .unwrap_or_else(|e| panic!("sample {k}, θ1 {theta1}: {e:?}"));
+        for (name, at) in platform {
+            let got = point::<S, N, 1>(&sample.v, name);
+            let want = carried(theta1, *at);
+            assert!(
+                max_diff(&got, &want) < 1e-7,
+                "sample {k}, θ1 {theta1}, {name}: {got:?} vs {want:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bennett_is_tracked_over_whole_turns_both_ways() {
+    let bennett = Bennett::new();
+    tracked_over_turns(
+        &bennett,
+        bennett.home_start().unwrap(),
+        |theta1| theta1 - THETA1_HOME,
+        carried,
+        &PLATFORM,
+    );
 }

@@ -6,7 +6,7 @@
 //! second of c, γ, b, β (joints J1, J5, J6, J4), a / sin α = b / sin β = c / sin γ; at J1, the
 //! second loop's angle is the first's plus a constant δ (the fused links).
 
-use super::bennett::{carry, dh, mul, next, M4};
+use super::bennett::{carry, dh, mul, next, next_unwrapped, tracked_over_turns, M4};
 use super::{check_inverse, mobility_line, point, GENERAL_MODEL};
 use linkage::{arc_length, Mechanism, Status};
 use linkage_tests::{check_jacobians, max_diff};
@@ -83,9 +83,10 @@ fn carried(theta1: f64, p: [f64; 3]) -> [f64; 3] {
     carry(&frames(theta1)[2], &frames(THETA1_HOME)[2], p)
 }
 
-/// The driven joint's angle (J2's, the first loop's θ2) less its value at home, at θ1.
+/// The driven joint's angle (J2's, the first loop's θ2) less its value at home, at θ1:
+/// continuous in θ1, whole turns and all.
 fn input(theta1: f64) -> f64 {
-    next(theta1, ALPHA, beta()) - next(THETA1_HOME, ALPHA, beta())
+    next_unwrapped(theta1, ALPHA, beta()) - next_unwrapped(THETA1_HOME, ALPHA, beta())
 }
 
 const PLATFORM: [(&str, [f64; 3]); 3] = [
@@ -164,23 +165,31 @@ fn solved(goldberg: &Goldberg, start: &linkage::Start<N, 1>, theta1: f64) -> boo
     true
 }
 
-/// Driven from θ1 = 0.4 to 4.4 rad (the first loop folds flat at θ1 = 0, the second at
-/// θ1 = 2π − δ), each answer by continuation from home: every answer is ok and the closed
-/// form's. Finely from 1.0 to 1.4: the 21 equations the rank test kept at home, by their
-/// order alone, turned singular at θ1 ≈ 1.158, where the mechanism is regular (its four passive
-/// joints' twists keep full rank, and the closed form satisfies every equation), and
-/// continuation stopped there with a fold. The rank test now follows the motion from home and
-/// keeps equations that stay regular along it.
+/// Driven over two whole turns, θ1 from −5.3 to 7.3 rad, each answer by continuation from
+/// home: every answer is ok and the closed form's. The first loop lies flat at θ1 = 0, the
+/// second at θ1 = 2π − δ, regular there as a Bennett loop is (`bennett.rs`). Finely from 1.0
+/// to 1.4: the 21 equations the rank test kept at home, by their order alone, turned singular
+/// at θ1 ≈ 1.158, where the mechanism is regular (its four passive joints' twists keep full
+/// rank, and the closed form satisfies every equation), and continuation stopped there with a
+/// fold. The rank test now follows the motion from home and keeps equations that stay regular
+/// along it.
 #[test]
 fn goldberg_is_followed_over_its_whole_motion() {
     let goldberg = Goldberg::new();
     let start = goldberg.home_start().unwrap();
-    for k in 0..=20 {
-        let theta1 = 0.4 + 0.2 * k as f64;
+    for k in 0..=63 {
+        let theta1 = -5.3 + 0.2 * k as f64;
         assert!(solved(&goldberg, &start, theta1), "θ1 {theta1}: refused");
     }
     for k in 0..=40 {
         let theta1 = 1.0 + 0.01 * k as f64;
         assert!(solved(&goldberg, &start, theta1), "θ1 {theta1}: refused");
     }
+}
+
+#[test]
+fn goldberg_is_tracked_over_whole_turns_both_ways() {
+    let goldberg = Goldberg::new();
+    let start = goldberg.home_start().unwrap();
+    tracked_over_turns(&goldberg, start, input, carried, &PLATFORM);
 }
