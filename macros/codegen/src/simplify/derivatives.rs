@@ -73,24 +73,37 @@ impl<'a> Derivatives<'a> {
     /// The rows at `(v, x)`, dense, each scaled to its largest entry: an equation's units (mm
     /// or mm²) must not decide its rank. A row of rounding alone (see [`ROUNDING`]) is zero.
     pub fn rows(&self, v: &[f64], x: &[f64], c: &[f64]) -> Vec<Vec<f64>> {
-        let length = 1.0 + v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-        self.equations
-            .iter()
-            .zip(self.sparse(v, x, c))
-            .map(|(f, entries)| {
-                let mut row = vec![0.0; self.columns];
+        Self::side_by_side(&[self], v, x, c)
+    }
+
+    /// The rows of the same equations' derivatives by several sets of variables, side by side
+    /// (∂F/∂v then ∂F/∂x: ∂F/∂(v, x), each set differentiated once), scaled together as
+    /// [`Self::rows`] scales one.
+    pub fn side_by_side(parts: &[&Self], v: &[f64], x: &[f64], c: &[f64]) -> Vec<Vec<f64>> {
+        let Some(first) = parts.first() else {
+            return Vec::new();
+        };
+        let width = parts.iter().map(|p| p.columns).sum();
+        let mut rows = vec![vec![0.0; width]; first.equations.len()];
+        let mut offset = 0;
+        for part in parts {
+            debug_assert_eq!(part.equations.len(), rows.len());
+            for (row, entries) in rows.iter_mut().zip(part.sparse(v, x, c)) {
                 for (k, d) in entries {
-                    row[k] = d;
+                    row[offset + k] = d;
                 }
-                let s = row.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-                if s * length <= ROUNDING * f.magnitude(v, x, c) {
-                    vec![0.0; row.len()]
-                } else if s > 0.0 {
-                    row.iter().map(|a| a / s).collect()
-                } else {
-                    row
-                }
-            })
-            .collect()
+            }
+            offset += part.columns;
+        }
+        let length = 1.0 + v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        for (f, row) in first.equations.iter().zip(&mut rows) {
+            let s = row.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+            if s * length <= ROUNDING * f.magnitude(v, x, c) {
+                row.fill(0.0);
+            } else if s > 0.0 {
+                row.iter_mut().for_each(|a| *a /= s);
+            }
+        }
+        rows
     }
 }

@@ -132,9 +132,9 @@ pub fn at_home(
     c: &[f64],
 ) -> Ranked {
     let vars_v: Vec<Var> = (0..n).map(Var::Unknown).collect();
-    let mut vars_all = vars_v.clone();
-    vars_all.extend((0..m).map(Var::Input));
+    let vars_x: Vec<Var> = (0..m).map(Var::Input).collect();
     let by_v = Derivatives::new(equations, &vars_v);
+    let by_x = Derivatives::new(equations, &vars_x);
     let b = by_v.rows(v, x, c);
     let in_turn = select(&b, classes, DEPENDENT);
     let waiting = select(&b, classes, WEAK);
@@ -160,12 +160,11 @@ pub fn at_home(
     } else {
         kept
     };
-    let full = Derivatives::new(equations, &vars_all).rows(v, x, c);
+    let full = Derivatives::side_by_side(&[&by_v, &by_x], v, x, c);
     let mobility = (n + m) as i64 - rank(&full) as i64;
     // Equations left out and a square system kept: checked along the motion, where it may
     // turn singular although the mechanism does not.
     let kept = if kept.len() == n && kept.len() < equations.len() && mobility == m as i64 {
-        let by_x = Derivatives::new(equations, &vars_all[n..]);
         let rays = super::motion::rays(&by_v, &by_x, v, x, c);
         super::along::steady(&by_v, classes, kept, &rays, c)
     } else {
