@@ -253,6 +253,20 @@ fn known_cases_dense_corrector_false_folds() {
     );
 }
 
+/// With `Linear::Dense`, a last step of 10 (from μ = 16.5 to the end at 23.4) where the straight
+/// segment comes within |det B|/|det0| = 0.014 of a fold and turns away: the corrector landed
+/// on the sheet beyond it, det B of the other sign, and PH reported `Fold` at λ = 1 (the
+/// generated factorisation, by a step control that differed by a shorter step, converged).
+/// Found with `LINKAGE_STRESS_SEED=90210` at ×10 (2026-11-30), the only failure there. Cured by
+/// taking a step over which det B changes sign again at half length before calling it a fold.
+#[test]
+fn known_cases_dense_corrector_lands_beyond_a_near_fold() {
+    forward_kinematics(
+        &Run::listed("forward_kinematics_by_continuation", 90210, &[16940]),
+        fk::Solvers::Continuation,
+    );
+}
+
 /// An S-shaped straight segment (two folds within 3e-6 of λ near 0.97957, det B of one sign
 /// on either side): PH stepped over both folds in one step and called the far sheet ok, and
 /// detours built on that leg too. Cured by keeping steps within twice the extrapolated
