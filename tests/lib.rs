@@ -141,6 +141,15 @@ pub fn sweep(quick: usize, full: usize) -> usize {
     }
 }
 
+/// A sweep's seed: `seed`, or where `LINKAGE_STRESS_SEED` is set to a number `s`, `seed ^ s`:
+/// other random cases for a hunt, the default ones replayed without it.
+pub fn sweep_seed(seed: u64) -> u64 {
+    std::env::var("LINKAGE_STRESS_SEED")
+        .ok()
+        .and_then(|s| s.parse::<u64>().ok())
+        .map_or(seed, |s| seed ^ s)
+}
+
 /// Largest coordinate difference.
 pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter()

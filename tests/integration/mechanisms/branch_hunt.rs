@@ -358,12 +358,12 @@ fn run<S, const N: usize, const M: usize>(
 ) where
     S: Mechanism<N, M> + Clone,
 {
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::new(linkage_tests::sweep_seed(seed));
     let mut tally = Tally::default();
     for case in 0..cases {
         let curve = Curve::random(&mut rng, *start.x(), reach);
         let at = format!("{name}, case {case}");
-        // `LINKAGE_CASE=k` replays case k alone.
+        // `LINKAGE_CASE=k` replays case k alone (with the `LINKAGE_STRESS_SEED` it ran with).
         if std::env::var("LINKAGE_CASE").is_ok_and(|k| k != case.to_string()) {
             continue;
         }
