@@ -144,10 +144,17 @@ pub fn sweep(quick: usize, full: usize) -> usize {
 /// A sweep's seed: `seed`, or where `LINKAGE_STRESS_SEED` is set to a number `s`, `seed ^ s`:
 /// other random cases for a hunt, the default ones replayed without it.
 pub fn sweep_seed(seed: u64) -> u64 {
-    std::env::var("LINKAGE_STRESS_SEED")
-        .ok()
-        .and_then(|s| s.parse::<u64>().ok())
-        .map_or(seed, |s| seed ^ s)
+    env_number("LINKAGE_STRESS_SEED").map_or(seed, |s| seed ^ s)
+}
+
+/// The whole number in the environment variable `name`, if it is set; a panic naming it if it
+/// is set to anything else (a mistyped seed must not run the default cases unnoticed).
+pub fn env_number(name: &str) -> Option<u64> {
+    let text = std::env::var(name).ok()?;
+    match text.trim().parse() {
+        Ok(n) => Some(n),
+        Err(_) => panic!("{name}={text:?} is not a whole number"),
+    }
 }
 
 /// Largest coordinate difference.

@@ -12,16 +12,8 @@
 //! Case i draws from its own generator, seeded from (seed, i), so a case replays alone exactly
 //! as it ran within the suite.
 
-use linkage_tests::Rng;
+use linkage_tests::{env_number, Rng};
 use std::collections::BTreeMap;
-
-fn env_number(name: &str) -> Option<u64> {
-    let text = std::env::var(name).ok()?;
-    match text.trim().parse() {
-        Ok(n) => Some(n),
-        Err(_) => panic!("{name}={text:?} is not a whole number"),
-    }
-}
 
 /// A stress test's sizing and seed.
 pub struct Run {
