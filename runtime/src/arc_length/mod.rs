@@ -17,9 +17,7 @@
 //!   both ends of a step that passes both (an S-shaped segment, found by the stress suite);
 //! - watches the sign of det B: it flips exactly where λ turns back (a fold). A fold means the
 //!   straight joint-space path leaves the valid joint space, and the curve beyond it belongs to
-//!   another assembly mode, so the solve stops there with [`Status::Fold`] — once the step
-//!   taken again at half length has seen it too (a long step can land on the sheet beyond a
-//!   place where the curve only comes close to a fold).
+//!   another assembly mode, so the solve stops there with [`Status::Fold`].
 //!
 //! Near a fold B is nearly singular and bordering on it loses accuracy; there the step falls
 //! back to a dense LU of the whole bordered matrix, which stays regular through the fold. The
@@ -45,9 +43,6 @@ use step::{Previous, StepControl, det_dips};
 
 /// Below this cosine between successive tangents (about 37°) a step is rejected.
 const MIN_TANGENT_COS: f64 = 0.8;
-/// How many times a solve takes a step again at half length after det B changed sign over it,
-/// before a sign change ends the branch ([`Status::Fold`]).
-const SIGN_CHANGE_RETRIES: u32 = 1;
 /// How far behind the start, as a share of the path's length, det B is taken to see its slope
 /// before the first step (a thousandth of the first step, a quarter of the path).
 const FIRST_PROBE: f64 = 2.5e-4;
@@ -192,8 +187,6 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     control.toward_singularity(behind.0, behind.1, det_prev);
     let mut account = Account::at(0.0);
-    // Steps taken again at half length after det B changed sign over them.
-    let mut sign_changes = 0;
     // Ends the solve at the last accepted point `p`.
     let stop = |p: &Point<N>, status, account: Account| {
         let x = path.x(p.mu);
@@ -242,17 +235,9 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
                     return stop(&p, status, account);
                 };
                 let t1 = next.tangent;
-                // det B changed sign between p and q: the curve passes a fold (λ turns back)
-                // or a singular point, or the corrector, from a long step where the curve
-                // passes close to a fold, converged onto the sheet beyond it (seen with the
-                // dense corrector: a last step of 10 from μ = 16.5 to the end at 23.4, where
-                // |det B| dips to 1.4 % of the start's and rises again, landed on the other
-                // sheet; steps of 5 and less follow the curve). So the step is taken again at
-                // half length: a fold in its first half changes the sign again, one in its
-                // second half is met by the next step, which is no longer.
-                let sign_changed = next.det * det_prev <= 0.0;
-                if sign_changed && sign_changes >= SIGN_CHANGE_RETRIES {
-                    // Seen again: the branch ends here.
+                if next.det * det_prev <= 0.0 {
+                    // det B changed sign between p and q: the curve passes a fold (λ turns
+                    // back) or a singular point. Either way the branch ends here.
                     let status = Status::Fold {
                         lambda: p.mu.max(q.mu) / length,
                     };
@@ -273,11 +258,7 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
                 // the step, take a shorter one.
                 let (d0, c0) = previous.as_ref().map_or(behind, |pr| (pr.det, pr.chord));
                 let dips = det_dips(d0, c0, det_prev, chord, next.det);
-                if sign_changed
-                    || dips
-                    || (dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !step.end)
-                {
-                    sign_changes += u32::from(sign_changed);
+                if dips || (dot(&t.v, &t1.v) + t.mu * t1.mu < MIN_TANGENT_COS && !step.end) {
                     account.rejected += 1;
                     control.turned(&step);
                 } else {

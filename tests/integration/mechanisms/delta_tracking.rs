@@ -212,7 +212,7 @@ fn track(delta: &Delta, curve: &Curve, tally: &mut Tally, case: usize) {
 fn delta_tracker_keeps_the_branch_on_random_crank_curves() {
     let delta = Delta::new();
     let mut tally = Tally::default();
-    let mut rng = Rng::new(0xDE17A);
+    let mut rng = Rng::new(linkage_tests::sweep_seed(0xDE17A));
     // Near home the start's side is the lower root.
     for _ in 0..20 {
         let q = [0, 1, 2].map(|_| rng.uniform(-0.5, 0.5));
@@ -225,4 +225,25 @@ fn delta_tracker_keeps_the_branch_on_random_crank_curves() {
     }
     eprintln!("delta tracker: {tally:?}");
     assert!(tally.accepted > 0 && tally.clear_curves > 0, "{tally:?}");
+}
+
+/// Case 42 of the hunt above with `LINKAGE_STRESS_SEED=777`: the curve meets a singularity at
+/// sample 853 (det B of the level branch through zero), the tracker refuses from there, and at
+/// sample 863 PH from the last accepted sample (det B 6e-6 of the start's, next to the
+/// singularity, where the level and a tilted branch cross) must refuse again. A PH that took a
+/// step over which det B changed sign again at half length (tried for a false fold of the
+/// stress suite, 2026-11-30) landed on the tilted branch, det B of the start's sign, and the
+/// tracker accepted the platform tilted by 0.02 rad.
+#[test]
+fn known_case_a_bifurcation_onto_a_tilted_mode() {
+    let delta = Delta::new();
+    let mut rng = Rng::new(0xDE17A ^ 777);
+    // The hunt's draws before its curves: twenty crank triples near home.
+    for _ in 0..20 * 3 {
+        rng.uniform(-0.5, 0.5);
+    }
+    let curve = (0..=42).map(|_| Curve::random(&mut rng)).last().unwrap();
+    let mut tally = Tally::default();
+    track(&delta, &curve, &mut tally, 42);
+    assert!(tally.accepted > 800 && tally.refused > 0, "{tally:?}");
 }

@@ -64,7 +64,7 @@ macro_rules! calibrated {
     ($calibrated:ident, $ty:ty, $n:expr, $options:expr, $reach:expr, $lengths:expr, $planar:expr, $seed:expr) => {
         #[test]
         fn $calibrated() {
-            let mut rng = Rng::new($seed);
+            let mut rng = Rng::new(linkage_tests::sweep_seed($seed));
             let mut tally = Tally::default();
             let lengths: &[&str] = &$lengths;
             let names = <$ty>::GEOMETRY_NAMES;
@@ -190,7 +190,7 @@ macro_rules! geometry_hunt {
             let nominal = <$ty>::new();
             let mut tally = Tally::default();
             let (mut refused, mut tried) = (0, 0);
-            let mut rng = Rng::new($seed ^ 0xBAD);
+            let mut rng = Rng::new(linkage_tests::sweep_seed($seed ^ 0xBAD));
             // Solves on a degenerate machine: either a typed error at home, or every answer
             // labelled ok is right on it (one short curve, PH to four of its points).
             // Returns whether the geometry was refused. Without `LINKAGE_STRESS` every sixteenth
