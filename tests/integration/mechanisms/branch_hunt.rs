@@ -12,8 +12,10 @@
 //!   start's branch and an accepted sample must be it; once the curve has met a singularity an
 //!   accepted sample must be what fine continuation along the straight joint segment from the
 //!   last accepted sample reaches without a sign change (the only connection the tracker can
-//!   claim). PH's answer for a point of the curve is held to the straight segment from the
-//!   start, in 2 000 steps: ok where that segment meets a sign change of det B is a defect.
+//!   claim; 1 000 steps, and 10 000 where those do not confirm the answer: the oracle's own
+//!   Newton can jump). PH's answer for a point of the curve is held to the straight segment
+//!   from the start, in 2 000 steps (20 000 likewise): ok where that segment meets a sign
+//!   change of det B is a defect.
 //!
 //! The five-bar and the planar 3-RPR have closed forms, checked in their own files; here they
 //! get the same treatment as the rest, whose branch is defined by continuation only.
