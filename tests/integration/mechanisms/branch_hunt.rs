@@ -9,11 +9,14 @@
 //!   kinematics of the pose gives the inputs back;
 //! - it is on the start's branch: along the curve, a continuation 16 to 64 times finer than
 //!   the samples (Newton at each step) watching det B: while its sign has not changed it is the
-//!   start's branch and an accepted sample must be it; once the curve has met a singularity an
-//!   accepted sample must be what fine continuation along the straight joint segment from the
-//!   last accepted sample reaches without a sign change (the only connection the tracker can
-//!   claim; 1 000 steps, and 10 000 where those do not confirm the answer: the oracle's own
-//!   Newton can jump). PH's answer for a point of the curve is held to the straight segment
+//!   start's branch, and an accepted sample must be it or else what fine continuation along
+//!   the straight joint segment from the last accepted sample reaches without a sign change
+//!   (the only connection the tracker can claim, seeing the samples alone; 1 000 steps, and
+//!   10 000 where those do not confirm the answer: the oracle's own Newton can jump). The
+//!   second is counted apart (`chord_not_curve`): the curve and its chord between two samples
+//!   reaching different assembly modes without a singularity (a degenerate 6-RSS at 25 Hz,
+//!   99 mm apart, with `LINKAGE_STRESS_SEED=31337`). Once the curve has met a singularity only
+//!   the segment's end is a right answer. PH's answer for a point of the curve is held to the straight segment
 //!   from the start, in 2 000 steps (20 000 likewise): ok where that segment meets a sign
 //!   change of det B is a defect.
 //!
@@ -122,6 +125,11 @@ pub(super) struct Tally {
     on_curve: usize,
     /// Accepted after the curve met a singularity, matched by the straight joint segment.
     on_segment: usize,
+    /// Accepted while the curve's branch was intact, not on it but on the straight joint
+    /// segment from the last accepted sample, which meets no singularity either: the curve and
+    /// its chord between two samples reach different assembly modes (a path dependence, as
+    /// the stress suite's tracker cases allow; the tracker only sees the samples).
+    chord_not_curve: usize,
     refused: usize,
     /// Refused while the curve's reference stayed above 5 % of the start's |det B| since the
     /// last accepted sample.
@@ -261,25 +269,31 @@ pub(super) fn hunt<S, const N: usize, const M: usize>(
                     tally.on_curve += 1;
                     continue;
                 }
-                assert!(
-                    reference.is_none(),
-                    "{at}: accepted {:?}, {:e} from the curve's own branch {:?} (proximity {:e})",
-                    sample.v,
-                    max_diff(&sample.v, reference.as_ref().unwrap()),
-                    reference,
-                    sample.proximity
-                );
                 let (seg, flips) =
                     segment_truth(sys, (&v_a, &x_a), det0, &x, 1000, |seg, flips| {
                         flips == 0 && near(seg)
                     });
+                let off_curve = reference.as_ref().map(|r| max_diff(&sample.v, r));
                 assert!(
                     flips == 0 && near(&seg),
-                    "{at}: accepted after the curve met a singularity, but the joint segment from the last accepted sample {} ({:e} from its end)",
+                    "{at}: accepted {:?}, {} and the joint segment from the last accepted sample {} ({:e} from its end)",
+                    sample.v,
+                    match off_curve {
+                        Some(d) => format!("{d:e} from the curve's own branch (proximity {:e}),", sample.proximity),
+                        None => "after the curve met a singularity,".to_string(),
+                    },
                     if flips == 0 { "does not reach it" } else { "meets a singularity" },
                     max_diff(&sample.v, &seg)
                 );
-                tally.on_segment += 1;
+                if let Some(d) = off_curve {
+                    // The curve and the chord reach different assembly modes between two
+                    // samples, neither meeting a singularity: the tracker answered what it was
+                    // given (the chord), as its documentation says.
+                    tally.chord_not_curve += 1;
+                    eprintln!("{at}: accepted the joint segment's end, {d:e} from the curve's own branch: the curve and the chord between two samples reach different assembly modes");
+                } else {
+                    tally.on_segment += 1;
+                }
             }
             Err(_) => {
                 tally.refused += 1;
