@@ -12,6 +12,7 @@ pub mod delta;
 mod delta_tools;
 mod delta_tracking;
 mod delta_universal;
+mod exechon;
 mod five_bar;
 mod four_bar;
 mod geometry_hunt;
