@@ -152,8 +152,11 @@ impl<const N: usize, const K: usize> Roots<N, K> {
     /// Whether every path ended at a distinct nonsingular root: the target is generic, and the
     /// list holds as many isolated roots as the start set (a root the start set lacks —
     /// see [`StartReport`](super::StartReport) for how far its count can be trusted — is
-    /// missing here too).
+    /// missing here too). A [`EndpointKind::Spurious`] endpoint counts: it is a nonsingular
+    /// root of the square system, real, that an equation left out as dependent refuses, so
+    /// no assembly mode is missing for it (an overconstrained mechanism, such as a planar one
+    /// declared in space, can have some at every input).
     pub fn is_complete(&self) -> bool {
-        self.roots() == self.paths
+        self.roots() + self.count(EndpointKind::Spurious) == self.paths
     }
 }

@@ -11,6 +11,7 @@
 //! axis as far as the third leg's R joint requires) gives the legs' lengths as distances.
 
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use linkage::modes::{AllModes, EndpointKind, ModesOptions, Roots};
 use linkage::{
     arc_length, pose_from_unknowns, unknowns_from_pose, InverseError, Mechanism, Pose, Status,
     Tracker,
@@ -178,5 +179,43 @@ fn a_pose_off_the_exechon_motion_has_no_inputs() {
             matches!(r, Err(InverseError::Unreachable { .. })),
             "{off:?}: {r:?}"
         );
+    }
+}
+
+/// Every assembly mode at home and at two other inputs: every path of the square system ends
+/// at a distinct nonsingular root, four of them real roots off the mechanism (`Spurious`: an
+/// equation left out as dependent fails there) — which `Roots::is_complete` counts, since no
+/// mode is missing for them (it did not before) — and eight assembly modes, each giving its
+/// inputs back, home among them. The start set's 48 is monodromy's count for this model, not
+/// a published figure: it is the total the endpoints must add up to.
+#[test]
+fn exechon_has_eight_real_modes_and_every_path_accounted_for() {
+    let exechon = Exechon::new();
+    let home = exechon_pose(0.0, 0.0, 700.0);
+    let poses = [
+        home,
+        exechon_pose(0.1, -0.05, 690.0),
+        exechon_pose(-0.15, 0.1, 715.0),
+    ];
+    let modes =
+        AllModes::<Exechon, 36, 3, 64>::new(exechon.clone(), &ModesOptions::default()).unwrap();
+    assert_eq!(modes.start_count(), 48, "{:?}", modes.report());
+    let mut roots = Box::new(Roots::<36, 64>::new());
+    for (k, pose) in poses.iter().enumerate() {
+        let x = legs(pose);
+        modes.solve(&x, &mut roots).unwrap();
+        assert_eq!(roots.count(EndpointKind::Spurious), 4, "{x:?}");
+        assert_eq!(roots.roots() + 4, 48, "{x:?}: a path ended short of a root");
+        assert!(roots.is_complete(), "{x:?}");
+        assert_eq!(roots.real().len(), 8, "{x:?}");
+        let mut found = false;
+        for r in roots.real() {
+            assert!(r.residual < 1e-7, "{x:?}: residual {}", r.residual);
+            let back = exechon.inverse(&r.v, &x).unwrap();
+            assert!(max_diff(&back, &x) < 1e-7, "{x:?}: {back:?}");
+            let p = pose_from_unknowns(&exechon, &r.v).unwrap();
+            found |= max_diff(&p.translation, &pose.translation) < 1e-7;
+        }
+        assert!(found, "pose {k} is not among the real modes");
     }
 }
