@@ -10,13 +10,13 @@
 //! platform by β in it, lifted `w` in the plane away from the base y axis, and slid along that
 //! axis as far as the third leg's R joint requires) gives the legs' lengths as distances.
 
-use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use super::{check_inverse, leg_lengths, mobility_line, GENERAL_MODEL};
 use linkage::modes::{AllModes, EndpointKind, ModesOptions, Roots};
 use linkage::{
     arc_length, pose_from_unknowns, unknowns_from_pose, InverseError, Mechanism, Pose, Status,
     Tracker,
 };
-use linkage_tests::vec3::{add, dot, matmul, sub};
+use linkage_tests::vec3::{add, dot, matmul};
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
@@ -66,12 +66,7 @@ fn exechon_pose(alpha: f64, beta: f64, w: f64) -> Pose {
 
 /// The legs' lengths at a pose: the distances from the base pivots.
 fn legs(pose: &Pose) -> [f64; 3] {
-    [0, 1, 2].map(|k| {
-        let p = PLATFORM[k];
-        let turned = [0, 1, 2].map(|i| (0..3).map(|j| pose.rotation[i][j] * p[j]).sum::<f64>());
-        let d = sub(add(turned, pose.translation), BASE[k]);
-        dot(d, d).sqrt()
-    })
+    leg_lengths(pose, &BASE, &PLATFORM)
 }
 
 /// Panics unless `got` is the pose `want`.

@@ -120,6 +120,19 @@ pub fn mobility_line(listing: &str) -> &str {
         .unwrap_or("")
 }
 
+/// The distances from `base[k]` to `platform[k]` placed by `pose`: the legs' lengths of a
+/// platform on straight legs, in closed form.
+pub fn leg_lengths<const K: usize>(
+    pose: &linkage::Pose,
+    base: &[[f64; 3]; K],
+    platform: &[[f64; 3]; K],
+) -> [f64; K] {
+    std::array::from_fn(|k| {
+        let d = linkage_tests::vec3::sub(pose.apply(platform[k]), base[k]);
+        linkage_tests::vec3::dot(d, d).sqrt()
+    })
+}
+
 /// Panics unless `r` is the identity to `tol`.
 pub fn identity_within(r: &[[f64; 3]; 3], tol: f64) {
     for (i, row) in r.iter().enumerate() {

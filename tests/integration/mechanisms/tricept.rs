@@ -5,11 +5,11 @@
 //! its inverse: a pose of the column's (turned about the base x axis, then about its own y,
 //! and slid) gives the legs' lengths as distances.
 
-use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use super::{check_inverse, leg_lengths, mobility_line, GENERAL_MODEL};
 use linkage::{
     arc_length, pose_from_unknowns, unknowns_from_pose, InverseError, Mechanism, Pose, Status,
 };
-use linkage_tests::vec3::{add, dot, matmul, sub};
+use linkage_tests::vec3::matmul;
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
@@ -62,12 +62,7 @@ fn column_pose(a: f64, b: f64, s: f64) -> Pose {
 
 /// The legs' lengths at a pose: the inverse kinematics in closed form.
 fn legs(pose: &Pose) -> [f64; 3] {
-    [0, 1, 2].map(|k| {
-        let p = PLATFORM[k];
-        let turned = [0, 1, 2].map(|i| (0..3).map(|j| pose.rotation[i][j] * p[j]).sum::<f64>());
-        let d = sub(add(turned, pose.translation), BASE[k]);
-        dot(d, d).sqrt()
-    })
+    leg_lengths(pose, &BASE, &PLATFORM)
 }
 
 #[test]
