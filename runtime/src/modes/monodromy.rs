@@ -339,11 +339,16 @@ fn close<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     first: usize,
     ws: &mut Workspace<N>,
 ) {
-    orbit[first] = first;
+    // `first` and every `j` below are under `found.count` ≤ K; `get` lets the no-panic proof
+    // see that too.
+    if let Some(o) = orbit.get_mut(first) {
+        *o = first;
+    }
     let mut j = first;
     while j < found.count {
         for s in 0..sym.count() {
-            let Some(w) = sym.apply(s, model, &out[j], p0, ws) else {
+            let Some(z) = out.get(j) else { return };
+            let Some(w) = sym.apply(s, model, z, p0, ws) else {
                 continue;
             };
             if !(model.size(&w) <= 1e8) || contains(model, known(out, found), &w, SAME) {

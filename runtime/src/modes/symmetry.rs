@@ -75,7 +75,8 @@ impl Symmetries {
         p: &[Complex; M],
         ws: &mut Workspace<N>,
     ) -> Option<[Complex; N]> {
-        image(model, self.kept[i] as usize, z, p, ws, IMAGE_ROOT)
+        let k = *self.kept.get(i)?;
+        image(model, usize::from(k), z, p, ws, IMAGE_ROOT)
     }
 }
 

@@ -1,6 +1,7 @@
 //! Each solver entry point of `linkage`, wrapped in a function marked `#[no_panic]` for three
 //! mechanisms (a 3-RPS, the 18-unknown Stewart platform of the paper and a 6-RSS rotary
-//! hexapod, whose crank angles enter through sin and cos): if any panic path
+//! hexapod, whose crank angles enter through sin and cos; the all-modes query also for an
+//! Exechon tripod, overconstrained, of 36 unknowns and with symmetries): if any panic path
 //! (an index out of bounds, an `unwrap`, an assertion, a `clamp` with a NaN bound) survives
 //! the optimiser in one of them, linking `src/main.rs` fails and names the function. The
 //! runtime's promise is that bad input is a typed error, never a panic; this checks it for
@@ -315,6 +316,44 @@ pub mod modes {
     ) -> Result<(), ModesError> {
         m.solve(x, out)
     }
+
+    #[no_panic]
+    pub fn exechon_new(
+        sys: Exechon,
+        options: &ModesOptions,
+    ) -> Result<AllModes<Exechon, 36, 3, 64>, ModesError> {
+        AllModes::new(sys, options)
+    }
+
+    #[no_panic]
+    pub fn exechon(
+        m: &AllModes<Exechon, 36, 3, 64>,
+        x: &[f64; 3],
+        out: &mut Roots<36, 64>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+}
+
+linkage::mechanism! {
+    /// An Exechon tripod (two U-P-R legs and one S-P-R leg): overconstrained, 36 unknowns. Its
+    /// all-modes query is also the largest instantiation of the sparse factorisation's plan
+    /// built here at opt-level 3, which once kept LLVM busy for more than ten minutes.
+    pub struct Exechon;
+    base {
+        A1 = [0.0, -300.0, 0.0], A1y = [0.0, -299.0, 0.0],
+        A3 = [0.0, 300.0, 0.0], A3y = [0.0, 301.0, 0.0],
+        A2 = [350.0, 0.0, 0.0],
+    }
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 700.0]) {
+        B1 = [0.0, -150.0, 0.0], B1x = [1.0, -150.0, 0.0],
+        B3 = [0.0, 150.0, 0.0], B3x = [1.0, 150.0, 0.0],
+        B2 = [150.0, 0.0, 0.0], B2y = [150.0, 1.0, 0.0],
+    }
+    link cylinder2 { E2 = [350.0, 100.0, 0.0] }
+    chain leg1 = base - U(A1, axis = A1 -> A1y) - P(active L1) - R(passive, axis = B1 -> B1x) - platform;
+    chain leg2 = base - S(A2) - cylinder2 - P(active L2) - R(passive, axis = B2 -> B2y) - platform;
+    chain leg3 = base - U(A3, axis = A3 -> A3y) - P(active L3) - R(passive, axis = B3 -> B3x) - platform;
 }
 
 /// The C interface's calls (`linkage-ffi`, which LinuxCNC's kinematics module links), each in

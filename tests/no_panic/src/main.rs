@@ -7,7 +7,7 @@ use linkage::modes::{EndpointKind, ModesError, ModesOptions, Roots};
 use linkage::velocity::Wrench;
 use linkage::{Mechanism, Options, Pose, Tracker};
 use linkage_ffi::{status, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection};
-use no_panic_proof::{ffi, hexapod, rps, stewart, Rps, RssHexapod, Stewart};
+use no_panic_proof::{ffi, hexapod, rps, stewart, Exechon, Rps, RssHexapod, Stewart};
 
 fn main() {
     let o = black_box(Options::TIGHT);
@@ -336,6 +336,16 @@ fn all_modes() {
         .iter()
         .any(|r| (0..18).all(|k| (r.v[k] - s.v()[k]).abs() < 1e-4)));
     let bad = no_panic_proof::modes::hexapod(&modes, &black_box([f64::NAN; 6]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
+
+    // The Exechon at home, legs of 700 mm: 48 paths, 4 of them ending at roots of the square
+    // system that the mechanism's left-out equation refuses.
+    let sys = Exechon::new();
+    let modes = Box::new(no_panic_proof::modes::exechon_new(sys, &options).expect("starts"));
+    let mut roots = Box::new(Roots::<36, 64>::new());
+    no_panic_proof::modes::exechon(&modes, &black_box([700.0; 3]), &mut roots).expect("a query");
+    assert!(roots.is_complete() && roots.count(EndpointKind::Spurious) == 4);
+    let bad = no_panic_proof::modes::exechon(&modes, &black_box([f64::NAN; 3]), &mut roots);
     assert_eq!(bad, Err(ModesError::NonFinite));
 }
 
