@@ -1,7 +1,7 @@
-//! Each solver entry point of `linkage`, wrapped in a function marked `#[no_panic]` for three
-//! mechanisms (a 3-RPS, the 18-unknown Stewart platform of the paper and a 6-RSS rotary
-//! hexapod, whose crank angles enter through sin and cos; the all-modes query also for an
-//! Exechon tripod, overconstrained, of 36 unknowns and with symmetries): if any panic path
+//! Each solver entry point of `linkage`, wrapped in a function marked `#[no_panic]` for four
+//! mechanisms (a 3-RPS, the 18-unknown Stewart platform of the paper, a 6-RSS rotary hexapod,
+//! whose crank angles enter through sin and cos, and an Exechon tripod: overconstrained, 36
+//! unknowns, symmetry candidates for the all-modes query): if any panic path
 //! (an index out of bounds, an `unwrap`, an assertion, a `clamp` with a NaN bound) survives
 //! the optimiser in one of them, linking `src/main.rs` fails and names the function. The
 //! runtime's promise is that bad input is a typed error, never a panic; this checks it for
@@ -221,6 +221,12 @@ pub mod inverse {
         sys.inverse(v, x0)
     }
 
+    /// The numerical inverse of an overconstrained mechanism (36 unknowns, three inputs).
+    #[no_panic]
+    pub fn exechon(sys: &Exechon, v: &[f64; 36], x0: &[f64; 3]) -> Result<[f64; 3], InverseError> {
+        sys.inverse(v, x0)
+    }
+
     #[no_panic]
     pub fn scara_wrist<const N: usize>(
         sys: &ScaraWrist,
@@ -355,6 +361,8 @@ linkage::mechanism! {
     chain leg2 = base - S(A2) - cylinder2 - P(active L2) - R(passive, axis = B2 -> B2y) - platform;
     chain leg3 = base - U(A3, axis = A3 -> A3y) - P(active L3) - R(passive, axis = B3 -> B3x) - platform;
 }
+
+proven!(exechon, Exechon, 36, 3);
 
 /// The C interface's calls (`linkage-ffi`, which LinuxCNC's kinematics module links), each in
 /// a `#[no_panic]` function. They wrap the Rust-ABI functions the `extern "C"` symbols

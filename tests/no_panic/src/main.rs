@@ -104,10 +104,55 @@ fn main() {
     let mut t = Tracker::new(sys.clone(), s, o);
     assert!(hexapod::track(&mut t, &x).is_ok());
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
+    exechon();
     c_interface();
     all_modes();
     inverse();
     println!("no-panic proof: linked; every entry point ran on good and bad input");
+}
+
+/// Every solver on the Exechon (overconstrained: 36 unknowns, three inputs, an equation left
+/// out of the square system): legs from 700 mm to a nearby target, then the refusals.
+fn exechon() {
+    use no_panic_proof::exechon;
+    let o = Options::TIGHT;
+    let sys = Exechon::new();
+    let s = sys.home_start().expect("the Exechon's start");
+    let v0 = *s.v();
+    let s = exechon::start(&sys, v0, *s.x()).expect("the Exechon's start, checked");
+    let x = black_box([705.0, 700.0, 698.0]);
+    let sol = exechon::ph(&sys, &s, &x, &o).expect("a solve");
+    assert!(sol.is_ok(), "{:?}", sol.status);
+    let back = no_panic_proof::inverse::exechon(&sys, &sol.v, s.x()).expect("its inverse");
+    assert!(
+        back.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
+    assert!(exechon::nr(&sys, &s, &x, &o).is_ok() && exechon::nh(&sys, &s, &x, &o).is_ok());
+    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
+    assert_eq!(
+        exechon::nr_prepared(&prepared, &x, &o),
+        exechon::nr(&sys, &s, &x, &o)
+    );
+    assert!(exechon::detour(&sys, &s, &x, &o).is_ok());
+    assert!(exechon::proof(&sys, &sol.v, &x).is_ok());
+    let mut t = Tracker::new(sys.clone(), s, o);
+    assert!(exechon::track(&mut t, &x).is_ok());
+    let xdot = black_box([1.0, -0.5, 0.25]);
+    let back = exechon::rates(&sys, &sol.v, &x, &xdot).expect("rates");
+    assert!(
+        back.iter().zip(&xdot).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
+    let load = black_box(Wrench {
+        force: [0.0, 0.0, -100.0],
+        moment: [0.0; 3],
+    });
+    assert!(exechon::efforts(&sys, &sol.v, &x, &load).is_ok());
+    let bad = black_box([f64::NAN, 700.0, 700.0]);
+    assert!(exechon::ph(&sys, &s, &bad, &o).is_err() && exechon::track(&mut t, &bad).is_err());
+    assert!(exechon::start(&sys, [f64::NAN; 36], *s.x()).is_err());
+    assert!(no_panic_proof::inverse::exechon(&sys, &[f64::NAN; 36], s.x()).is_err());
 }
 
 /// The C interface as LinuxCNC's module drives it: a handle in caller storage, inverse and
