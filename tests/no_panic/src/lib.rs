@@ -1,7 +1,8 @@
-//! Each solver entry point of `linkage`, wrapped in a function marked `#[no_panic]` for four
+//! Each solver entry point of `linkage`, wrapped in a function marked `#[no_panic]` for five
 //! mechanisms (a 3-RPS, the 18-unknown Stewart platform of the paper, a 6-RSS rotary hexapod,
-//! whose crank angles enter through sin and cos, and an Exechon tripod: overconstrained, 36
-//! unknowns, symmetry candidates for the all-modes query): if any panic path
+//! whose crank angles enter through sin and cos, an Exechon tripod: overconstrained, 36
+//! unknowns, symmetry candidates for the all-modes query; and a planar five-bar whose platform
+//! is a point, 3 unknowns and 2 inputs): if any panic path
 //! (an index out of bounds, an `unwrap`, an assertion, a `clamp` with a NaN bound) survives
 //! the optimiser in one of them, linking `src/main.rs` fails and names the function. The
 //! runtime's promise is that bad input is a typed error, never a panic; this checks it for
@@ -221,6 +222,12 @@ pub mod inverse {
         sys.inverse(v, x0)
     }
 
+    /// The inverse for a platform that is a single point.
+    #[no_panic]
+    pub fn five_bar(sys: &FiveBar, v: &[f64; 3], x0: &[f64; 2]) -> Result<[f64; 2], InverseError> {
+        sys.inverse(v, x0)
+    }
+
     /// The numerical inverse of an overconstrained mechanism (36 unknowns, three inputs).
     #[no_panic]
     pub fn exechon(sys: &Exechon, v: &[f64; 36], x0: &[f64; 3]) -> Result<[f64; 3], InverseError> {
@@ -324,6 +331,23 @@ pub mod modes {
     }
 
     #[no_panic]
+    pub fn five_bar_new(
+        sys: FiveBar,
+        options: &ModesOptions,
+    ) -> Result<AllModes<FiveBar, 3, 2, 8>, ModesError> {
+        AllModes::new(sys, options)
+    }
+
+    #[no_panic]
+    pub fn five_bar(
+        m: &AllModes<FiveBar, 3, 2, 8>,
+        x: &[f64; 2],
+        out: &mut Roots<3, 8>,
+    ) -> Result<(), ModesError> {
+        m.solve(x, out)
+    }
+
+    #[no_panic]
     pub fn exechon_new(
         sys: Exechon,
         options: &ModesOptions,
@@ -363,6 +387,23 @@ linkage::mechanism! {
 }
 
 proven!(exechon, Exechon, 36, 3);
+
+linkage::mechanism! {
+    /// A planar five-bar declared in space, its platform a single point (no orientation): two
+    /// cranks driven about vertical axes, two distal links meeting at the output point P.
+    pub struct FiveBar;
+    params { crank = 100.0, distal = 150.0 }
+    base { A1 = [-40.0, 0.0, 0.0], A1z = [-40.0, 0.0, 1.0], A2 = [40.0, 0.0, 0.0], A2z = [40.0, 0.0, 1.0] }
+    platform(home = [0.0, 0.0, 0.0, 0.0, crank * sin(pi / 3.0) + 120.0, 0.0]) { P = [0.0, 0.0, 0.0] }
+    link crank1 { C1 = [-40.0 - crank * cos(pi / 3.0), crank * sin(pi / 3.0), 0.0], C1z = [-40.0 - crank * cos(pi / 3.0), crank * sin(pi / 3.0), 1.0] }
+    link crank2 { C2 = [40.0 + crank * cos(pi / 3.0), crank * sin(pi / 3.0), 0.0], C2z = [40.0 + crank * cos(pi / 3.0), crank * sin(pi / 3.0), 1.0] }
+    link distal1 { }
+    link distal2 { }
+    chain left = base - R(active q1, axis = A1 -> A1z) - crank1 - R(passive, axis = C1 -> C1z) - distal1 - S(P) - platform;
+    chain right = base - R(active q2, axis = A2 -> A2z) - crank2 - R(passive, axis = C2 -> C2z) - distal2 - S(P) - platform;
+}
+
+proven!(five_bar, FiveBar, 3, 2);
 
 /// The C interface's calls (`linkage-ffi`, which LinuxCNC's kinematics module links), each in
 /// a `#[no_panic]` function. They wrap the Rust-ABI functions the `extern "C"` symbols

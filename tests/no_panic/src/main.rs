@@ -4,10 +4,10 @@
 use core::hint::black_box;
 use core::mem::MaybeUninit;
 use linkage::modes::{EndpointKind, ModesError, ModesOptions, Roots};
-use linkage::velocity::Wrench;
+use linkage::velocity::{VelocityError, Wrench};
 use linkage::{Mechanism, Options, Pose, Tracker};
 use linkage_ffi::{status, LinkageGeometry, LinkagePose, LinkageReport, LinkageStrutCorrection};
-use no_panic_proof::{ffi, hexapod, rps, stewart, Exechon, Rps, RssHexapod, Stewart};
+use no_panic_proof::{ffi, hexapod, rps, stewart, Exechon, FiveBar, Rps, RssHexapod, Stewart};
 
 fn main() {
     let o = black_box(Options::TIGHT);
@@ -105,6 +105,7 @@ fn main() {
     assert!(hexapod::track(&mut t, &x).is_ok());
     assert!(hexapod::nh(&sys, &s, &black_box([f64::NAN; 6]), &o).is_err());
     exechon();
+    five_bar();
     c_interface();
     all_modes();
     inverse();
@@ -153,6 +154,56 @@ fn exechon() {
     assert!(exechon::ph(&sys, &s, &bad, &o).is_err() && exechon::track(&mut t, &bad).is_err());
     assert!(exechon::start(&sys, [f64::NAN; 36], *s.x()).is_err());
     assert!(no_panic_proof::inverse::exechon(&sys, &[f64::NAN; 36], s.x()).is_err());
+}
+
+/// Every solver on the five-bar (a point for a platform: no orientation), its modes too.
+fn five_bar() {
+    use no_panic_proof::five_bar;
+    let o = Options::TIGHT;
+    let sys = FiveBar::new();
+    let s = sys.home_start().expect("the five-bar's start");
+    let s = five_bar::start(&sys, *s.v(), *s.x()).expect("the five-bar's start, checked");
+    let x = black_box(s.x().map(|q| q + 0.05));
+    let sol = five_bar::ph(&sys, &s, &x, &o).expect("a solve");
+    assert!(sol.is_ok(), "{:?}", sol.status);
+    let back = no_panic_proof::inverse::five_bar(&sys, &sol.v, s.x()).expect("its inverse");
+    assert!(
+        back.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9),
+        "{back:?}"
+    );
+    assert!(five_bar::nr(&sys, &s, &x, &o).is_ok() && five_bar::nh(&sys, &s, &x, &o).is_ok());
+    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
+    assert_eq!(
+        five_bar::nr_prepared(&prepared, &x, &o),
+        five_bar::nr(&sys, &s, &x, &o)
+    );
+    assert!(five_bar::detour(&sys, &s, &x, &o).is_ok());
+    assert!(five_bar::proof(&sys, &sol.v, &x).is_ok());
+    let mut t = Tracker::new(sys.clone(), s, o);
+    assert!(five_bar::track(&mut t, &x).is_ok());
+    let xdot = black_box([0.1, -0.2]);
+    // A point has no frame to give a twist or take a wrench: a typed refusal.
+    let no_frame = Err(VelocityError::NoFrame);
+    assert_eq!(five_bar::rates(&sys, &sol.v, &x, &xdot), no_frame);
+    let load = black_box(Wrench {
+        force: [0.0, -10.0, 0.0],
+        moment: [0.0; 3],
+    });
+    assert_eq!(five_bar::efforts(&sys, &sol.v, &x, &load), no_frame);
+    let bad = black_box([f64::NAN, 0.0]);
+    assert!(five_bar::ph(&sys, &s, &bad, &o).is_err() && five_bar::track(&mut t, &bad).is_err());
+    let options = ModesOptions::default();
+    let modes = no_panic_proof::modes::five_bar_new(sys, &options).expect("starts");
+    let mut roots = Roots::<3, 8>::new();
+    no_panic_proof::modes::five_bar(&modes, &x, &mut roots).expect("a query");
+    // Two assembly modes (the circles' two intersections), nothing else.
+    assert!(roots.is_complete() && roots.roots() == 2 && roots.real().len() == 2);
+    assert!(roots
+        .real()
+        .iter()
+        .any(|r| (0..3).all(|k| (r.v[k] - sol.v[k]).abs() < 1e-6)));
+    let bad = no_panic_proof::modes::five_bar(&modes, &black_box([f64::NAN; 2]), &mut roots);
+    assert_eq!(bad, Err(ModesError::NonFinite));
 }
 
 /// The C interface as LinuxCNC's module drives it: a handle in caller storage, inverse and
