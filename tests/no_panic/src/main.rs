@@ -112,6 +112,30 @@ fn main() {
     println!("no-panic proof: linked; every entry point ran on good and bad input");
 }
 
+/// PH to `x` from start `s`, its answer given back by the inverse, and NR, NH, prepared NR,
+/// the detour, the certificate and the tracker to the same target: `(PH's solution, the
+/// tracker)`. For mechanisms whose proven module and inverse are both named `$m`.
+macro_rules! every_solver {
+    ($m:ident, $sys:ident, $s:ident, $x:ident, $o:ident) => {{
+        let (sys, s, x, o) = (&$sys, &$s, &$x, &$o);
+        let sol = $m::ph(sys, s, x, o).expect("a solve");
+        assert!(sol.is_ok(), "{:?}", sol.status);
+        let back = no_panic_proof::inverse::$m(sys, &sol.v, s.x()).expect("its inverse");
+        assert!(
+            back.iter().zip(x).all(|(a, b)| (a - b).abs() < 1e-9),
+            "{back:?}"
+        );
+        assert!($m::nr(sys, s, x, o).is_ok() && $m::nh(sys, s, x, o).is_ok());
+        let prepared = linkage::NewtonRaphson::new(sys.clone(), *s);
+        assert_eq!($m::nr_prepared(&prepared, x, o), $m::nr(sys, s, x, o));
+        assert!($m::detour(sys, s, x, o).is_ok());
+        assert!($m::proof(sys, &sol.v, x).is_ok());
+        let mut t = Tracker::new(sys.clone(), *s, *o);
+        assert!($m::track(&mut t, x).is_ok());
+        (sol, t)
+    }};
+}
+
 /// Every solver on the Exechon (overconstrained: 36 unknowns, three inputs, an equation left
 /// out of the square system): legs from 700 mm to a nearby target, then the refusals.
 fn exechon() {
@@ -122,23 +146,7 @@ fn exechon() {
     let v0 = *s.v();
     let s = exechon::start(&sys, v0, *s.x()).expect("the Exechon's start, checked");
     let x = black_box([705.0, 700.0, 698.0]);
-    let sol = exechon::ph(&sys, &s, &x, &o).expect("a solve");
-    assert!(sol.is_ok(), "{:?}", sol.status);
-    let back = no_panic_proof::inverse::exechon(&sys, &sol.v, s.x()).expect("its inverse");
-    assert!(
-        back.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9),
-        "{back:?}"
-    );
-    assert!(exechon::nr(&sys, &s, &x, &o).is_ok() && exechon::nh(&sys, &s, &x, &o).is_ok());
-    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
-    assert_eq!(
-        exechon::nr_prepared(&prepared, &x, &o),
-        exechon::nr(&sys, &s, &x, &o)
-    );
-    assert!(exechon::detour(&sys, &s, &x, &o).is_ok());
-    assert!(exechon::proof(&sys, &sol.v, &x).is_ok());
-    let mut t = Tracker::new(sys.clone(), s, o);
-    assert!(exechon::track(&mut t, &x).is_ok());
+    let (sol, mut t) = every_solver!(exechon, sys, s, x, o);
     let xdot = black_box([1.0, -0.5, 0.25]);
     let back = exechon::rates(&sys, &sol.v, &x, &xdot).expect("rates");
     assert!(
@@ -164,23 +172,7 @@ fn five_bar() {
     let s = sys.home_start().expect("the five-bar's start");
     let s = five_bar::start(&sys, *s.v(), *s.x()).expect("the five-bar's start, checked");
     let x = black_box(s.x().map(|q| q + 0.05));
-    let sol = five_bar::ph(&sys, &s, &x, &o).expect("a solve");
-    assert!(sol.is_ok(), "{:?}", sol.status);
-    let back = no_panic_proof::inverse::five_bar(&sys, &sol.v, s.x()).expect("its inverse");
-    assert!(
-        back.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9),
-        "{back:?}"
-    );
-    assert!(five_bar::nr(&sys, &s, &x, &o).is_ok() && five_bar::nh(&sys, &s, &x, &o).is_ok());
-    let prepared = linkage::NewtonRaphson::new(sys.clone(), s);
-    assert_eq!(
-        five_bar::nr_prepared(&prepared, &x, &o),
-        five_bar::nr(&sys, &s, &x, &o)
-    );
-    assert!(five_bar::detour(&sys, &s, &x, &o).is_ok());
-    assert!(five_bar::proof(&sys, &sol.v, &x).is_ok());
-    let mut t = Tracker::new(sys.clone(), s, o);
-    assert!(five_bar::track(&mut t, &x).is_ok());
+    let (sol, mut t) = every_solver!(five_bar, sys, s, x, o);
     let xdot = black_box([0.1, -0.2]);
     // A point has no frame to give a twist or take a wrench: a typed refusal.
     let no_frame = Err(VelocityError::NoFrame);
