@@ -25,6 +25,26 @@ use linkage_geometry::distance;
 /// forms give, as it always did.
 pub const CLOSED_FORM_ACCEPT: f64 = 1e-3;
 
+/// How far (a length, relative to the scale) an equation on the platform's coordinates alone
+/// that reads no input (a rigid platform's distances, say) may be off at the given v before
+/// the pose is unreachable without a search ([`platform_in_shape`], which the generated
+/// `inverse` calls with the generator's list of such equations before this module's search):
+/// no inputs or links' points move it, and an answer needs it within [`ACCEPT`](super::ACCEPT) at v, or at a
+/// configuration whose platform is within [`ACCEPT`](super::ACCEPT) of v — which moves it by at most the
+/// row's nonzeros times that, to first order. A thousand times [`ACCEPT`](super::ACCEPT) leaves room for both
+/// and for the second-order term; a pose between the two is searched as any other. Without it
+/// a platform given out of shape cost the whole search (every start, the path from home) to
+/// be refused: about 50 ms for the 6-PCS of 60 unknowns in the tests' build.
+///
+/// The same bound holds the platform's distances ([`platform_keeps_its_distances`]), which
+/// every model has, equations on the platform alone or not (the 3-PRP's model places its
+/// platform's points through links, a delta's tool through its carriage: 25–75 ms a refusal
+/// before). A configuration that satisfies F exactly moves the platform rigidly; one an answer
+/// accepts satisfies it within [`ACCEPT`](super::ACCEPT) as lengths, which moves the platform's points off its
+/// shape by that times the platform's own equations' coefficients, to first order — a thousand
+/// leaves room for coefficients up to hundreds (a frame of three points nearly on a line).
+const FAR: f64 = 1e3 * super::ACCEPT;
+
 /// Whether the closed forms' inputs place the platform at `v` (its first `held`
 /// coordinates): F at them is `f`, ∂F/∂v's values `b`, and `rows` the equations whose
 /// unknowns are all the platform's, each with the indices of its values (the generator's
@@ -56,7 +76,7 @@ pub fn platform_in_shape<const N: usize>(
     b: &[f64],
     rows: &[(usize, &[usize])],
 ) -> bool {
-    let bound = super::FAR * scale(v, held);
+    let bound = FAR * scale(v, held);
     rows_hold(f, b, rows, bound, 16.0 * bound * bound)
 }
 
@@ -73,7 +93,7 @@ pub fn platform_keeps_its_distances<S: Mechanism<N, M>, const N: usize, const M:
     v: &[f64; N],
 ) -> bool {
     let k = S::POINTS.len();
-    let bound = super::FAR * scale(v, 3 * k);
+    let bound = FAR * scale(v, 3 * k);
     // Unknowns are by axis: point p's coordinate a is v[a k + p].
     let at = |p: usize| [0, 1, 2].map(|a| v.get(a * k + p).copied().unwrap_or(f64::NAN));
     // NaN anywhere fails the comparison.
