@@ -160,7 +160,7 @@ proven!(stewart, Stewart, 18, 6);
 proven!(hexapod, RssHexapod, 18, 6);
 
 /// A SCARA with a wrist that tilts the tool: its chain has no closed-form inverse, so
-/// `inverse` is the numerical one (`linkage`'s inverse.rs).
+/// `inverse` is the numerical one (`linkage`'s inverse.rs and inverse/).
 pub use linkage_serial_arms::ScaraWrist;
 
 linkage::mechanism! {
