@@ -17,7 +17,7 @@
 //! it by less than a part in 10⁴ (a local minimum, or a creep along a valley); a fit so
 //! ended has its inputs polished by Gauss–Newton on the distance from v to where they place
 //! the platform (Newton on F(·, x) = 0 over every unknown).
-//! A result is returned only where every equation is within [`ACCEPT`] of the scale of holding
+//! A result is returned only where every equation is within [`ACCEPT`](levenberg_marquardt::ACCEPT) of the scale of holding
 //! (its residual over its largest derivative by the coordinates: a length), or where the
 //! configuration the inputs place satisfies them so and has the platform within as much of v,
 //! so any inputs returned do place the platform at v; a pose the mechanism cannot take is
@@ -43,16 +43,7 @@
 //! half a turn of the reference (the generated caller refuses a reference too far out for
 //! that, `InverseError::FarReference`).
 
-use core::cell::Cell;
-
 use crate::{InverseError, Mechanism};
-
-/// How far, relative to the scale (1 + the largest platform coordinate), the given platform
-/// may be from the mechanism's motion and the answer's pivots from satisfying the equations.
-/// Levenberg–Marquardt takes its unknowns to where their steps become negligible (1e-13 of the
-/// coordinates): what is left then is how far the given v is off the motion — a forward solve to
-/// a tolerance of 1e-8 mm leaves ~1e-10 of a 100 mm scale — and is accepted up to this.
-pub const ACCEPT: f64 = 1e-9;
 
 /// Levenberg–Marquardt iterations per solve from a guess (far from home, with several inputs,
 /// a hundred can end short of the answer, at a residual that looks small only because the
@@ -89,22 +80,6 @@ pub fn solve<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize>
     #[cfg(test)]
     tests::record(&work);
     answer
-}
-
-/// What a solve cost: Levenberg–Marquardt runs, their iterations and their damped solves. A
-/// few counters on the stack, read only by the unit tests' probe (`inverse/tests.rs`), which
-/// measures what the stopping rule saves.
-#[derive(Default)]
-pub(crate) struct Work {
-    pub(crate) runs: Cell<u32>,
-    pub(crate) iterations: Cell<u32>,
-    pub(crate) damped_solves: Cell<u32>,
-}
-
-impl Work {
-    fn add(counter: &Cell<u32>) {
-        counter.set(counter.get().saturating_add(1));
-    }
 }
 
 /// [`solve`], counting its work in `work`.
@@ -202,34 +177,8 @@ mod tests;
 
 use by_the_inputs::by_the_inputs;
 pub use closed_form::{closed_form_places, platform_in_shape, platform_keeps_its_distances};
-use follow::follow;
-use levenberg_marquardt::Solver;
-
-/// `d` brought into (−π, π].
-fn half_turn(d: f64) -> f64 {
-    let turn = 2.0 * core::f64::consts::PI;
-    let mut d = d % turn;
-    if d > 0.5 * turn {
-        d -= turn;
-    } else if d <= -0.5 * turn {
-        d += turn;
-    }
-    d
-}
-
-/// `dst[..to] = src[..to]` (all of it past N), with no panic path for the no-panic proof.
-fn copy_head<const N: usize>(dst: &mut [f64; N], src: &[f64; N], to: usize) {
-    for (d, s) in dst.iter_mut().zip(src).take(to) {
-        *d = *s;
-    }
-}
-
-/// `dst[from..] = src[from..]` (nothing past N), with no panic path.
-fn copy_tail<const N: usize>(dst: &mut [f64; N], src: &[f64; N], from: usize) {
-    for (d, s) in dst.iter_mut().zip(src).skip(from) {
-        *d = *s;
-    }
-}
+use follow::{copy_tail, follow, half_turn};
+use levenberg_marquardt::{Solver, Work};
 
 /// The starting unknowns, the better-fitting first: the given v, and (with a declared home
 /// and links between) the home's links between carried along with the platform.

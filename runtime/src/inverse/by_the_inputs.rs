@@ -6,8 +6,7 @@
 //! equations, and no path of the platform's pose has to stay inside the workspace (a straight
 //! one from a SCARA's home, at the edge of its reach, leaves it at once).
 
-use super::levenberg_marquardt::{STALL, STALLED, Solver, off_by};
-use super::{ACCEPT, Work};
+use super::levenberg_marquardt::{ACCEPT, STALL, STALLED, Solver, Work, off_by};
 use crate::damped_least_squares::DampedLeastSquares;
 use crate::lu::Lu;
 use crate::math::sqrt;

@@ -16,7 +16,7 @@ use linkage_geometry::distance;
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the equations on the
 /// platform's points may be from holding with the closed forms' inputs: a thousandth. Far
-/// looser than the numerical inverse's [`ACCEPT`](super::ACCEPT), which must decide whether
+/// looser than the numerical inverse's [`ACCEPT`](super::levenberg_marquardt::ACCEPT), which must decide whether
 /// its own iterations converged: the closed forms are exact for the points they read, and this
 /// check is for a point elsewhere or a platform that is not one rigid body — not for a pose
 /// near the motion of a mechanism of fewer freedoms, whose legs a caller asks for and then
@@ -29,9 +29,9 @@ pub const CLOSED_FORM_ACCEPT: f64 = 1e-3;
 /// that reads no input (a rigid platform's distances, say) may be off at the given v before
 /// the pose is unreachable without a search ([`platform_in_shape`], which the generated
 /// `inverse` calls with the generator's list of such equations before this module's search):
-/// no inputs or links' points move it, and an answer needs it within [`ACCEPT`](super::ACCEPT) at v, or at a
-/// configuration whose platform is within [`ACCEPT`](super::ACCEPT) of v — which moves it by at most the
-/// row's nonzeros times that, to first order. A thousand times [`ACCEPT`](super::ACCEPT) leaves room for both
+/// no inputs or links' points move it, and an answer needs it within [`ACCEPT`](super::levenberg_marquardt::ACCEPT) at v, or at a
+/// configuration whose platform is within [`ACCEPT`](super::levenberg_marquardt::ACCEPT) of v — which moves it by at most the
+/// row's nonzeros times that, to first order. A thousand times [`ACCEPT`](super::levenberg_marquardt::ACCEPT) leaves room for both
 /// and for the second-order term; a pose between the two is searched as any other. Without it
 /// a platform given out of shape cost the whole search (every start, the path from home) to
 /// be refused: about 50 ms for the 6-PCS of 60 unknowns in the tests' build.
@@ -40,10 +40,10 @@ pub const CLOSED_FORM_ACCEPT: f64 = 1e-3;
 /// every model has, equations on the platform alone or not (the 3-PRP's model places its
 /// platform's points through links, a delta's tool through its carriage: 25–75 ms a refusal
 /// before). A configuration that satisfies F exactly moves the platform rigidly; one an answer
-/// accepts satisfies it within [`ACCEPT`](super::ACCEPT) as lengths, which moves the platform's points off its
+/// accepts satisfies it within [`ACCEPT`](super::levenberg_marquardt::ACCEPT) as lengths, which moves the platform's points off its
 /// shape by that times the platform's own equations' coefficients, to first order — a thousand
 /// leaves room for coefficients up to hundreds (a frame of three points nearly on a line).
-const FAR: f64 = 1e3 * super::ACCEPT;
+const FAR: f64 = 1e3 * super::levenberg_marquardt::ACCEPT;
 
 /// Whether the closed forms' inputs place the platform at `v` (its first `held`
 /// coordinates): F at them is `f`, ∂F/∂v's values `b`, and `rows` the equations whose

@@ -2,7 +2,6 @@
 //! given pose, each step solved by Levenberg–Marquardt from the last.
 
 use super::levenberg_marquardt::Solver;
-use super::{copy_head, half_turn};
 use crate::Mechanism;
 use crate::pose::{Pose, pose_from_unknowns, unknowns_from_pose};
 
@@ -100,4 +99,30 @@ pub(super) fn follow<S: Mechanism<N, M>, const N: usize, const M: usize, const Z
         }
     }
     None
+}
+
+/// `d` brought into (−π, π].
+pub(super) fn half_turn(d: f64) -> f64 {
+    let turn = 2.0 * core::f64::consts::PI;
+    let mut d = d % turn;
+    if d > 0.5 * turn {
+        d -= turn;
+    } else if d <= -0.5 * turn {
+        d += turn;
+    }
+    d
+}
+
+/// `dst[..to] = src[..to]` (all of it past N), with no panic path for the no-panic proof.
+pub(super) fn copy_head<const N: usize>(dst: &mut [f64; N], src: &[f64; N], to: usize) {
+    for (d, s) in dst.iter_mut().zip(src).take(to) {
+        *d = *s;
+    }
+}
+
+/// `dst[from..] = src[from..]` (nothing past N), with no panic path.
+pub(super) fn copy_tail<const N: usize>(dst: &mut [f64; N], src: &[f64; N], from: usize) {
+    for (d, s) in dst.iter_mut().zip(src).skip(from) {
+        *d = *s;
+    }
 }

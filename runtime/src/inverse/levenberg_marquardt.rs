@@ -1,10 +1,34 @@
 //! Levenberg–Marquardt on the inputs and the unknowns after the platform's, with the platform
 //! held: the numerical inverse's one iteration, and how far what it leaves is from an answer.
 
-use super::{ACCEPT, Work};
+use core::cell::Cell;
+
 use crate::Mechanism;
 use crate::damped_least_squares::DampedLeastSquares;
 use crate::math::sqrt;
+
+/// How far, relative to the scale (1 + the largest platform coordinate), the given platform
+/// may be from the mechanism's motion and the answer's pivots from satisfying the equations.
+/// Levenberg–Marquardt takes its unknowns to where their steps become negligible (1e-13 of the
+/// coordinates): what is left then is how far the given v is off the motion — a forward solve to
+/// a tolerance of 1e-8 mm leaves ~1e-10 of a 100 mm scale — and is accepted up to this.
+pub(super) const ACCEPT: f64 = 1e-9;
+
+/// What a solve cost: Levenberg–Marquardt runs, their iterations and their damped solves. A
+/// few counters on the stack, read only by the unit tests' probe (`inverse/tests.rs`), which
+/// measures what the stopping rule saves.
+#[derive(Default)]
+pub(crate) struct Work {
+    pub(crate) runs: Cell<u32>,
+    pub(crate) iterations: Cell<u32>,
+    pub(crate) damped_solves: Cell<u32>,
+}
+
+impl Work {
+    pub(super) fn add(counter: &Cell<u32>) {
+        counter.set(counter.get().saturating_add(1));
+    }
+}
 
 /// A run whose cost [`STALL`] iterations have lowered by less than a part in 10⁴ has stalled,
 /// at a local minimum or creeping along a valley (a SCARA with a wrist, followed from home:

@@ -57,7 +57,7 @@ pub(crate) struct Plan<const N: usize> {
     pub(super) rest: usize,
     /// Per static pivot k, the static pivots k' > k whose column is among `cols[k]`: the part
     /// of its back-substitution that must wait for them (the rest columns' part is a dense
-    /// product, see [`Lu::solve`]).
+    /// product, see [`Lu::solve`](super::Lu::solve)).
     pub(super) later: [[u8; N]; N],
     pub(super) n_later: [u8; N],
     /// Number of pattern entries, and where each goes in the row-major N × N matrix.
