@@ -22,31 +22,56 @@ use proc_macro2::TokenStream;
 
 /// Expands a `mechanism! { ... }` body. Errors become `compile_error!` at the offending tokens.
 pub fn expand(input: TokenStream) -> TokenStream {
-    let name = fallback_name(&input);
+    let header = fallback_header(&input);
     match try_expand(input) {
         Ok(tokens) => tokens,
-        Err(e) => {
-            // A stub type keeps the user's other uses of the name from adding errors of their own.
-            let errors = e.to_compile_error();
-            match name {
-                Some(name) => quote::quote!(#errors #[allow(dead_code)] struct #name;),
-                None => errors,
-            }
-        }
+        Err(e) => fallback(e, header),
     }
 }
 
-/// The declared type's name, if the header parses: `attrs vis struct NAME ;`.
-fn fallback_name(input: &TokenStream) -> Option<syn::Ident> {
+/// The errors, and in place of the declared type an alias whose definition is the first of
+/// them: an array whose length is `compile_error!`, a type rustc knows to be in error, so the
+/// user's other uses of the name (`Name::new()`, `Name::LISTING`, a solver over it) add no
+/// errors of their own. (A unit struct in its place left two follow-on errors in a typical
+/// program; `compile_error!` alone as the type stands for `()`, which adds them all.)
+fn fallback(e: syn::Error, header: Option<(TokenStream, syn::Ident)>) -> TokenStream {
+    let Some((vis, name)) = header else {
+        return e.to_compile_error();
+    };
+    let mut errors = e.into_iter();
+    let first = errors.next().map(|e| e.to_compile_error());
+    let rest = errors.map(|e| e.to_compile_error());
+    quote::quote! {
+        #[allow(dead_code)]
+        #vis type #name = [(); #first];
+        #(#rest)*
+    }
+}
+
+/// The declared type's visibility and name, if the header parses: `attrs vis struct NAME ;`.
+fn fallback_header(input: &TokenStream) -> Option<(TokenStream, syn::Ident)> {
+    use proc_macro2::{Delimiter, TokenTree};
+    let mut vis = TokenStream::new();
     let mut tokens = input.clone().into_iter().peekable();
     while let Some(t) = tokens.next() {
-        if let proc_macro2::TokenTree::Ident(i) = &t {
-            if i == "struct" {
+        match &t {
+            TokenTree::Ident(i) if i == "struct" => {
                 return match tokens.next() {
-                    Some(proc_macro2::TokenTree::Ident(name)) => Some(name),
+                    Some(TokenTree::Ident(name)) => Some((vis, name)),
                     _ => None,
                 };
             }
+            TokenTree::Ident(i) if i == "pub" => {
+                vis = TokenStream::from(t.clone());
+                let restricted = matches!(
+                    tokens.peek(),
+                    Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Parenthesis
+                );
+                if restricted {
+                    vis.extend(tokens.next());
+                }
+            }
+            _ => vis = TokenStream::new(),
         }
     }
     None

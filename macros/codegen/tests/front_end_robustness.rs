@@ -190,3 +190,24 @@ fn mangle(declaration: &str, seed: u64, valid: bool) {
     }
     assert!(rejected > rounds / 3, "{rejected}");
 }
+
+/// A declaration in error expands to its errors and, in place of the type, an alias of the
+/// declared visibility whose definition holds the first error (so that uses of the name add
+/// no errors: `tests/ui`'s `a_mistake_adds_no_errors_where_the_type_is_used`); every error is
+/// reported once.
+#[test]
+fn a_declaration_in_error_leaves_an_alias_holding_its_first_error() {
+    // Two mistakes: an unknown pivot in one chain, a chain that misses the platform.
+    let declaration = DECLARATION
+        .replace("pub struct M;", "pub(crate) struct M;")
+        .replace("S(G3) - platform;", "S(G9) - platform;")
+        .replacen("S(G2) - platform;\n", "S(G2);\n", 1);
+    let ts: TokenStream = declaration.parse().unwrap();
+    let expanded = linkage_codegen::expand(ts).to_string();
+    assert_eq!(expanded.matches("compile_error").count(), 2, "{expanded}");
+    assert!(
+        expanded.contains("pub (crate) type M = [() ; :: core :: compile_error !"),
+        "{expanded}"
+    );
+    assert!(!expanded.contains("struct M"), "{expanded}");
+}
