@@ -352,12 +352,17 @@ pub(super) fn hunt<S, const N: usize, const M: usize>(
 
 /// The straight joint segment from `from` (det B of `det0`'s sign) to `x` in `steps`
 /// ([`straight_segment_from`]), and where that run does not `confirm` an answer (given the
-/// segment's end and its sign changes of det B), again in ten times as many: the oracle's own
-/// Newton can jump where the segment turns fast. On the spherical wrist (case 46 with
-/// `LINKAGE_STRESS_SEED=31337`, a sample the tracker reached by continuation) it counted 2 sign
-/// changes in 10 and in 100 steps and 86 in 1 000, none in 10 000, every run ending where the
-/// tracker did; in 400 pieces of 100 steps |det B| stays above 2.5 % of the start's, where
-/// the wrist moves 18 mm in one piece.
+/// segment's end and its sign changes of det B), again in ten, a hundred and a thousand times
+/// as many, until one does: the oracle's own Newton can jump where the segment turns fast. On
+/// the spherical wrist (case 46 with `LINKAGE_STRESS_SEED=31337`, a sample the tracker reached
+/// by continuation) it counted 2 sign changes in 10 and in 100 steps and 86 in 1 000, none in
+/// 10 000, every run ending where the tracker did; in 400 pieces of 100 steps |det B| stays
+/// above 2.5 % of the start's, where the wrist moves 18 mm in one piece. On a calibrated
+/// planar 3-RPR (case 11 of `geometry_hunt::planar_rpr_calibrated` with
+/// `LINKAGE_STRESS_SEED=20261130`, sample 47) the segment passes within 1.4e-3 of the start's
+/// |det B| near a hundredth of the way: 6 sign changes in 1 000 and 10 000 steps, 8 in
+/// 100 000, none in 1 000 000, whose end is 7.7e-9 from the tracker's answer (and PH along the
+/// segment has det B of the start's sign at every point asked for).
 fn segment_truth<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     from: (&[f64; N], &[f64; M]),
@@ -366,11 +371,14 @@ fn segment_truth<S: Mechanism<N, M>, const N: usize, const M: usize>(
     steps: usize,
     confirm: impl Fn(&[f64; N], usize) -> bool,
 ) -> ([f64; N], usize) {
-    let (end, flips) = straight_segment_from(sys, from, det0, x, steps);
-    if confirm(&end, flips) {
-        return (end, flips);
+    let mut n = steps;
+    loop {
+        let (end, flips) = straight_segment_from(sys, from, det0, x, n);
+        if confirm(&end, flips) || n >= 1000 * steps {
+            return (end, flips);
+        }
+        n *= 10;
     }
-    straight_segment_from(sys, from, det0, x, 10 * steps)
 }
 
 /// Whether |det B| stays above `share` of the start's along the straight segment to `x`.
