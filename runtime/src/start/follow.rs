@@ -1,30 +1,25 @@
 //! A start carried to a geometry that has changed since its configuration was found
 //! ([`Start::follow`]): continuation along the residual homotopy F(w, x) = (1 − t)·F(v, x).
 
-use super::{Start, singular_to_rounding};
-use crate::convergence::Contraction;
+use super::Start;
+use super::path::{MAX_STEPS, MIN_STEP, PATH_TOLERANCE, correct};
 use crate::math::{norm, scale_or_one, size};
 use crate::{Mechanism, SolveError};
 
-/// Attempts (accepted and rejected steps together) before the path is given up.
-const MAX_STEPS: u32 = 400;
-/// The smallest step in t; below it the path is given up (a fold of the homotopy: no solution
-/// on this branch for the new geometry, or one only across a singularity).
-const MIN_STEP: f64 = 1e-6;
-/// Newton iterations per step.
-const MAX_ITERATIONS: u32 = 12;
-/// An intermediate point is accepted once its correction is within this share of ‖v‖; the
-/// last is refined to full precision by [`Start::new`].
-const PATH_TOLERANCE: f64 = 1e-9;
-
 impl<const N: usize, const M: usize> Start<N, M> {
     /// [`Start::new`] for a configuration `v` that solved the mechanism before its geometry
-    /// changed (a declared home after calibration, a start kept across `set_pivot`): `v` is
-    /// carried to a solution for the current geometry at the same inputs `x` by following
-    /// the path F(w(t), x) = (1 − t)·F(v, x) from t = 0 (w = v) to t = 1, with the corrector
-    /// trusted only where it contracts (the rule continuation and the tracker apply) and det B
-    /// of one sign all along: the start found is on the branch `v` was on, never one reached
-    /// across a singularity.
+    /// changed, where only the new mechanism is at hand: `v` is carried to a solution for the
+    /// current geometry at the same inputs `x` by following the path
+    /// F(w(t), x) = (1 − t)·F(v, x) from t = 0 (w = v) to t = 1, with the corrector trusted
+    /// only where it contracts (the rule continuation and the tracker apply) and det B of one
+    /// sign all along: the start found is on the branch of det B's sign at `v` for the new
+    /// geometry, never one reached across a singularity of that path.
+    ///
+    /// That is `v`'s own branch only as long as the change leaves det B at `v` its sign: near
+    /// a singularity of the new geometry, or after a large change, it may not (a spherical
+    /// 3-UPU wrist with its base pivots 0.3 mm deeper landed in another operation mode). Where
+    /// the geometry `v` solves is at hand, [`Start::follow_geometry`] (the generated
+    /// `follow_from`, as `home_start` uses it) follows the change of geometry itself instead.
     ///
     /// Where `v` already solves F (to what [`Start::new`] refines) this is `Start::new`.
     /// Errors as [`Start::new`]'s; [`SolveError::InconsistentStart`] (with ‖F(v, x)‖) also
@@ -144,35 +139,18 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         (size(&d).is_finite() && info.det.is_finite()).then_some(d)
     }
 
-    /// Newton's method on H(·, t) from the predicted point, trusted only while it contracts
-    /// (its first correction within half the predictor's `length`, each next within a quarter
-    /// of the one before) and det B keeps the branch's `sign`.
+    /// The corrector at `t`: Newton's method on H(·, t) from the predicted point.
     fn correct(&mut self, predicted: [f64; N], t: f64, length: f64, sign: f64) -> Option<[f64; N]> {
-        let mut w = predicted;
-        let mut contraction = Contraction::new(length, self.tolerance);
-        for _ in 0..MAX_ITERATIONS {
-            let info = self.sys.factor(&w, self.x, &mut self.fac)?;
-            if info.det.signum() != sign || !info.det.is_finite() {
-                return None;
-            }
-            let mut delta = [0.0; N];
-            self.sys.residual(&w, self.x, &mut delta);
-            for (d, f) in delta.iter_mut().zip(&self.f0) {
-                *d -= (1.0 - t) * f;
-            }
-            self.sys.solve(&self.fac, &mut delta);
-            let size = size(&delta);
-            if !size.is_finite() || !contraction.admits(size) {
-                return None;
-            }
-            for (wi, d) in w.iter_mut().zip(&delta) {
-                *wi -= d;
-            }
-            if size <= self.tolerance {
-                // A point where rounding leaves the branch undecided is no place to go on from.
-                return (!singular_to_rounding(self.sys, &w, self.x)).then_some(w);
-            }
-        }
-        None
+        let shift = self.f0.map(|f| (1.0 - t) * f);
+        correct(
+            self.sys,
+            self.x,
+            &shift,
+            predicted,
+            length,
+            sign,
+            self.tolerance,
+            &mut self.fac,
+        )
     }
 }

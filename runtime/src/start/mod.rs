@@ -6,6 +6,8 @@ use crate::math::{norm, size};
 use crate::{Mechanism, Options, SolveError};
 
 mod follow;
+mod geometry;
+mod path;
 
 /// Below this reciprocal condition number of the equilibrated B a start is singular to
 /// working precision. Near a fold the two roots that meet there lie about `rcond · ‖v‖`
@@ -25,7 +27,8 @@ const MIN_RCOND: f64 = 1e-7;
 /// [`newton_homotopy`](crate::newton_homotopy), [`Tracker`](crate::Tracker)) measure the
 /// start's own Newton correction and refuse such a start with
 /// [`SolveError::InconsistentStart`]; make a new start for the new geometry
-/// ([`Start::follow`] carries the old one's configuration there, on its branch).
+/// ([`Start::follow_geometry`], and the generated `follow_from`, carry the old one's
+/// configuration there along the change of geometry, on its branch).
 /// [`newton_raphson`](crate::newton_raphson) and [`NewtonRaphson`](crate::NewtonRaphson)
 /// take `v0` as a guess only and do not check it (their answer is
 /// [`Status::Unverified`](crate::Status::Unverified) either way).

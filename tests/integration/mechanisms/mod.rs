@@ -39,6 +39,7 @@ mod triangle_platforms;
 mod tricept;
 mod tripteron;
 mod upu_modes;
+mod upu_wrist;
 
 use linkage::{Mechanism, Options};
 

@@ -285,6 +285,19 @@ pub fn expand(
         }
     };
     let priv_ = quote!(::linkage::__private);
+    // Without a closed loop the inputs place every link: one configuration at any inputs,
+    // which the residual path finds even where the straight path of geometry passes a
+    // degenerate one (an axis's second point moved through its first, reversing the axis).
+    let carry = if model.open {
+        quote!(::linkage::Start::follow(self, v, x))
+    } else {
+        quote! {
+            let (from, to) = (before.geometry, self.geometry);
+            ::linkage::Start::follow_geometry(self, v, x, |s| {
+                Self::from_geometry(::core::array::from_fn(|i| from[i] + s * (to[i] - from[i]))).ok()
+            })
+        }
+    };
     let home_items = home.map(|r| {
         let pose = r.pose.map(lit);
         let x0 = r.x.iter().map(|x| lit(*x));
@@ -294,8 +307,8 @@ pub fn expand(
         // forms give for the current geometry (a delta's cranks: its base set 1 mm wider made
         // the declared configuration inconsistent, and `home_start` refused it). Otherwise it
         // is the declared configuration at the declared inputs, carried to the current
-        // geometry by `Start::follow` (the declared configuration itself where the geometry is
-        // the declared one).
+        // geometry along the change of geometry by `follow_from` (the declared configuration
+        // itself where the geometry is the declared one).
         let pose_places_all = model.unknowns.len() == 3 * model.points.len();
         let start = if (model.general_home_inputs.is_empty() || pose_places_all)
             && no_closed_form.is_none()
@@ -310,10 +323,10 @@ pub fn expand(
                     ::linkage::InverseError::Unreachable { input } | ::linkage::InverseError::NoClosedForm { input } | ::linkage::InverseError::FarReference { input } => ::linkage::SolveError::InvalidInput { input },
                     ::linkage::InverseError::NonFinite | ::linkage::InverseError::Inconsistent => ::linkage::SolveError::NonFinite,
                 }).and_then(|inputs| ::linkage::Start::new(self, v, inputs));
-                posed.or_else(|e| ::linkage::Start::follow(self, Self::HOME_V, Self::HOME_INPUTS).map_err(|_| e))
+                posed.or_else(|e| self.follow_from(&Self::new(), Self::HOME_V, Self::HOME_INPUTS).map_err(|_| e))
             }
         } else {
-            quote!(::linkage::Start::follow(self, Self::HOME_V, Self::HOME_INPUTS))
+            quote!(self.follow_from(&Self::new(), Self::HOME_V, Self::HOME_INPUTS))
         };
         quote! {
             /// The platform's pose `[yaw, pitch, roll, x, y, z]` at home (the declared `home`
@@ -331,7 +344,7 @@ pub fn expand(
             /// pose with the inputs the closed forms give where every chain has one, the pose
             /// places every unknown and the mechanism can take it; otherwise the configuration
             /// at `HOME_INPUTS` on the branch of the declared one, carried to the current
-            /// geometry by `linkage::Start::follow`.
+            /// geometry along the change of geometry by [`Self::follow_from`].
             pub fn home_start(&self) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
                 #start
             }
@@ -460,6 +473,20 @@ pub fn expand(
                     #(#link_arms)*
                     _ => ::core::option::Option::None,
                 }
+            }
+
+            /// A configuration `v` of `before` (this mechanism with other dimensions: as
+            /// declared, or before a calibration) at inputs `x`, carried to this geometry along
+            /// the change: every geometry value moved from `before`'s to this one's together,
+            /// and the configuration followed on its branch all along
+            /// (`linkage::Start::follow_geometry`). `linkage::Start::new` where the geometry is
+            /// the same; `linkage::Start::follow` for a mechanism without a closed loop, whose
+            /// inputs place every link.
+            pub fn follow_from(&self, before: &Self, v: [f64; #n], x: [f64; #m]) -> ::core::result::Result<::linkage::Start<#n, #m>, ::linkage::SolveError> {
+                if self.geometry == before.geometry {
+                    return ::linkage::Start::new(self, v, x);
+                }
+                #carry
             }
 
             /// Moves pivot `pivot` of link `link` (its own frame); the mechanism is unchanged on error.

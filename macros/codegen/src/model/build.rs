@@ -250,6 +250,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         dependent: Vec::new(),
         mobility: None,
         counted: crate::model::mobility::of(d).describe(),
+        open: crate::model::mobility::of(d).is_tree(),
         links,
         spins: added.spins,
     };

@@ -16,6 +16,11 @@ impl Mobility {
         6 * (self.links as i64 - 1 - self.joints as i64) + self.freedoms as i64
     }
 
+    /// Whether the pairs join the links without a closed loop (J = L − 1).
+    pub fn is_tree(&self) -> bool {
+        self.joints + 1 == self.links
+    }
+
     pub fn effective(&self) -> i64 {
         self.gruebler() - self.idle as i64
     }

@@ -137,6 +137,9 @@ pub struct Model {
     pub mobility: Option<String>,
     /// The mobility by Grübler–Kutzbach, as the listing states it where rank did not decide.
     pub counted: String,
+    /// No closed loop: the pairs join the links as a tree (a serial arm), so the inputs place
+    /// every link and there is one configuration for them, whatever the geometry.
+    pub open: bool,
     /// The moving links whose pose `link_pose` reports: the platform (when located), then the
     /// named intermediate links of the general model.
     pub links: Vec<LinkFrame>,
