@@ -19,6 +19,7 @@ mod geometry_hunt;
 mod goldberg;
 mod home_by_inputs;
 mod linear_delta;
+mod linear_pentapod;
 mod motors;
 mod numerical_inverse;
 mod orthoglide;

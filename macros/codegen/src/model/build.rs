@@ -355,14 +355,11 @@ fn check_system(model: &Model, d: &Decl) -> Result<(), Error> {
     let mobility = crate::model::mobility::of(d);
     let inputs = model.inputs.len() as i64;
     if mobility.effective() != inputs {
-        return Err(Error::new(
-            d.name.span(),
-            format!(
-                "the mechanism has {inputs} active joint variable{} but mobility {} ({}); declare one active pair per degree of freedom",
-                if inputs == 1 { "" } else { "s" },
-                mobility.effective(),
-                mobility.describe()
-            ),
+        return Err(crate::model::mobility::mismatch(
+            d,
+            model,
+            mobility.effective(),
+            &mobility.describe(),
         ));
     }
     let (n, e) = (model.unknowns.len(), model.equations.len());

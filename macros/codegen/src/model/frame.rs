@@ -50,8 +50,8 @@ pub fn choose(d: &Decl) -> Result<Option<[usize; 3]>, Error> {
             }
         }
     }
-    if best.is_none() && n >= 3 {
-        return Err(Error::new(platform.span(), "the `platform` pivots are collinear: a platform needs three non-collinear pivots to be located (or declare one pivot, for a platform that is a point)"));
-    }
+    // All collinear: a line platform (a tool axis on a linear pentapod), located like one of
+    // two pivots, by its position and direction; its spin about the line is no freedom.
+    let _ = platform;
     Ok(best)
 }

@@ -3,6 +3,7 @@
 //! its two spherical joints.
 
 use crate::front::resolved::{Chain, Decl, Pair, PairKind};
+use crate::model::Model;
 
 pub struct Mobility {
     pub links: usize,
@@ -72,4 +73,24 @@ pub fn of(d: &Decl) -> Mobility {
         mob.idle += idle_spin(n);
     }
     mob
+}
+
+/// The error for a declaration whose active joint variables do not match its `mobility`
+/// (found by `rule`, which the message quotes).
+pub fn mismatch(d: &Decl, model: &Model, mobility: i64, rule: &str) -> syn::Error {
+    let inputs = model.inputs.len();
+    // A platform whose pivots are collinear is a line: its spin about itself is no freedom,
+    // which a declaration meant for a located platform may not expect.
+    let line = if !model.located && model.points.len() >= 2 {
+        "; the platform's pivots are on one line, which places it by a point and a direction (five freedoms: its spin about the line is none)"
+    } else {
+        ""
+    };
+    syn::Error::new(
+        d.name.span(),
+        format!(
+            "the mechanism has {inputs} active joint variable{} but mobility {mobility} ({rule}){line}; declare one active pair per degree of freedom",
+            if inputs == 1 { "" } else { "s" },
+        ),
+    )
 }

@@ -211,13 +211,11 @@ pub fn rank_at_home(
         gk.effective()
     );
     if ranked.mobility != inputs as i64 {
-        return Err(syn::Error::new(
-            d.name.span(),
-            format!(
-                "the mechanism has {inputs} active joint variable{} but mobility {} ({rule}); declare one active pair per degree of freedom",
-                if inputs == 1 { "" } else { "s" },
-                ranked.mobility,
-            ),
+        return Err(crate::model::mobility::mismatch(
+            d,
+            model,
+            ranked.mobility,
+            &rule,
         ));
     }
     if ranked.rank_v < n {

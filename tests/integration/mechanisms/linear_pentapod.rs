@@ -1,0 +1,160 @@
+//! A linear pentapod (Borràs & Thomas, *Singularity-invariant leg substitutions in pentapods*,
+//! IROS 2010; Nawratil & Schicho, *Self-motions of pentapods with linear platform*, Robotica
+//! 2017): five U-P-S legs whose platform joints lie on one line, the tool axis of a five-axis
+//! machine, whose spin about itself is no freedom of interest. The platform is a line: located
+//! by one point and a direction, five freedoms. Base anchors on a circle of radius 250 at
+//! different heights; the platform joints at 0, 40, 90, 130 and 200 mm along the tool.
+//!
+//! Its forward kinematics has at most 8 solutions over ℂ: with p the first joint, u the unit
+//! direction, s = p·p and w = p·u, each leg |p + tᵢu − aᵢ|² = Lᵢ² is linear in (s, w, p, u),
+//! so the five legs leave a 3-dimensional affine family on which three quadrics (s = p·p,
+//! w = p·u, u·u = 1) meet in at most 2³ points. All-modes finds 8 distinct roots, each a
+//! configuration.
+
+use super::all_modes::check_count;
+use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use linkage::{arc_length, Pose};
+use linkage_tests::vec3::{add, dot, scaled, sub};
+use linkage_tests::{check_jacobians, max_diff, Rng};
+
+linkage::mechanism! {
+    /// Linear pentapod: a line platform on five U-P-S legs.
+    pub struct LinearPentapod;
+    base {
+        A1 = [250.0, 0.0, 0.0], A1t = [250.0, 1.0, 0.0],
+        A2 = [77.25424859373686, 237.76412907378838, 20.0], A2t = [76.30318, 238.07314, 20.0],
+        A3 = [-202.25424859373686, 146.9463130731183, -10.0], A3t = [-202.84203, 146.13729, -10.0],
+        A4 = [-202.25424859373686, -146.9463130731183, 30.0], A4t = [-201.66646, -147.75533, 30.0],
+        A5 = [77.25424859373686, -237.76412907378838, 5.0], A5t = [78.2053, -237.45511, 5.0],
+    }
+    platform(home = [0.3, -1.2, 0.0, 0.0, 0.0, 300.0]) {
+        G1 = [0.0, 0.0, 0.0], G2 = [40.0, 0.0, 0.0], G3 = [90.0, 0.0, 0.0],
+        G4 = [130.0, 0.0, 0.0], G5 = [200.0, 0.0, 0.0],
+    }
+    chain leg1 = base - U(A1, axis = A1 -> A1t) - P(active L1) - S(G1) - platform;
+    chain leg2 = base - U(A2, axis = A2 -> A2t) - P(active L2) - S(G2) - platform;
+    chain leg3 = base - U(A3, axis = A3 -> A3t) - P(active L3) - S(G3) - platform;
+    chain leg4 = base - U(A4, axis = A4 -> A4t) - P(active L4) - S(G4) - platform;
+    chain leg5 = base - U(A5, axis = A5 -> A5t) - P(active L5) - S(G5) - platform;
+}
+
+const ANCHORS: [[f64; 3]; 5] = [
+    [250.0, 0.0, 0.0],
+    [77.25424859373686, 237.76412907378838, 20.0],
+    [-202.25424859373686, 146.9463130731183, -10.0],
+    [-202.25424859373686, -146.9463130731183, 30.0],
+    [77.25424859373686, -237.76412907378838, 5.0],
+];
+/// Where each platform joint is along the tool, from the first.
+const ALONG: [f64; 5] = [0.0, 40.0, 90.0, 130.0, 200.0];
+const HOME_POINT: [f64; 3] = [0.0, 0.0, 300.0];
+
+/// The tool's direction at home: the platform's x axis turned by the declared home pose.
+fn home_direction() -> [f64; 3] {
+    Pose::from_euler(0.3, -1.2, 0.0, [0.0; 3]).apply([1.0, 0.0, 0.0])
+}
+
+fn unit(d: [f64; 3]) -> [f64; 3] {
+    scaled(d, 1.0 / dot(d, d).sqrt())
+}
+
+/// The legs' lengths for the tool through `p` along the unit `u`: the inverse kinematics in
+/// closed form.
+fn legs(p: [f64; 3], u: [f64; 3]) -> [f64; 5] {
+    std::array::from_fn(|i| {
+        let d = sub(add(p, scaled(u, ALONG[i])), ANCHORS[i]);
+        dot(d, d).sqrt()
+    })
+}
+
+/// Platform joint `i` in the unknowns (stored by axis).
+fn joint(v: &[f64; 15], i: usize) -> [f64; 3] {
+    [v[i], v[5 + i], v[10 + i]]
+}
+
+/// The tool's line in the unknowns: its first joint and its unit direction.
+fn line(v: &[f64; 15]) -> ([f64; 3], [f64; 3]) {
+    let p = joint(v, 0);
+    (p, scaled(sub(joint(v, 4), p), 1.0 / ALONG[4]))
+}
+
+/// Every joint where the line puts it and every leg at its length.
+fn assert_configuration(v: &[f64; 15], x: &[f64; 5]) {
+    let (p, u) = line(v);
+    assert!((dot(u, u) - 1.0).abs() < 1e-9, "direction {u:?}");
+    for i in 0..5 {
+        let g = joint(v, i);
+        assert!(
+            max_diff(&g, &add(p, scaled(u, ALONG[i]))) < 1e-7,
+            "joint {i} off the line"
+        );
+        let d = sub(g, ANCHORS[i]);
+        assert!((dot(d, d).sqrt() - x[i]).abs() < 1e-7, "leg {i}");
+    }
+}
+
+#[test]
+fn a_linear_pentapod_places_its_tool_line() {
+    let sys = LinearPentapod::new();
+    assert!(
+        mobility_line(LinearPentapod::LISTING).contains("M = 15 + 5 − 15 = 5"),
+        "{}",
+        mobility_line(LinearPentapod::LISTING)
+    );
+    let start = sys.home_start().unwrap();
+    assert!(max_diff(start.x(), &legs(HOME_POINT, home_direction())) < 1e-9);
+    check_jacobians(&sys, start.v(), start.x());
+    // A line has no frame: no pose, its points are the answer.
+    assert!(linkage::pose_from_unknowns(&sys, start.v()).is_none());
+    let mut rng = Rng::new(2010);
+    for case in 0..30 {
+        let p = add(HOME_POINT, [0.0; 3].map(|_| rng.uniform(-30.0, 30.0)));
+        let u = unit(add(
+            home_direction(),
+            [0.0; 3].map(|_| rng.uniform(-0.2, 0.2)),
+        ));
+        let x = legs(p, u);
+        let sol = arc_length(&sys, &start, &x, &GENERAL_MODEL).unwrap();
+        assert!(sol.is_ok(), "case {case}: {:?}", sol.status);
+        assert_configuration(&sol.v, &x);
+        let (q, e) = line(&sol.v);
+        assert!(max_diff(&q, &p) < 1e-6, "case {case}: {q:?} vs {p:?}");
+        assert!(max_diff(&e, &u) < 1e-8, "case {case}: {e:?} vs {u:?}");
+        if case < 3 {
+            check_jacobians(&sys, &sol.v, &x);
+            check_inverse(&sys, &sol.v, &x, start.x(), 1e-7);
+        }
+    }
+}
+
+#[test]
+fn a_linear_pentapod_has_eight_assembly_modes() {
+    let sys = LinearPentapod::new();
+    let at = legs(
+        add(HOME_POINT, [10.0, -5.0, 20.0]),
+        unit(add(home_direction(), [0.1, 0.0, -0.1])),
+    );
+    let (count, most) = check_count(
+        "linear pentapod",
+        sys,
+        &[LinearPentapod::HOME_INPUTS, at],
+        400.0,
+        |_| false,
+    );
+    assert_eq!(count, 8);
+    assert!(most <= 8);
+    let modes = linkage::modes::AllModes::<_, 15, 5, 64>::new(
+        LinearPentapod::new(),
+        &linkage::modes::ModesOptions::default(),
+    )
+    .unwrap();
+    let mut roots = Box::new(linkage::modes::Roots::<15, 64>::new());
+    for x in [LinearPentapod::HOME_INPUTS, at] {
+        modes.solve(&x, &mut roots).unwrap();
+        assert_eq!(roots.roots(), 8);
+        assert!(!roots.real().is_empty());
+        for r in roots.real() {
+            assert_configuration(&r.v, &x);
+        }
+    }
+}
