@@ -314,9 +314,10 @@ fn a_u_at_a_chain_end_takes_its_second_axis_from_its_own_links_pivots() {
         })
         .collect();
     assert_eq!(seconds.len(), 2, "{:?}", m.auto_points);
-    // (Qx − Q) × (G2 − G) = x × 20 z = −20 y: the second axis point one unit along −y from G.
+    // (Qx − Q) × (G2 − G) = x × 20 z = −20 y: the second axis point along −y from G, as far
+    // from it as G2 is (the lever of the line that gave the direction).
     let s = seconds[1];
-    let expected = [300.0, 99.0, 0.0];
+    let expected = [300.0, 80.0, 0.0];
     assert!(
         s.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-12),
         "the second axis point at {s:?}, expected {expected:?}"

@@ -189,8 +189,12 @@ pub fn along(origin: [f64; 3], toward: [f64; 3]) -> Result<[f64; 3], GeometryErr
     Ok([0, 1, 2].map(|k| origin[k] + d[k] / len))
 }
 
-/// `origin + unit((a1 − a0) × (b1 − b0))`: a point one length unit along the common normal of
-/// two directions, for the second axis of a universal joint.
+/// `origin + |b1 − b0| unit((a1 − a0) × (b1 − b0))`: a point along the common normal of two
+/// directions, as far from `origin` as `b1` is from `b0` (the leg's length), for the second
+/// axis of a universal joint. At one length unit (it was) that axis was a lever of 1 mm beside
+/// legs of hundreds, and every bound that depends on the unknowns' scale suffered: a 3-PUU's
+/// Krawczyk radius at home was 5.5e-5 mm (8.3e-3 with the leg's length), and its certified
+/// tracker refused every sample with the rails' axis points 100 mm apart (none refused now).
 pub fn normal_point(
     origin: [f64; 3],
     a: [[f64; 3]; 2],
@@ -202,7 +206,8 @@ pub fn normal_point(
     if !(len > 1e-9 * norm3(da) * norm3(db)) || !len.is_finite() {
         return Err(GeometryError::DegenerateAxis);
     }
-    Ok([0, 1, 2].map(|k| origin[k] + n[k] / len))
+    let lever = norm3(db);
+    Ok([0, 1, 2].map(|k| origin[k] + n[k] / len * lever))
 }
 
 /// `R p + t` for the pose `[yaw, pitch, roll, x, y, z]`, R = Rz(yaw)·Ry(pitch)·Rx(roll): a

@@ -31,6 +31,7 @@ mod planar_rrr;
 mod platform_centres;
 mod prs;
 mod published;
+mod puu;
 mod rrs;
 mod scara;
 mod slider_crank;

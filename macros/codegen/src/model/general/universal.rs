@@ -1,7 +1,8 @@
 //! The universal joint `U(C, axis = P -> Q)`: a spherical joint less one rotation. Its first axis
 //! P→Q is fixed in the link that declares P and Q; its second axis, perpendicular to the first
 //! and to the leg (the line from C to the next joint's centre through the other link) at home,
-//! is fixed in the other link, which carries the point `C_u` one unit along it. The constraint:
+//! is fixed in the other link, which carries the point `C_u` along it, as far from C as the leg
+//! is long (a lever of the mechanism's size: `linkage_geometry::normal_point`). The constraint:
 //! `(Q − P)·(C_u − C) = 0`, the two axes stay perpendicular — degree 2 in the points.
 
 use super::points::Addition;
