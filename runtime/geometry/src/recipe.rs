@@ -73,6 +73,11 @@ pub enum Recipe {
         a: PointRef,
         b: PointRef,
     },
+    /// `1 / |b − a|`: what turns a slide along the axis `a → b` into a multiple of `b − a`.
+    InverseDistance {
+        a: PointRef,
+        b: PointRef,
+    },
     /// Coordinate `index` of a point's home position.
     Coordinate {
         point: PointRef,
@@ -217,6 +222,13 @@ impl Recipes<'_> {
             let value = match *r {
                 Recipe::Slot(s) => g.get(s).copied(),
                 Recipe::Distance { a, b } => Some(distance(at(a), at(b))),
+                Recipe::InverseDistance { a, b } => {
+                    let d = distance(at(a), at(b));
+                    if !(d > 0.0 && d.is_finite()) {
+                        return Err(fail(GeometryError::DegenerateAxis));
+                    }
+                    Some(1.0 / d)
+                }
                 Recipe::Coordinate { point, index } => at(point).get(index).copied(),
                 Recipe::Rigid { index, .. }
                 | Recipe::Collinear { index, .. }

@@ -92,6 +92,10 @@ fn recipe(c: &Recipe) -> TokenStream {
             let (a, b) = (point(a), point(b));
             quote!(#r::Recipe::Distance { a: #a, b: #b })
         }
+        Recipe::InverseDistance { a, b } => {
+            let (a, b) = (point(a), point(b));
+            quote!(#r::Recipe::InverseDistance { a: #a, b: #b })
+        }
         Recipe::Coordinate { point: q, index } => {
             let q = point(q);
             quote!(#r::Recipe::Coordinate { point: #q, index: #index })

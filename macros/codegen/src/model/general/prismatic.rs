@@ -5,12 +5,13 @@
 //! declares none, hold its axis on the rail's (Table I: C is P and R on one axis).
 //!
 //! The rail carries the axis: its origin O (the declared `axis = A -> B`'s A, or for a leg the
-//! centre of the joint before the pair) and the added point `O_T` one unit towards B (or towards
-//! the centre of the joint after the pair). Every point q of the slider is then where the rail
-//! carries its home position, plus the slide s along the axis:
-//! `q = a O + b O_T (+ c T + d (O_T − O) × (T − O)) + s (O_T − O)`, with the Eq. 3 coefficients
-//! of q in the rail's frame at home (T a third point of the rail, when q is off the axis). An
-//! active slide is `s = x − x_home`, a passive one an unknown: degree 2 either way.
+//! centre of the joint before the pair) and the added point `O_T` one unit towards B, or for a
+//! leg where the centre of the joint after the pair is at home (see [`lever`]). Every point q of
+//! the slider is then where the rail carries its home position, plus the slide s along the axis:
+//! `q = a O + b O_T (+ c T + d (O_T − O) × (T − O)) + (s / l) (O_T − O)`, with the Eq. 3
+//! coefficients of q in the rail's frame at home (T a third point of the rail, when q is off the
+//! axis) and l = |O_T − O| at home (1 but for a leg). An active slide is `s = x − x_home`, a
+//! passive one an unknown: degree 2 either way.
 
 use super::points::Addition;
 use super::{err, named, Added, PointId, Reprs, Topology};
@@ -33,6 +34,30 @@ fn axis_ends(topo: &Topology, k: usize) -> Result<(PointId, PointId), Error> {
             p.token.span(),
             "this prismatic pair needs its axis: `axis = A -> B`, or joints with centres on both sides (a leg)",
         )),
+    }
+}
+
+/// Where the rail's axis point `O_T` is: for a leg (no declared axis), where the centre of the
+/// joint after the pair is at home, a lever as long as the leg — one length unit beside legs of
+/// hundreds of millimetres bounded every certificate (a 3-UPU wrist's Krawczyk radius at home
+/// 4.9e-4 mm, 0.16 mm so; see `linkage_geometry::normal_point`); for a declared axis one unit
+/// along it, as the declaration gives only a direction (at its far point, a 3-PRP's square
+/// system, which has components off the mechanism, kept its monodromy loops failing to the
+/// loop cap: 40 s instead of 0.9).
+fn lever(
+    b: &mut Builder,
+    topo: &Topology,
+    k: usize,
+    origin: PointId,
+    towards: PointId,
+) -> PointRef {
+    if topo.joints[k].pair.axis.is_none() {
+        topo.home(towards)
+    } else {
+        b.auto_point(Auto::Along {
+            origin: topo.home(origin),
+            toward: topo.home(towards),
+        })
     }
 }
 
@@ -73,12 +98,8 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             let home = topo.home(origin);
             topo.points.add(Addition::RailOrigin { origin }, name, home)
         });
-    let tip = b.auto_point(Auto::Along {
-        origin: topo.home(origin),
-        toward: topo.home(towards),
-    });
     let ends = format!("{}_{}", topo.name(origin), topo.name(towards));
-    if b.home(tip).iter().any(|x| !x.is_finite()) {
+    if linkage_geometry::along(b.home(topo.home(origin)), b.home(topo.home(towards))).is_err() {
         return Err(err(
             p.token.span(),
             format!(
@@ -88,6 +109,7 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             ),
         ));
     }
+    let tip = lever(b, topo, k, origin, towards);
     let at = topo
         .points
         .add(Addition::AxisTip { origin, towards }, ends.clone(), tip);
@@ -252,7 +274,19 @@ pub fn equations(
     };
     let e = |q: PointId| repr.expr(q);
     let (eo, et) = (e(origin), e(tip));
+    // The slide is a length, the direction `tip − origin` as long as the lever at home.
     let direction = expr::vsub(&et, &eo);
+    let per_length = if p.axis.is_none() {
+        b.constant(
+            format!("inv_l_{ends}"),
+            Recipe::InverseDistance {
+                a: topo.home(origin),
+                b: topo.home(tip),
+            },
+        )
+    } else {
+        Expr::Num(1.0)
+    };
     let at = |q: PointId| -> PointRef { topo.home(q) };
     let cylinder = p.kind == PairKind::C;
     let again = added.sliders.contains(&j.after);
@@ -322,7 +356,14 @@ pub fn equations(
         let eq_q = e(q);
         for a in 0..3 {
             let mut sum: Vec<Expr> = terms.iter().map(|t| t[a].clone()).collect();
-            sum.push(Expr::times(slide.clone(), direction[a].clone()));
+            sum.push(
+                Expr::Product(vec![
+                    slide.clone(),
+                    per_length.clone(),
+                    direction[a].clone(),
+                ])
+                .simplify(),
+            );
             sum.push(eq_q[a].clone().negated());
             let eq = Expr::Sum(sum).simplify();
             if eq.degree() > 0 {
