@@ -6,7 +6,7 @@
 //!
 //! The rail carries the axis: its origin O (the declared `axis = A -> B`'s A, or for a leg the
 //! centre of the joint before the pair) and the added point `O_T` one unit towards B, or for a
-//! leg where the centre of the joint after the pair is at home (see [`lever`]). Every point q of
+//! leg where the centre of the joint after the pair is at home (see `lever`). Every point q of
 //! the slider is then where the rail carries its home position, plus the slide s along the axis:
 //! `q = a O + b O_T (+ c T + d (O_T − O) × (T − O)) + (s / l) (O_T − O)`, with the Eq. 3
 //! coefficients of q in the rail's frame at home (T a third point of the rail, when q is off the
