@@ -50,8 +50,7 @@ pub fn choose(d: &Decl) -> Result<Option<[usize; 3]>, Error> {
             }
         }
     }
-    // All collinear: a line platform (a tool axis on a linear pentapod), located like one of
-    // two pivots, by its position and direction; its spin about the line is no freedom.
-    let _ = platform;
+    // None if all are collinear: a line platform (a tool axis on a linear pentapod), placed
+    // like one of two pivots, by a point and a direction; its spin about the line is no freedom.
     Ok(best)
 }
