@@ -16,7 +16,7 @@
 use super::points::Addition;
 use super::{err, named, Added, PointId, Reprs, Topology};
 use crate::expr::{self, Expr};
-use crate::front::resolved::{LinkRole, PairKind};
+use crate::front::resolved::{LinkRole, Pair, PairKind};
 use crate::model::builder::Scalar;
 use crate::model::{Auto, Builder, PointRef, Recipe};
 use nalgebra::Vector3;
@@ -51,7 +51,7 @@ fn lever(
     origin: PointId,
     towards: PointId,
 ) -> PointRef {
-    if topo.joints[k].pair.axis.is_none() {
+    if lever_is_the_leg(topo.joints[k].pair) {
         topo.home(towards)
     } else {
         b.auto_point(Auto::Along {
@@ -59,6 +59,12 @@ fn lever(
             toward: topo.home(towards),
         })
     }
+}
+
+/// Whether the pair's axis point is at the far end of a leg (no declared axis), the slide then
+/// divided by the leg's length at home; else one unit along the declared axis (see [`lever`]).
+fn lever_is_the_leg(p: &Pair) -> bool {
+    p.axis.is_none()
 }
 
 /// Whether the pair is a link placed from the base in closed form instead (see `explicit`).
@@ -276,7 +282,7 @@ pub fn equations(
     let (eo, et) = (e(origin), e(tip));
     // The slide is a length, the direction `tip − origin` as long as the lever at home.
     let direction = expr::vsub(&et, &eo);
-    let per_length = if p.axis.is_none() {
+    let per_length = if lever_is_the_leg(p) {
         b.constant(
             format!("inv_l_{ends}"),
             Recipe::InverseDistance {
