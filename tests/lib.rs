@@ -157,6 +157,20 @@ pub fn env_number(name: &str) -> Option<u64> {
     }
 }
 
+/// Runs `f` on a thread with a stack of `mib` MiB and passes on its panic: an all-modes solver
+/// of capacity 256 to 1024 is hundreds of kB to a few MB, moved by value, more than a test
+/// thread's stack.
+pub fn on_big_stack(mib: usize, f: impl FnOnce() + Send + 'static) {
+    let joined = std::thread::Builder::new()
+        .stack_size(mib << 20)
+        .spawn(f)
+        .expect("a thread with a big stack")
+        .join();
+    if let Err(panic) = joined {
+        std::panic::resume_unwind(panic);
+    }
+}
+
 /// Largest coordinate difference.
 pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter()

@@ -492,14 +492,8 @@ fn delta_translations_are_found_from_any_seed() {
 /// arithmetic reaches from 100 random points is among the endpoints.
 #[test]
 fn pcs_has_208_complex_placements() {
-    // A solver of capacity 256 for 60 unknowns is a few hundred kB, moved by value: more than
-    // a test thread's stack.
-    std::thread::Builder::new()
-        .stack_size(64 << 20)
-        .spawn(pcs_count)
-        .unwrap()
-        .join()
-        .unwrap();
+    // A solver of capacity 256 for 60 unknowns is a few hundred kB, moved by value.
+    linkage_tests::on_big_stack(64, pcs_count);
 }
 
 fn pcs_count() {

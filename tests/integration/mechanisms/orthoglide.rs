@@ -521,12 +521,7 @@ fn revolute_orthoglides_have_sixteen_translating_modes() {
 #[ignore = "a measurement (minutes): every assembly mode of the revolute Orthoglide"]
 fn revolute_orthoglide_all_modes() {
     // A solver of capacity 1024 for 54 unknowns is about 1 MB, moved by value.
-    std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(revolute_all_modes)
-        .unwrap()
-        .join()
-        .unwrap();
+    linkage_tests::on_big_stack(256, revolute_all_modes);
 }
 
 fn revolute_all_modes() {

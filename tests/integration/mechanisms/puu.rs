@@ -177,12 +177,7 @@ fn mirror(t: [f64; 3], s: &[f64; 3]) -> [f64; 3] {
 #[test]
 fn a_3_puu_has_672_assembly_modes_in_octets() {
     // A solver of capacity 1024 for 36 unknowns is about 1.2 MB, moved by value.
-    std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(puu_modes)
-        .unwrap()
-        .join()
-        .unwrap();
+    linkage_tests::on_big_stack(256, puu_modes);
 }
 
 fn puu_modes() {

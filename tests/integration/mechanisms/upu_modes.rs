@@ -30,12 +30,7 @@ fn strict() -> ModesOptions {
 #[test]
 fn upu_has_624_roots_in_octets() {
     // A solver of capacity 1024 for 45 unknowns is about 1.5 MB, moved by value.
-    std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(upu_count)
-        .unwrap()
-        .join()
-        .unwrap();
+    linkage_tests::on_big_stack(256, upu_count);
 }
 
 fn upu_count() {
@@ -131,43 +126,38 @@ const WIDE: usize = 2048;
 #[test]
 #[ignore = "a measurement (minutes): the counts over seeds behind the count test"]
 fn upu_seeds() {
-    std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(|| {
-            let seeds: Vec<u64> = std::env::var("UPU_SEEDS")
-                .unwrap_or_else(|_| "2015,7,99".into())
-                .split(',')
-                .map(|s| s.trim().parse().unwrap())
-                .collect();
-            let strict: usize = std::env::var("UPU_STRICT").map_or(1, |s| s.parse().unwrap());
-            let confidence: Option<f64> = std::env::var("UPU_CONFIDENCE")
-                .ok()
-                .map(|s| s.parse().unwrap());
-            for seed in seeds {
-                let d = ModesOptions::default();
-                let options = ModesOptions {
-                    seed,
-                    stable_loops: strict * d.stable_loops,
-                    stable_seeds: strict * d.stable_seeds,
-                    max_loops: strict * d.max_loops,
-                    confidence: confidence.unwrap_or(d.confidence),
-                    ..d
-                };
-                let t = Instant::now();
-                let modes = AllModes::<_, 45, 3, WIDE>::new(TranslationalUpu::new(), &options)
-                    .map(Box::new);
-                let secs = t.elapsed().as_secs_f64();
-                match modes {
-                    Ok(m) => println!(
-                        "3-UPU seed {seed} rule x{strict}: {} roots ({:?}) in {secs:.1} s",
-                        m.start_count(),
-                        m.report()
-                    ),
-                    Err(e) => println!("3-UPU seed {seed} rule x{strict}: {e} after {secs:.1} s"),
-                }
+    linkage_tests::on_big_stack(256, || {
+        let seeds: Vec<u64> = std::env::var("UPU_SEEDS")
+            .unwrap_or_else(|_| "2015,7,99".into())
+            .split(',')
+            .map(|s| s.trim().parse().unwrap())
+            .collect();
+        let strict: usize = std::env::var("UPU_STRICT").map_or(1, |s| s.parse().unwrap());
+        let confidence: Option<f64> = std::env::var("UPU_CONFIDENCE")
+            .ok()
+            .map(|s| s.parse().unwrap());
+        for seed in seeds {
+            let d = ModesOptions::default();
+            let options = ModesOptions {
+                seed,
+                stable_loops: strict * d.stable_loops,
+                stable_seeds: strict * d.stable_seeds,
+                max_loops: strict * d.max_loops,
+                confidence: confidence.unwrap_or(d.confidence),
+                ..d
+            };
+            let t = Instant::now();
+            let modes =
+                AllModes::<_, 45, 3, WIDE>::new(TranslationalUpu::new(), &options).map(Box::new);
+            let secs = t.elapsed().as_secs_f64();
+            match modes {
+                Ok(m) => println!(
+                    "3-UPU seed {seed} rule x{strict}: {} roots ({:?}) in {secs:.1} s",
+                    m.start_count(),
+                    m.report()
+                ),
+                Err(e) => println!("3-UPU seed {seed} rule x{strict}: {e} after {secs:.1} s"),
             }
-        })
-        .unwrap()
-        .join()
-        .unwrap();
+        }
+    });
 }
