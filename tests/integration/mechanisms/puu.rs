@@ -10,7 +10,7 @@ use super::all_modes::is_identity;
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
 use linkage::modes::{AllModes, ModesOptions, Roots};
 use linkage::{arc_length, pose_from_unknowns, Mechanism, Pose, StepProof, Tracker};
-use linkage_tests::vec3::{add, dot, scaled, sub};
+use linkage_tests::vec3::{add, cross, dot, scaled, sub};
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
@@ -154,11 +154,7 @@ fn sphere_centre(i: usize, s: f64) -> [f64; 3] {
 fn mirror(t: [f64; 3], s: &[f64; 3]) -> [f64; 3] {
     let c: [[f64; 3]; 3] = std::array::from_fn(|i| sphere_centre(i, s[i]));
     let (u, w) = (sub(c[1], c[0]), sub(c[2], c[0]));
-    let n = [
-        u[1] * w[2] - u[2] * w[1],
-        u[2] * w[0] - u[0] * w[2],
-        u[0] * w[1] - u[1] * w[0],
-    ];
+    let n = cross(u, w);
     let n = scaled(n, 1.0 / dot(n, n).sqrt());
     sub(t, scaled(n, 2.0 * dot(sub(t, c[0]), n)))
 }
