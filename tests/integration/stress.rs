@@ -318,6 +318,22 @@ fn known_cases_last_step_within_the_paths_accuracy() {
     );
 }
 
+/// At ×2 with `LINKAGE_STRESS_SEED=20261201`: a random 6-6 platform whose start is nearly
+/// singular across the legs' step (first-order travel 3.5e5 against |v| of a few hundred, so the
+/// path's points were computed to 0.35). PH's first step of 0.059 was accepted after a first
+/// correction of 0.068; from there every step, however short, landed 0.09 off the accepted
+/// point at a tangent turned 56°, the turn test refused each, and PH ended `StepTooSmall` at
+/// λ = 2.5e-7 on a segment with |det B|/|det0| ≥ 1 all along (`ph_refused_reachable_target`).
+/// Cured by a corrector tolerance of at most a hundredth of the step (and at least 1e-6 of
+/// |v|).
+#[test]
+fn known_cases_corrector_tolerance_within_the_step() {
+    forward_kinematics(
+        &Run::listed("forward_kinematics_by_continuation", 20261201, &[3446]),
+        fk::Solvers::Continuation,
+    );
+}
+
 /// NH solved its last step at x0 + (x* − x0), an ulp from the target, and near a singularity
 /// the correction measured at the target was then 2–4× the tolerance (×10). Cured by solving
 /// the last step at the target itself.

@@ -39,7 +39,8 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
         dense: Option<&DenseFrame<N>>,
     ) -> Result<Corrected<N>, u32> {
         let mut p = *pred;
-        let mut contraction = Contraction::new(step, self.tol);
+        let tol = self.tolerance(step);
+        let mut contraction = Contraction::new(step, tol);
         let mut first = 0.0;
         for k in 0..MAX_CORRECTOR {
             let its = k as u32 + 1;
@@ -86,7 +87,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
             if k == 0 {
                 first = size;
             }
-            if size <= self.tol {
+            if size <= tol {
                 return Ok(Corrected {
                     point: p,
                     iterations: its,

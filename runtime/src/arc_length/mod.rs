@@ -114,13 +114,15 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // so that λ and v weigh alike in the arc length whatever the inputs' units (mm, rad).
     // With the start's consistency: the factorisation is made here anyway.
     let length = first_order_travel(sys, start, &dx, check_start)?.unwrap_or_else(|| norm(&dx));
-    let scale = crate::math::scale_or_one(norm(start.v()).max(length));
+    let size = norm(start.v());
+    let scale = crate::math::scale_or_one(size.max(length));
     let path = Path {
         sys,
         start,
         dx,
         length,
         tol: 1e-6 * scale,
+        fine: 1e-6 * crate::math::scale_or_one(size).min(scale),
         linear: options.linear,
     };
     // A path shorter than the accuracy its points are computed to (a target within rounding of

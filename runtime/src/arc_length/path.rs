@@ -12,10 +12,15 @@ pub(super) struct Path<'a, S, const N: usize, const M: usize> {
     pub dx: [f64; M],
     /// μ at λ = 1.
     pub length: f64,
-    /// The corrector's tolerance.
+    /// The corrector's tolerance on a long step: 1e-6 of the larger of |v| and `length`.
     pub tol: f64,
+    /// Its least value on a short step: 1e-6 of |v| (see [`Path::tolerance`]).
+    pub fine: f64,
     pub linear: Linear,
 }
+
+/// The corrector's tolerance as a share of the step (see [`Path::tolerance`]).
+const STEP_SHARE: f64 = 1e-2;
 
 /// A point `(v, μ)` of the path.
 #[derive(Clone, Copy)]
@@ -44,6 +49,17 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
             x[j] = self.start.x()[j] + l * self.dx[j];
         }
         x
+    }
+
+    /// The corrector's tolerance for a step of length `step`: at most a hundredth of the step,
+    /// and no less than `fine`. A point accepted further from the curve than the step is long
+    /// makes the tangent there, and the turn test, meaningless: with `tol` alone (1e-6 of a
+    /// first-order travel of 3.5e5 from a nearly singular random start, so 0.35), steps of 0.06
+    /// down to 6e-5 were each accepted 0.09 off a sharply bent curve, at a tangent turned 56°
+    /// from the last, and refused by the turn test until the step was too small: a reachable
+    /// target refused (stress seed 20261201, case 3446). Long steps keep `tol`.
+    pub fn tolerance(&self, step: f64) -> f64 {
+        self.tol.min(STEP_SHARE * step).max(self.fine)
     }
 
     /// `λ` at `p`.
