@@ -2,6 +2,7 @@
 
 use crate::Mechanism;
 use crate::math::{asin, atan2, cos, cross3, dot3, norm3, scale3, sin, sub3};
+use linkage_geometry::least_rotation;
 
 /// A rigid transformation: `p_base = rotation · p_platform + translation`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,6 +114,15 @@ fn point<const N: usize>(v: &[f64; N], points: usize, p: usize) -> [f64; 3] {
 /// The platform pose that places its frame pivots where `v` has them. `None` if they are
 /// collinear or not finite.
 ///
+/// A platform of one pivot (a five-bar's output) or of pivots on one line (a linear
+/// pentapod's tool axis) has no frame: nothing fixes its spin about the line. Its pose is the
+/// one that puts its first pivot where `v` has it and turns the line from its direction in the
+/// platform's frame to its direction in `v` by the least rotation
+/// ([`linkage_geometry::least_rotation`], a half turn where the two are opposite; the identity
+/// for a point): the rotation's spin about the line is this convention's, not the machine's,
+/// while every pivot of the platform lands where `v` has it. The declared `home` pose of such a
+/// platform is read the same way.
+///
 /// ```
 /// use linkage::{pose_from_unknowns, unknowns_from_pose, Pose};
 /// # linkage::mechanism! {
@@ -139,7 +149,41 @@ pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(
 ) -> Option<Pose> {
     let k = S::POINTS.len();
     let f = S::FRAME;
-    Pose::between(f.map(|i| sys.point_local(i)), f.map(|i| point(v, k, i)))
+    // The generator repeats one pivot for a platform without a frame.
+    if f[0] != f[1] {
+        return Pose::between(f.map(|i| sys.point_local(i)), f.map(|i| point(v, k, i)));
+    }
+    let local = |p: usize| sys.point_local(p);
+    // The pivot farthest from the first (in the platform's frame) gives the line's direction
+    // best conditioned; every other one gives the same rotation.
+    let far = (1..k).fold(0, |best, p| {
+        let d = |q: usize| norm3(sub3(local(q), local(0)));
+        if d(p) > d(best) { p } else { best }
+    });
+    let (along, placed) = (
+        sub3(local(far), local(0)),
+        sub3(point(v, k, far), point(v, k, 0)),
+    );
+    // A line whose pivots `v` puts on one point (or nowhere) has no direction to turn to.
+    let length = norm3(placed);
+    if norm3(along) > 0.0 && !(length > 0.0 && length.is_finite()) {
+        return None;
+    }
+    let rotation = least_rotation(along, placed);
+    let turned = Pose {
+        rotation,
+        translation: [0.0; 3],
+    }
+    .apply(local(0));
+    let pose = Pose {
+        rotation,
+        translation: sub3(point(v, k, 0), turned),
+    };
+    pose.translation
+        .iter()
+        .chain(rotation.iter().flatten())
+        .all(|x| x.is_finite())
+        .then_some(pose)
 }
 
 /// The unknowns v of the platform at `pose` (Eq. A1).

@@ -229,6 +229,51 @@ pub fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
     ]
 }
 
+/// The rotation of least angle that turns the direction `from` into the direction `to` (neither
+/// need be a unit vector): about `from × to`, or a half turn about an axis square to `from`
+/// where the two are opposite. The convention that places a line platform, whose spin about
+/// itself no pair fixes, at compile time and at run time alike. The identity if either is zero
+/// or not finite.
+///
+/// ```
+/// let r = linkage_geometry::least_rotation([2.0, 0.0, 0.0], [0.0, 0.0, 3.0]);
+/// let turned = [0, 1, 2].map(|i| r[i][0]);
+/// assert!((turned[2] - 1.0).abs() < 1e-15 && r[1][1] == 1.0);
+/// ```
+pub fn least_rotation(from: [f64; 3], to: [f64; 3]) -> [[f64; 3]; 3] {
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let (na, nb) = (norm3(from), norm3(to));
+    if !(na > 0.0 && nb > 0.0 && na.is_finite() && nb.is_finite()) {
+        return identity;
+    }
+    let (a, b) = (scale3(1.0 / na, from), scale3(1.0 / nb, to));
+    // The axis from a × b = a × (a + b): where b is nearly −a, a + b is exact (each component
+    // a difference within a factor of two) and so is the axis to full relative accuracy, which
+    // a · b and a × b alone lose as the turn nears π (Rodrigues' 1 / (1 + cos θ) put a turn of
+    // π − 1e-6 4e-10 off its target, and one of π − 1e-12 off a rotation altogether).
+    let w = cross3(a, [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
+    let (sin, cos) = (norm3(w), dot3(a, b));
+    let r = sqrt(sin * sin + cos * cos);
+    let n = if sin > 0.0 {
+        scale3(1.0 / sin, w)
+    } else if cos > 0.0 {
+        return identity;
+    } else {
+        // Opposite: a half turn about the unit axis square to `a` made with the coordinate
+        // axis least along it.
+        let k = (0..3).fold(0, |k, i| if a[i].abs() < a[k].abs() { i } else { k });
+        let mut e = [0.0; 3];
+        e[k] = 1.0;
+        let n = cross3(a, e);
+        scale3(1.0 / norm3(n), n)
+    };
+    // R = cos θ I + sin θ [n]× + (1 − cos θ) n nᵀ, with cos² θ + sin² θ = 1 to rounding.
+    let (c, s) = (cos / r, sin / r);
+    let nx = [[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]];
+    [0, 1, 2]
+        .map(|i| [0, 1, 2].map(|j| c * identity[i][j] + s * nx[i][j] + (1.0 - c) * n[i] * n[j]))
+}
+
 /// `[e, o, u, w]` for rotating `q` about the axis `a → b`: e the unit axis, o the foot of q on
 /// the axis, u = q − o the arm and w = e × u, so that Eq. 2 gives `o + u cos θ + w sin θ`.
 pub fn axis_frame(a: [f64; 3], b: [f64; 3], q: [f64; 3]) -> Result<[f64; 12], GeometryError> {
@@ -325,6 +370,55 @@ pub fn prismatic_rod_inverse(
 mod tests {
     use super::*;
     use math::{cos, sin};
+
+    /// A proper rotation that takes `a`'s direction to `b`'s, by their angle.
+    fn assert_least(a: [f64; 3], b: [f64; 3]) {
+        let r = least_rotation(a, b);
+        let turned = [0, 1, 2].map(|i| dot3(r[i], a));
+        let (ua, ub) = (scale3(1.0 / norm3(a), a), scale3(1.0 / norm3(b), b));
+        let gap = norm3(sub3(scale3(1.0 / norm3(turned), turned), ub));
+        assert!(gap < 1e-12, "{a:?} -> {b:?}: {gap:e}");
+        for i in 0..3 {
+            for j in 0..3 {
+                let rrt = dot3(r[i], r[j]);
+                assert!(
+                    (rrt - if i == j { 1.0 } else { 0.0 }).abs() < 1e-12,
+                    "{a:?} -> {b:?}: {rrt}"
+                );
+            }
+        }
+        let det = dot3(r[0], cross3(r[1], r[2]));
+        assert!((det - 1.0).abs() < 1e-12);
+        // trace R = 1 + 2 cos θ: no more turn than the angle between them.
+        let trace = r[0][0] + r[1][1] + r[2][2];
+        assert!((trace - 1.0 - 2.0 * dot3(ua, ub)).abs() < 1e-9, "{trace}");
+    }
+
+    #[test]
+    fn least_rotation_turns_by_the_angle_between_and_no_more() {
+        let dirs = [
+            [1.0, 0.0, 0.0],
+            [0.3, -2.0, 0.7],
+            [-1e-3, 5.0, 1e3],
+            [0.0, 0.0, -4.0],
+        ];
+        for a in dirs {
+            for b in dirs {
+                assert_least(a, b);
+            }
+            // Opposite, and all but opposite.
+            assert_least(a, scale3(-1.0, a));
+            for d in [1e-6, 1e-12] {
+                assert_least(a, [-a[0] + d * norm3(a), -a[1], -a[2]]);
+            }
+        }
+        let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert_eq!(least_rotation([0.0; 3], [1.0, 0.0, 0.0]), identity);
+        assert_eq!(
+            least_rotation([1.0, 0.0, 0.0], [f64::NAN, 0.0, 0.0]),
+            identity
+        );
+    }
 
     #[test]
     fn rigid_coefficients_reproduce_the_point_and_reject_mirrors() {

@@ -93,6 +93,29 @@ fn assert_configuration(v: &[f64; 15], x: &[f64; 5]) {
     }
 }
 
+/// `pose` places every joint where `v` has it, and turns the tool's x axis onto the line by
+/// the least rotation: by the angle between them, about an axis square to both.
+fn assert_least_turn(pose: &Pose, v: &[f64; 15]) {
+    for i in 0..5 {
+        let placed = pose.apply([ALONG[i], 0.0, 0.0]);
+        assert!(
+            max_diff(&placed, &joint(v, i)) < 1e-9,
+            "joint {i}: {placed:?}"
+        );
+    }
+    let (_, u) = line(v);
+    let r = pose.rotation;
+    assert!((pose.handedness() - 1.0).abs() < 1e-12);
+    // trace R = 1 + 2 cos θ, and cos θ = x·u for the least rotation.
+    let trace = r[0][0] + r[1][1] + r[2][2];
+    assert!(
+        (trace - (1.0 + 2.0 * u[0])).abs() < 1e-12,
+        "{trace} for {u:?}"
+    );
+    let back = linkage::unknowns_from_pose(&LinearPentapod::new(), pose);
+    assert!(max_diff(&back, v) < 1e-9);
+}
+
 #[test]
 fn a_linear_pentapod_places_its_tool_line() {
     let sys = LinearPentapod::new();
@@ -104,8 +127,10 @@ fn a_linear_pentapod_places_its_tool_line() {
     let start = sys.home_start().unwrap();
     assert!(max_diff(start.x(), &legs(HOME_POINT, home_direction())) < 1e-9);
     check_jacobians(&sys, start.v(), start.x());
-    // A line has no frame: no pose, its points are the answer.
-    assert!(linkage::pose_from_unknowns(&sys, start.v()).is_none());
+    // A line has no frame, only a place and a direction: its pose turns it there by the
+    // least rotation, with the spin that convention gives.
+    let pose = linkage::pose_from_unknowns(&sys, start.v()).unwrap();
+    assert_least_turn(&pose, start.v());
     let mut rng = Rng::new(2010);
     for case in 0..30 {
         let p = add(HOME_POINT, [0.0; 3].map(|_| rng.uniform(-30.0, 30.0)));
@@ -120,6 +145,7 @@ fn a_linear_pentapod_places_its_tool_line() {
         let (q, e) = line(&sol.v);
         assert!(max_diff(&q, &p) < 1e-6, "case {case}: {q:?} vs {p:?}");
         assert!(max_diff(&e, &u) < 1e-8, "case {case}: {e:?} vs {u:?}");
+        assert_least_turn(&linkage::pose_from_unknowns(&sys, &sol.v).unwrap(), &sol.v);
         if case < 3 {
             check_jacobians(&sys, &sol.v, &x);
             check_inverse(&sys, &sol.v, &x, start.x(), 1e-7);
@@ -157,4 +183,50 @@ fn a_linear_pentapod_has_eight_assembly_modes() {
             assert_configuration(&r.v, &x);
         }
     }
+}
+
+linkage::mechanism! {
+    /// The linear pentapod declared with its tool along the base's x axis at 300 mm and its
+    /// home given by the legs' lengths of another line (turned 0.25 rad in yaw and 0.15 in
+    /// pitch, its first joint at [10, −5, 310] − 100 u).
+    pub struct PentapodHomeByInputs;
+    base {
+        A1 = [250.0, 0.0, 0.0], A1t = [250.0, 1.0, 0.0],
+        A2 = [77.25424859373686, 237.76412907378838, 20.0], A2t = [76.30318, 238.07314, 20.0],
+        A3 = [-202.25424859373686, 146.9463130731183, -10.0], A3t = [-202.84203, 146.13729, -10.0],
+        A4 = [-202.25424859373686, -146.9463130731183, 30.0], A4t = [-201.66646, -147.75533, 30.0],
+        A5 = [77.25424859373686, -237.76412907378838, 5.0], A5t = [78.2053, -237.45511, 5.0],
+    }
+    platform(home = inputs(L1 = 468.209733, L2 = 413.782771, L3 = 410.210217, L4 = 395.315412, L5 = 388.732841)) {
+        G1 = [-100.0, 0.0, 300.0], G2 = [-60.0, 0.0, 300.0], G3 = [-10.0, 0.0, 300.0],
+        G4 = [30.0, 0.0, 300.0], G5 = [100.0, 0.0, 300.0],
+    }
+    chain leg1 = base - U(A1, axis = A1 -> A1t) - P(active L1) - S(G1) - platform;
+    chain leg2 = base - U(A2, axis = A2 -> A2t) - P(active L2) - S(G2) - platform;
+    chain leg3 = base - U(A3, axis = A3 -> A3t) - P(active L3) - S(G3) - platform;
+    chain leg4 = base - U(A4, axis = A4 -> A4t) - P(active L4) - S(G4) - platform;
+    chain leg5 = base - U(A5, axis = A5 -> A5t) - P(active L5) - S(G5) - platform;
+}
+
+/// `home = inputs(...)` on a line platform of five joints: the start is the configuration at
+/// the declared legs, on the turned line. The home pose was once computed with the line
+/// unturned wherever more than two joints were on it: `home_start` then put the tool along
+/// the base's x axis through the right first joint, at legs 10–21 mm off the declared ones.
+#[test]
+fn a_linear_pentapod_starts_at_its_declared_legs() {
+    let declared = [468.209733, 413.782771, 410.210217, 395.315412, 388.732841];
+    let sys = PentapodHomeByInputs::new();
+    let start = sys.home_start().unwrap();
+    assert!(max_diff(start.x(), &declared) < 1e-9, "{:?}", start.x());
+    assert!(max_diff(start.v(), &PentapodHomeByInputs::HOME_V) < 1e-9);
+    let (yaw, pitch) = (0.25f64, 0.15f64);
+    let u = [
+        yaw.cos() * pitch.cos(),
+        yaw.sin() * pitch.cos(),
+        -pitch.sin(),
+    ];
+    let first = [start.v()[0], start.v()[5], start.v()[10]];
+    let last = [start.v()[4], start.v()[9], start.v()[14]];
+    assert!(max_diff(&scaled(sub(last, first), 1.0 / 200.0), &u) < 1e-7);
+    assert!(max_diff(&add(first, scaled(u, 100.0)), &[10.0, -5.0, 310.0]) < 1e-5);
 }

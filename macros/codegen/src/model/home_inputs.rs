@@ -72,7 +72,7 @@ impl System<'_> {
 }
 
 /// The platform's pose `[yaw, pitch, roll, x, y, z]` at `v`: from its three frame points (a
-/// located platform), the nearest turn of its two points (a line), its one point (a point).
+/// located platform), the least rotation of its line (a line), its one point (a point).
 fn platform_pose(model: &Model, v: &[f64]) -> [f64; 6] {
     let g = model.default_slots();
     let k = model.points.len();
@@ -86,15 +86,27 @@ fn platform_pose(model: &Model, v: &[f64]) -> [f64; 6] {
             nalgebra::Matrix3::from_columns(&[e1, e3.cross(&e1), e3])
         };
         frame([at(a), at(b), at(c)]) * frame([local(a), local(b), local(c)]).transpose()
-    } else if k == 2 {
-        let (d0, d1) = (
-            (local(1) - local(0)).normalize(),
-            (at(1) - at(0)).normalize(),
-        );
-        nalgebra::Rotation3::rotation_between(&d0, &d1)
-            .map_or_else(nalgebra::Matrix3::identity, |r| *r.matrix())
     } else {
-        nalgebra::Matrix3::identity()
+        // A line: the least rotation that turns it from its direction in the platform's frame
+        // to its direction at `v`, as `linkage::pose_from_unknowns` turns it at run time (any
+        // two of its pivots give the same rotation; the one farthest from the first is the best
+        // conditioned). Every pivot of the line was once left unturned where more than two
+        // were declared (a linear pentapod): `home_start` then put the tool on another line,
+        // at inputs other than the declared ones.
+        let far = (1..k).max_by(|&i, &j| {
+            (local(i) - local(0))
+                .norm()
+                .total_cmp(&(local(j) - local(0)).norm())
+        });
+        match far {
+            Some(f) if (local(f) - local(0)).norm() > 0.0 => {
+                let (d0, d1) = (local(f) - local(0), at(f) - at(0));
+                let r = linkage_geometry::least_rotation(d0.into(), d1.into());
+                nalgebra::Matrix3::from_fn(|i, j| r[i][j])
+            }
+            // A point: no direction to turn.
+            _ => nalgebra::Matrix3::identity(),
+        }
     };
     let t = at(0) - r * local(0);
     let pitch = (-r[(2, 0)]).clamp(-1.0, 1.0).asin();
