@@ -17,25 +17,36 @@ use linkage::{arc_length, Pose};
 use linkage_tests::vec3::{add, dot, scaled, sub};
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
-linkage::mechanism! {
+/// A linear pentapod on the bases and legs below, with the platform (and its doc) given.
+macro_rules! pentapod {
+    ($(#[$doc:meta])* $name:ident, $($platform:tt)*) => {
+        linkage::mechanism! {
+            $(#[$doc])*
+            pub struct $name;
+            base {
+                A1 = [250.0, 0.0, 0.0], A1t = [250.0, 1.0, 0.0],
+                A2 = [77.25424859373686, 237.76412907378838, 20.0], A2t = [76.30318, 238.07314, 20.0],
+                A3 = [-202.25424859373686, 146.9463130731183, -10.0], A3t = [-202.84203, 146.13729, -10.0],
+                A4 = [-202.25424859373686, -146.9463130731183, 30.0], A4t = [-201.66646, -147.75533, 30.0],
+                A5 = [77.25424859373686, -237.76412907378838, 5.0], A5t = [78.2053, -237.45511, 5.0],
+            }
+            $($platform)*
+            chain leg1 = base - U(A1, axis = A1 -> A1t) - P(active L1) - S(G1) - platform;
+            chain leg2 = base - U(A2, axis = A2 -> A2t) - P(active L2) - S(G2) - platform;
+            chain leg3 = base - U(A3, axis = A3 -> A3t) - P(active L3) - S(G3) - platform;
+            chain leg4 = base - U(A4, axis = A4 -> A4t) - P(active L4) - S(G4) - platform;
+            chain leg5 = base - U(A5, axis = A5 -> A5t) - P(active L5) - S(G5) - platform;
+        }
+    };
+}
+
+pentapod! {
     /// Linear pentapod: a line platform on five U-P-S legs.
-    pub struct LinearPentapod;
-    base {
-        A1 = [250.0, 0.0, 0.0], A1t = [250.0, 1.0, 0.0],
-        A2 = [77.25424859373686, 237.76412907378838, 20.0], A2t = [76.30318, 238.07314, 20.0],
-        A3 = [-202.25424859373686, 146.9463130731183, -10.0], A3t = [-202.84203, 146.13729, -10.0],
-        A4 = [-202.25424859373686, -146.9463130731183, 30.0], A4t = [-201.66646, -147.75533, 30.0],
-        A5 = [77.25424859373686, -237.76412907378838, 5.0], A5t = [78.2053, -237.45511, 5.0],
-    }
+    LinearPentapod,
     platform(home = [0.3, -1.2, 0.0, 0.0, 0.0, 300.0]) {
         G1 = [0.0, 0.0, 0.0], G2 = [40.0, 0.0, 0.0], G3 = [90.0, 0.0, 0.0],
         G4 = [130.0, 0.0, 0.0], G5 = [200.0, 0.0, 0.0],
     }
-    chain leg1 = base - U(A1, axis = A1 -> A1t) - P(active L1) - S(G1) - platform;
-    chain leg2 = base - U(A2, axis = A2 -> A2t) - P(active L2) - S(G2) - platform;
-    chain leg3 = base - U(A3, axis = A3 -> A3t) - P(active L3) - S(G3) - platform;
-    chain leg4 = base - U(A4, axis = A4 -> A4t) - P(active L4) - S(G4) - platform;
-    chain leg5 = base - U(A5, axis = A5 -> A5t) - P(active L5) - S(G5) - platform;
 }
 
 const ANCHORS: [[f64; 3]; 5] = [
@@ -185,27 +196,15 @@ fn a_linear_pentapod_has_eight_assembly_modes() {
     }
 }
 
-linkage::mechanism! {
+pentapod! {
     /// The linear pentapod declared with its tool along the base's x axis at 300 mm and its
     /// home given by the legs' lengths of another line (turned 0.25 rad in yaw and 0.15 in
     /// pitch, its first joint at [10, −5, 310] − 100 u).
-    pub struct PentapodHomeByInputs;
-    base {
-        A1 = [250.0, 0.0, 0.0], A1t = [250.0, 1.0, 0.0],
-        A2 = [77.25424859373686, 237.76412907378838, 20.0], A2t = [76.30318, 238.07314, 20.0],
-        A3 = [-202.25424859373686, 146.9463130731183, -10.0], A3t = [-202.84203, 146.13729, -10.0],
-        A4 = [-202.25424859373686, -146.9463130731183, 30.0], A4t = [-201.66646, -147.75533, 30.0],
-        A5 = [77.25424859373686, -237.76412907378838, 5.0], A5t = [78.2053, -237.45511, 5.0],
-    }
+    PentapodHomeByInputs,
     platform(home = inputs(L1 = 468.209733, L2 = 413.782771, L3 = 410.210217, L4 = 395.315412, L5 = 388.732841)) {
         G1 = [-100.0, 0.0, 300.0], G2 = [-60.0, 0.0, 300.0], G3 = [-10.0, 0.0, 300.0],
         G4 = [30.0, 0.0, 300.0], G5 = [100.0, 0.0, 300.0],
     }
-    chain leg1 = base - U(A1, axis = A1 -> A1t) - P(active L1) - S(G1) - platform;
-    chain leg2 = base - U(A2, axis = A2 -> A2t) - P(active L2) - S(G2) - platform;
-    chain leg3 = base - U(A3, axis = A3 -> A3t) - P(active L3) - S(G3) - platform;
-    chain leg4 = base - U(A4, axis = A4 -> A4t) - P(active L4) - S(G4) - platform;
-    chain leg5 = base - U(A5, axis = A5 -> A5t) - P(active L5) - S(G5) - platform;
 }
 
 /// `home = inputs(...)` on a line platform of five joints: the start is the configuration at
