@@ -111,6 +111,42 @@ fn point<const N: usize>(v: &[f64; N], points: usize, p: usize) -> [f64; 3] {
     [v[p], v[points + p], v[2 * points + p]]
 }
 
+/// The platform pivots that place the platform (indices into [`Mechanism::POINTS`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum PlatformPivots {
+    /// Three non-collinear pivots ([`Mechanism::FRAME`]).
+    Frame([usize; 3]),
+    /// A line through the first pivot and this one, the farthest from it in the platform's
+    /// frame (the best-conditioned direction; every other pivot is on the line).
+    Line(usize),
+    /// One point (the first pivot; any others coincide with it).
+    Point,
+}
+
+/// How the platform is placed: the generator gives a platform without a frame of three
+/// non-collinear pivots one pivot three times over.
+pub(crate) fn platform_pivots<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+) -> PlatformPivots {
+    let f = S::FRAME;
+    if f[0] != f[1] {
+        return PlatformPivots::Frame(f);
+    }
+    let from_first = |p: usize| norm3(sub3(sys.point_local(p), sys.point_local(0)));
+    let far = (1..S::POINTS.len()).fold(0, |best, p| {
+        if from_first(p) > from_first(best) {
+            p
+        } else {
+            best
+        }
+    });
+    if far == 0 {
+        PlatformPivots::Point
+    } else {
+        PlatformPivots::Line(far)
+    }
+}
+
 /// The platform pose that places its frame pivots where `v` has them. `None` if they are
 /// collinear or not finite.
 ///
@@ -148,18 +184,14 @@ pub fn pose_from_unknowns<S: Mechanism<N, M>, const N: usize, const M: usize>(
     v: &[f64; N],
 ) -> Option<Pose> {
     let k = S::POINTS.len();
-    let f = S::FRAME;
-    // The generator repeats one pivot for a platform without a frame.
-    if f[0] != f[1] {
-        return Pose::between(f.map(|i| sys.point_local(i)), f.map(|i| point(v, k, i)));
-    }
+    let far = match platform_pivots(sys) {
+        PlatformPivots::Frame(f) => {
+            return Pose::between(f.map(|i| sys.point_local(i)), f.map(|i| point(v, k, i)));
+        }
+        PlatformPivots::Line(far) => far,
+        PlatformPivots::Point => 0,
+    };
     let local = |p: usize| sys.point_local(p);
-    // The pivot farthest from the first (in the platform's frame) gives the line's direction
-    // best conditioned; every other one gives the same rotation.
-    let far = (1..k).fold(0, |best, p| {
-        let d = |q: usize| norm3(sub3(local(q), local(0)));
-        if d(p) > d(best) { p } else { best }
-    });
     let (along, placed) = (
         sub3(local(far), local(0)),
         sub3(point(v, k, far), point(v, k, 0)),

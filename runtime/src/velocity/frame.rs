@@ -3,17 +3,20 @@
 use super::{Twist, VelocityError};
 use crate::lu::Lu;
 use crate::math::{cross3, dot3, norm3, sub3};
+use crate::pose::{PlatformPivots, platform_pivots};
 use crate::{Mechanism, pose_from_unknowns};
 
 /// The platform's frame pivots where `v` has them, and its frame's origin.
 pub(super) struct Frame {
+    /// The three frame pivots; for a line, its first pivot and the farthest one (twice).
     points: [[f64; 3]; 3],
     index: [usize; 3],
     origin: [f64; 3],
     count: usize,
     /// Σ (|rₖ|² I − rₖ rₖᵀ) over the second and third pivots' offsets rₖ from the first,
-    /// factored: the normal matrix of ω × rₖ = uₖ, the same for every set of rates.
-    normal: Lu<3>,
+    /// factored: the normal matrix of ω × rₖ = uₖ, the same for every set of rates. `None` for
+    /// a line, whose ω is taken square to it (its spin about itself is no freedom).
+    normal: Option<Lu<3>>,
 }
 
 impl Frame {
@@ -26,11 +29,29 @@ impl Frame {
         }
         let pose = pose_from_unknowns(sys, v).ok_or(VelocityError::NoFrame)?;
         let count = S::POINTS.len();
-        let index = S::FRAME;
+        let (index, line) = match platform_pivots(sys) {
+            PlatformPivots::Frame(f) => (f, false),
+            PlatformPivots::Line(far) => ([0, far, far], true),
+            PlatformPivots::Point => return Err(VelocityError::NoFrame),
+        };
         let points = index.map(|p| point(v, count, p));
+        let (r1, r2) = (sub3(points[1], points[0]), sub3(points[2], points[0]));
+        if line {
+            // A line of no length (its pivots on one point in `v`) has no direction.
+            return if norm3(r1) > 0.0 {
+                Ok(Frame {
+                    points,
+                    index,
+                    origin: pose.translation,
+                    count,
+                    normal: None,
+                })
+            } else {
+                Err(VelocityError::NoFrame)
+            };
+        }
         // Collinear to rounding is collinear: the angle at the first pivot must be more than
         // rounding, or ω about the line through them is not determined by their rates.
-        let (r1, r2) = (sub3(points[1], points[0]), sub3(points[2], points[0]));
         if !(norm3(cross3(r1, r2)) > 1e-9 * norm3(r1) * norm3(r2)) {
             return Err(VelocityError::NoFrame);
         }
@@ -48,7 +69,7 @@ impl Frame {
             index,
             origin: pose.translation,
             count,
-            normal: Lu::new(a).ok_or(VelocityError::NoFrame)?,
+            normal: Some(Lu::new(a).ok_or(VelocityError::NoFrame)?),
         })
     }
 
@@ -73,7 +94,16 @@ impl Frame {
                 b[i] += c[i];
             }
         }
-        self.normal.solve(&mut b);
+        match &self.normal {
+            Some(normal) => normal.solve(&mut b),
+            // A line r: ω = r × u / |r|², the one square to it (b holds r × u twice, the
+            // line's far pivot standing for the second and third frame pivots alike).
+            None => {
+                let r = sub3(self.points[1], self.points[0]);
+                let rr = 2.0 * dot3(r, r);
+                b = b.map(|c| c / rr);
+            }
+        }
         let w = cross3(b, sub3(self.origin, self.points[0]));
         let t = Twist {
             angular: b,

@@ -64,8 +64,9 @@ pub enum VelocityError {
     Singular,
     /// A value given, or one computed from it, is NaN or infinite.
     NonFinite,
-    /// The platform's frame pivots are collinear, to rounding (a point or a rod for a
-    /// platform): it has no angular velocity of its own. The pivots' rates are [`pivot_rates`].
+    /// The platform is a point (a five-bar's output), or its frame pivots are collinear to
+    /// rounding at `v` (or a line's pivots coincide there): it has no angular velocity of its
+    /// own. The pivots' rates are [`pivot_rates`].
     NoFrame,
 }
 
@@ -91,7 +92,11 @@ impl std::error::Error for VelocityError {}
 
 /// The platform's velocity: its angular velocity and the velocity of its frame's origin (the
 /// point [`Pose::translation`](crate::Pose) places), both in base-frame axes; per unit of time
-/// of the input rates (rad and mm per second for rates per second).
+/// of the input rates (rad and mm per second for rates per second). For a line platform (a
+/// linear pentapod's tool axis), whose spin about itself no pair fixes, ω is square to the
+/// line: its part along the line is no motion of the platform's pivots, and no input makes or
+/// feels it ([`input_rates`] leaves it over, [`input_efforts`] gives a moment about the line
+/// no effort).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Twist {
     /// ω, rad per unit time.

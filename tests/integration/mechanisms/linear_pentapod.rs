@@ -13,8 +13,9 @@
 
 use super::all_modes::check_count;
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use linkage::velocity::{input_efforts, input_rates, pivot_rates, twist, Twist, Wrench};
 use linkage::{arc_length, Pose};
-use linkage_tests::vec3::{add, dot, scaled, sub};
+use linkage_tests::vec3::{add, cross, dot, scaled, sub};
 use linkage_tests::{check_jacobians, max_diff, Rng};
 
 /// A linear pentapod on the bases and legs below, with the platform (and its doc) given.
@@ -162,6 +163,82 @@ fn a_linear_pentapod_places_its_tool_line() {
             check_inverse(&sys, &sol.v, &x, start.x(), 1e-7);
         }
     }
+}
+
+/// The tool line's velocity: ω square to the line (its spin is no freedom), every joint's
+/// velocity what the twist gives it, the line's direction moving as ω × u (finite differences
+/// of forward kinematics), the input rates back from the twist, and a spin about the line left
+/// over by the inputs and felt by no actuator.
+#[test]
+fn a_linear_pentapod_has_the_velocity_of_its_tool_line() {
+    let sys = LinearPentapod::new();
+    let start = sys.home_start().unwrap();
+    let (v, x) = (*start.v(), *start.x());
+    let origin = linkage::pose_from_unknowns(&sys, &v).unwrap().translation;
+    let (_, u) = line(&v);
+    let mut rng = Rng::new(2017);
+    for case in 0..10 {
+        let xdot: [f64; 5] = std::array::from_fn(|_| rng.uniform(-1.0, 1.0));
+        let t = twist(&sys, &v, &x, &xdot).unwrap();
+        let vdot = pivot_rates(&sys, &v, &x, &xdot).unwrap();
+        let w = t.angular;
+        assert!(
+            dot(w, u).abs() < 1e-12 * dot(w, w).sqrt(),
+            "case {case}: spin {w:?}"
+        );
+        for i in 0..5 {
+            let (made, want) = (t.at(origin, joint(&v, i)), joint(&vdot, i));
+            assert!(
+                max_diff(&made, &want) < 1e-9 * (1.0 + dot(want, want).sqrt()),
+                "case {case}, joint {i}"
+            );
+        }
+        // The direction's rate by central differences of forward kinematics along ±h ẋ.
+        let h = 1e-4;
+        let at = |s: f64| {
+            let target: [f64; 5] = std::array::from_fn(|j| x[j] + s * h * xdot[j]);
+            let sol = arc_length(&sys, &start, &target, &GENERAL_MODEL).unwrap();
+            assert!(sol.is_ok());
+            line(&sol.v).1
+        };
+        let du = scaled(sub(at(1.0), at(-1.0)), 0.5 / h);
+        assert!(
+            max_diff(&du, &cross(w, u)) < 1e-6,
+            "case {case}: {du:?} vs {:?}",
+            cross(w, u)
+        );
+        let back = input_rates(&sys, &v, &x, &t).unwrap();
+        assert!(
+            max_diff(&back.rates, &xdot) < 1e-9,
+            "case {case}: {:?}",
+            back.rates
+        );
+        let left = back.left_over;
+        assert!(
+            max_diff(&left.angular, &[0.0; 3]) < 1e-9 && max_diff(&left.linear, &[0.0; 3]) < 1e-9
+        );
+        // A spin about the line (through the origin, on it) asked for besides: the same rates,
+        // the spin left over.
+        let spun = Twist {
+            angular: add(w, scaled(u, 0.3)),
+            linear: t.linear,
+        };
+        let back = input_rates(&sys, &v, &x, &spun).unwrap();
+        assert!(
+            max_diff(&back.rates, &xdot) < 1e-9,
+            "case {case}: {:?}",
+            back.rates
+        );
+        assert!(max_diff(&back.left_over.angular, &scaled(u, -0.3)) < 1e-9);
+        assert!(max_diff(&back.left_over.linear, &[0.0; 3]) < 1e-9);
+    }
+    // A moment about the tool axis turns the tool, not the legs.
+    let about_line = Wrench {
+        moment: scaled(u, 5.0),
+        force: [0.0; 3],
+    };
+    let efforts = input_efforts(&sys, &v, &x, &about_line).unwrap();
+    assert!(max_diff(&efforts, &[0.0; 5]) < 1e-12, "{efforts:?}");
 }
 
 #[test]
