@@ -232,6 +232,23 @@ fn a_linear_pentapod_has_the_velocity_of_its_tool_line() {
         assert!(max_diff(&back.left_over.angular, &scaled(u, -0.3)) < 1e-9);
         assert!(max_diff(&back.left_over.linear, &[0.0; 3]) < 1e-9);
     }
+    // Hostile configurations: not finite, or the line's joints on one point.
+    let mut bad = v;
+    bad[4] = f64::NAN;
+    assert!(linkage::pose_from_unknowns(&sys, &bad).is_none());
+    assert_eq!(
+        twist(&sys, &bad, &x, &[1.0; 5]),
+        Err(linkage::velocity::VelocityError::NonFinite)
+    );
+    let mut collapsed = v;
+    for axis in 0..3 {
+        collapsed[axis * 5 + 4] = collapsed[axis * 5];
+    }
+    assert!(linkage::pose_from_unknowns(&sys, &collapsed).is_none());
+    assert_eq!(
+        twist(&sys, &collapsed, &x, &[1.0; 5]),
+        Err(linkage::velocity::VelocityError::NoFrame)
+    );
     // A moment about the tool axis turns the tool, not the legs.
     let about_line = Wrench {
         moment: scaled(u, 5.0),
