@@ -132,14 +132,7 @@ pub(crate) fn platform_pivots<S: Mechanism<N, M>, const N: usize, const M: usize
     if f[0] != f[1] {
         return PlatformPivots::Frame(f);
     }
-    let from_first = |p: usize| norm3(sub3(sys.point_local(p), sys.point_local(0)));
-    let far = (1..S::POINTS.len()).fold(0, |best, p| {
-        if from_first(p) > from_first(best) {
-            p
-        } else {
-            best
-        }
-    });
+    let far = linkage_geometry::farthest_from_first(S::POINTS.len(), |p| sys.point_local(p));
     if far == 0 {
         PlatformPivots::Point
     } else {

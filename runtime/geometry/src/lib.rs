@@ -229,6 +229,26 @@ pub fn rotation(yaw: f64, pitch: f64, roll: f64) -> [[f64; 3]; 3] {
     ]
 }
 
+/// Of `count` points (`point(i)` the i-th), the index of the one farthest from the first (the
+/// last of equals): with the first, the best-conditioned pair to take a line's direction from
+/// (0 if they all coincide, or there are fewer than two). The generator's collinear pivots, a
+/// line platform's pose at compile time and at run time all take it.
+pub fn farthest_from_first(count: usize, point: impl Fn(usize) -> [f64; 3]) -> usize {
+    if count == 0 {
+        return 0;
+    }
+    let first = point(0);
+    let from_first = |p: usize| norm3(sub3(point(p), first));
+    (1..count).fold(0, |best, p| {
+        let d = from_first(p);
+        if d >= from_first(best) && d > 0.0 {
+            p
+        } else {
+            best
+        }
+    })
+}
+
 /// The rotation of least angle that turns the direction `from` into the direction `to` (neither
 /// need be a unit vector): about `from × to`, or a half turn about an axis square to `from`
 /// where the two are opposite. The convention that places a line platform, whose spin about

@@ -93,19 +93,14 @@ fn platform_pose(model: &Model, v: &[f64]) -> [f64; 6] {
         // conditioned). Every pivot of the line was once left unturned where more than two
         // were declared (a linear pentapod): `home_start` then put the tool on another line,
         // at inputs other than the declared ones.
-        let far = (1..k).max_by(|&i, &j| {
-            (local(i) - local(0))
-                .norm()
-                .total_cmp(&(local(j) - local(0)).norm())
-        });
-        match far {
-            Some(f) if (local(f) - local(0)).norm() > 0.0 => {
+        match linkage_geometry::farthest_from_first(k, |p| local(p).into()) {
+            // A point: no direction to turn.
+            0 => nalgebra::Matrix3::identity(),
+            f => {
                 let (d0, d1) = (local(f) - local(0), at(f) - at(0));
                 let r = linkage_geometry::least_rotation(d0.into(), d1.into());
                 nalgebra::Matrix3::from_fn(|i, j| r[i][j])
             }
-            // A point: no direction to turn.
-            _ => nalgebra::Matrix3::identity(),
         }
     };
     let t = at(0) - r * local(0);

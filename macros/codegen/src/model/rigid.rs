@@ -106,12 +106,7 @@ pub fn link_equations(
             b.equations.push(eq);
         }
     };
-    let f1 = (1..n)
-        .max_by(|&i, &j| {
-            let (di, dj) = ((home[i] - home[0]).norm(), (home[j] - home[0]).norm());
-            di.total_cmp(&dj)
-        })
-        .unwrap_or(1);
+    let f1 = linkage_geometry::farthest_from_first(n, |k| home[k].into()).max(1);
     let scale = (home[f1] - home[0]).norm().max(1e-300);
     let area = |k: usize| (home[f1] - home[0]).cross(&(home[k] - home[0])).norm();
     let f2 = (1..n)
