@@ -197,8 +197,18 @@ fn holds<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
     };
     let scale = x.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+    // Next to an inverse singularity an input barely moves the pivots (a crank whose rod is
+    // nearly tangent to its circle), so the pivots fix it loosely: there the inverse may give
+    // inputs further from x at which v is as much a solution (found with
+    // `LINKAGE_STRESS_SEED=20261204` on a 6-RSS with a crank's pivot at z = 0: crank 6 back
+    // 1.5e-6 rad off, ∂F/∂x₆ about 0.2 mm²/rad, v's Newton correction 4.6e-9 mm there against
+    // 8.4e-9 at x). An inverse that picks another branch of a chain is further still.
+    let near = max_diff(&back, x) <= 1e-6 * scale
+        || (max_diff(&back, x) <= 1e-3 * scale
+            && linkage_tests::exact_root::exact_correction(sys, v, &back)
+                .is_some_and(|c| c <= 1.02 * tol));
     assert!(
-        max_diff(&back, x) <= 1e-6 * scale,
+        near,
         "{at}: inverse kinematics of the answer gives {back:?}, not {x:?}"
     );
     true
