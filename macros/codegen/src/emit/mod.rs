@@ -457,8 +457,9 @@ pub fn expand(
 
             #closed_form_method
 
-            /// The moving links [`Self::link_pose`] reports on: the platform, then the named
-            /// links between it and the base.
+            /// The moving links [`Self::link_pose`] reports on: the platform where three of its
+            /// pivots locate it (a point or line platform's pose is `linkage::pose_from_unknowns`),
+            /// then the named links between it and the base.
             pub const LINKS: [&'static str; #nl] = [#(#link_names),*];
 
             /// The pose of moving link `link` (an index into [`Self::LINKS`]) at `(v, x)`: the
