@@ -99,11 +99,7 @@ fn a_3_puu_translates_its_platform() {
     check_jacobians(&sys, start.v(), start.x());
     let mut rng = Rng::new(2006);
     for case in 0..30 {
-        let t = [
-            rng.uniform(-30.0, 30.0),
-            rng.uniform(-30.0, 30.0),
-            H + rng.uniform(-40.0, 30.0),
-        ];
+        let t = random_translation(&mut rng);
         let x = slides(t).unwrap();
         let sol = arc_length(&sys, &start, &x, &GENERAL_MODEL).unwrap();
         assert!(sol.is_ok(), "case {case}: {:?}", sol.status);
@@ -170,6 +166,16 @@ fn mirror(t: [f64; 3], s: &[f64; 3]) -> [f64; 3] {
 /// roots at each of the three: the other real ones turn the platform). Before the U joints'
 /// second-axis points were placed at the leg's length (5c4e42b), ten loops took 75 s and found
 /// 408 roots, 913 of their paths failing (six loops lost every path).
+/// A translation of the platform within the workspace the tests sample: ±30 mm across, 40 mm
+/// below and 30 above home.
+fn random_translation(rng: &mut Rng) -> [f64; 3] {
+    [
+        rng.uniform(-30.0, 30.0),
+        rng.uniform(-30.0, 30.0),
+        H + rng.uniform(-40.0, 30.0),
+    ]
+}
+
 #[test]
 fn a_3_puu_has_672_assembly_modes_in_octets() {
     // A solver of capacity 1024 for 36 unknowns is about 1.2 MB, moved by value.
@@ -196,11 +202,7 @@ fn puu_modes() {
     let mut rng = Rng::new(672);
     let mut real = 0;
     for _ in 0..3 {
-        let t = [
-            rng.uniform(-30.0, 30.0),
-            rng.uniform(-30.0, 30.0),
-            H + rng.uniform(-40.0, 30.0),
-        ];
+        let t = random_translation(&mut rng);
         let s = slides(t).unwrap();
         modes.solve(&s, &mut roots).unwrap();
         assert!(
