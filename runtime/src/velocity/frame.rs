@@ -8,15 +8,24 @@ use crate::{Mechanism, pose_from_unknowns};
 
 /// The platform's frame pivots where `v` has them, and its frame's origin.
 pub(super) struct Frame {
-    /// The three frame pivots; for a line, its first pivot and the farthest one (twice).
+    /// The three frame pivots; for a line, its first pivot and the farthest one (twice); for a
+    /// point, the point (three times).
     points: [[f64; 3]; 3],
     index: [usize; 3],
     origin: [f64; 3],
     count: usize,
+    turning: Turning,
+}
+
+/// How the platform's ω follows from its frame pivots' rates.
+enum Turning {
     /// Σ (|rₖ|² I − rₖ rₖᵀ) over the second and third pivots' offsets rₖ from the first,
-    /// factored: the normal matrix of ω × rₖ = uₖ, the same for every set of rates. `None` for
-    /// a line, whose ω is taken square to it (its spin about itself is no freedom).
-    normal: Option<Lu<3>>,
+    /// factored: the normal matrix of ω × rₖ = uₖ, the same for every set of rates.
+    Frame(Lu<3>),
+    /// ω square to the line (its spin about itself is no freedom).
+    Line,
+    /// None: no pair fixes any turn of a point, so ω is zero by convention.
+    Point,
 }
 
 impl Frame {
@@ -29,26 +38,26 @@ impl Frame {
         }
         let pose = pose_from_unknowns(sys, v).ok_or(VelocityError::NoFrame)?;
         let count = S::POINTS.len();
-        let (index, line) = match platform_pivots(sys) {
-            PlatformPivots::Frame(f) => (f, false),
-            PlatformPivots::Line(far) => ([0, far, far], true),
-            PlatformPivots::Point => return Err(VelocityError::NoFrame),
+        // The turning of a frame of three pivots is known once their offsets are (below).
+        let (index, turning) = match platform_pivots(sys) {
+            PlatformPivots::Frame(f) => (f, None),
+            PlatformPivots::Line(far) => ([0, far, far], Some(Turning::Line)),
+            PlatformPivots::Point => ([0; 3], Some(Turning::Point)),
         };
         let points = index.map(|p| point(v, count, p));
         let (r1, r2) = (sub3(points[1], points[0]), sub3(points[2], points[0]));
-        if line {
+        let frame = |turning| Frame {
+            points,
+            index,
+            origin: pose.translation,
+            count,
+            turning,
+        };
+        match turning {
             // A line of no length (its pivots on one point in `v`) has no direction.
-            return if norm3(r1) > 0.0 {
-                Ok(Frame {
-                    points,
-                    index,
-                    origin: pose.translation,
-                    count,
-                    normal: None,
-                })
-            } else {
-                Err(VelocityError::NoFrame)
-            };
+            Some(Turning::Line) if !(norm3(r1) > 0.0) => return Err(VelocityError::NoFrame),
+            Some(turning) => return Ok(frame(turning)),
+            None => {}
         }
         // Collinear to rounding is collinear: the angle at the first pivot must be more than
         // rounding, or ω about the line through them is not determined by their rates.
@@ -64,16 +73,13 @@ impl Frame {
                 }
             }
         }
-        Ok(Frame {
-            points,
-            index,
-            origin: pose.translation,
-            count,
-            normal: Some(Lu::new(a).ok_or(VelocityError::NoFrame)?),
-        })
+        Ok(frame(Turning::Frame(
+            Lu::new(a).ok_or(VelocityError::NoFrame)?,
+        )))
     }
 
-    /// The distance between the first two frame pivots: a length the platform is.
+    /// The distance between the first two frame pivots: a length the platform is (zero for a
+    /// point).
     pub(super) fn size(&self) -> f64 {
         norm3(sub3(self.points[1], self.points[0]))
     }
@@ -94,15 +100,16 @@ impl Frame {
                 b[i] += c[i];
             }
         }
-        match &self.normal {
-            Some(normal) => normal.solve(&mut b),
+        match &self.turning {
+            Turning::Frame(normal) => normal.solve(&mut b),
             // A line r: ω = r × u / |r|², the one square to it (b holds r × u twice, the
             // line's far pivot standing for the second and third frame pivots alike).
-            None => {
+            Turning::Line => {
                 let r = sub3(self.points[1], self.points[0]);
                 let rr = 2.0 * dot3(r, r);
                 b = b.map(|c| c / rr);
             }
+            Turning::Point => b = [0.0; 3],
         }
         let w = cross3(b, sub3(self.origin, self.points[0]));
         let t = Twist {

@@ -64,9 +64,9 @@ pub enum VelocityError {
     Singular,
     /// A value given, or one computed from it, is NaN or infinite.
     NonFinite,
-    /// The platform is a point (a five-bar's output), or its frame pivots are collinear to
-    /// rounding at `v` (or a line's pivots coincide there): it has no angular velocity of its
-    /// own. The pivots' rates are [`pivot_rates`].
+    /// The platform's frame pivots are collinear to rounding at `v` (or a line's pivots
+    /// coincide there): its angular velocity is not determined by their rates. The pivots'
+    /// rates are [`pivot_rates`].
     NoFrame,
 }
 
@@ -96,7 +96,9 @@ impl std::error::Error for VelocityError {}
 /// linear pentapod's tool axis), whose spin about itself no pair fixes, ω is square to the
 /// line: its part along the line is no motion of the platform's pivots, and no input makes or
 /// feels it ([`input_rates`] leaves it over, [`input_efforts`] gives a moment about the line
-/// no effort).
+/// no effort). For a point platform (a five-bar's output, a tripod's apex), which no pair turns
+/// at all, ω is zero and `linear` is the point's velocity; [`input_rates`] leaves any ω over and
+/// [`input_efforts`] gives any moment no effort.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Twist {
     /// ω, rad per unit time.
@@ -193,7 +195,8 @@ fn jacobian_in<S: Mechanism<N, M>, const N: usize, const M: usize>(
 /// The input rates that move the platform with `wanted` at the solution `(v, x)`: the
 /// least-squares solution of J ẋ = wanted over the [`platform_jacobian`] J (by Householder
 /// reflections; the angular rows weighted by the distance between the first two frame pivots,
-/// so that both halves are lengths per unit time), with what the inputs cannot produce in
+/// so that both halves are lengths per unit time, and so left out for a point platform), with
+/// what the inputs cannot produce in
 /// [`Rates::left_over`]. A mechanism with fewer inputs than six can make only some twists (a
 /// 3-RPS cannot slide sideways): check the left-over part, given unweighted, in the wanted
 /// twist's units. [`VelocityError::Singular`] where two combinations of input rates give the

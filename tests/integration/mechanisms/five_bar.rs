@@ -197,3 +197,105 @@ fn five_bar_measures_its_left_out_equation() {
         f64::INFINITY
     );
 }
+
+/// A point platform's velocity is the point's (ω zero: no pair turns a point), checked against
+/// central differences of the circle intersection; the inverse and the statics through the same
+/// Jacobian; a turn or a moment asked of the point is left over or takes no effort.
+#[test]
+fn a_five_bar_has_the_velocity_of_its_output_point() {
+    use linkage::velocity::{input_efforts, input_rates, platform_jacobian, twist, Twist, Wrench};
+    use linkage::velocity::{pivot_rates, VelocityError};
+    let fb = FiveBar::new();
+    let start = fb.home_start().unwrap();
+    let home = [start.v()[0], start.v()[1]];
+    let mut rng = Rng::new(29);
+    let mut checked = 0;
+    for _ in 0..20 {
+        let q = [rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)];
+        let sol = arc_length(&fb, &start, &q, &Options::TIGHT).unwrap();
+        if sol.status != Status::Converged {
+            continue;
+        }
+        checked += 1;
+        // The reference: ∂P/∂q by central differences of the circle intersection.
+        let h = 1e-6;
+        let reference: [[f64; 2]; 2] = std::array::from_fn(|j| {
+            let (mut up, mut down) = (q, q);
+            up[j] += h;
+            down[j] -= h;
+            let (a, b) = (
+                five_bar_point(up, home).unwrap(),
+                five_bar_point(down, home).unwrap(),
+            );
+            [(a[0] - b[0]) / (2.0 * h), (a[1] - b[1]) / (2.0 * h)]
+        });
+        let j = platform_jacobian(&fb, &sol.v, &q).unwrap();
+        for (input, column) in reference.iter().enumerate() {
+            for axis in 0..3 {
+                assert_eq!(j[axis][input], 0.0, "ω of input {input}");
+            }
+            let scale = column[0].abs().max(column[1].abs());
+            for axis in 0..2 {
+                let d = (j[3 + axis][input] - column[axis]).abs();
+                assert!(
+                    d < 1e-6 * scale,
+                    "q = {q:?}, input {input}: {:?} vs {column:?}",
+                    j
+                );
+            }
+            assert!(
+                j[5][input].abs() < 1e-9 * scale,
+                "the point stays in its plane"
+            );
+        }
+        // The twist of some rates is the point's rate.
+        let xdot = [rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)];
+        let t = twist(&fb, &sol.v, &q, &xdot).unwrap();
+        let vdot = pivot_rates(&fb, &sol.v, &q, &xdot).unwrap();
+        assert_eq!(t.angular, [0.0; 3]);
+        assert!(
+            linkage_tests::max_diff(&t.linear, &vdot) < 1e-12,
+            "{t:?} vs {vdot:?}"
+        );
+        // Back from that velocity, with a turn and a rise asked besides: the rates again, the
+        // turn and the rise left over.
+        let wanted = Twist {
+            angular: [0.3, -0.2, 0.5],
+            linear: [t.linear[0], t.linear[1], 0.7],
+        };
+        let back = input_rates(&fb, &sol.v, &q, &wanted).unwrap();
+        assert!(
+            linkage_tests::max_diff(&back.rates, &xdot) < 1e-9,
+            "{:?} vs {xdot:?}",
+            back.rates
+        );
+        assert!(linkage_tests::max_diff(&back.left_over.angular, &[-0.3, 0.2, -0.5]) < 1e-12);
+        assert!(linkage_tests::max_diff(&back.left_over.linear, &[0.0, 0.0, -0.7]) < 1e-9);
+        // A force in the plane: τ = Jᵀ f by the reference Jacobian; a moment: no effort.
+        let force = [rng.uniform(-10.0, 10.0), rng.uniform(-10.0, 10.0), 3.0];
+        let tau = input_efforts(
+            &fb,
+            &sol.v,
+            &q,
+            &Wrench {
+                moment: [1.0, 2.0, 3.0],
+                force,
+            },
+        )
+        .unwrap();
+        for (input, column) in reference.iter().enumerate() {
+            let expected = column[0] * force[0] + column[1] * force[1];
+            assert!(
+                (tau[input] - expected).abs() < 1e-5 * (1.0 + expected.abs()),
+                "{tau:?}"
+            );
+        }
+    }
+    assert!(checked >= 15, "{checked} of 20 solved");
+    let mut bad = *start.v();
+    bad[1] = f64::NAN;
+    assert_eq!(
+        twist(&fb, &bad, start.x(), &[1.0, 0.0]),
+        Err(VelocityError::NonFinite)
+    );
+}
