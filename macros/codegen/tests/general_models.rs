@@ -344,3 +344,45 @@ fn a_u_with_nothing_to_set_its_second_axis_names_the_link_that_lacks_a_pivot() {
         "{e}"
     );
 }
+
+/// Grübler–Kutzbach counts every link once, wherever the chains meet it: a serial R–R arm
+/// declared in one chain, split in two at its declared upper link, or with that link reached by
+/// two chains (a closed loop) — the count once missed a link that chains only start or end at
+/// (−4 and "not a tree" for the split arm) and counted twice one that two chains pass through.
+#[test]
+fn gruebler_counts_each_link_once_however_the_chains_meet_it() {
+    let arm = |chains: proc_macro2::TokenStream| {
+        build(quote! {
+            pub struct Arm;
+            base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0], K = [0.0, -50.0, 0.0], Kz = [0.0, -50.0, 1.0] }
+            platform { P = [100.0, 0.0, 0.0], Q = [100.0, 10.0, 0.0], J = [50.0, 0.0, 0.0], Jz = [50.0, 0.0, 1.0] }
+            link upper { U = [25.0, 10.0, 0.0], W = [20.0, -5.0, 0.0] }
+            #chains
+        })
+    };
+    let inside = arm(quote! {
+        chain a = base - R(active q1, axis = O -> Oz) - upper - R(active q2, axis = J -> Jz) - platform;
+    });
+    let split = arm(quote! {
+        chain a = base - R(active q1, axis = O -> Oz) - upper;
+        chain b = upper - R(active q2, axis = J -> Jz) - platform;
+    });
+    let expected =
+        "Grübler–Kutzbach: M = 6(L − 1 − J) + Σf = 6(3 − 1 − 2) + 2 = 2, less 0 idle spins = 2";
+    for m in [&inside, &split] {
+        assert_eq!(m.counted, expected);
+        assert!(m.open, "a serial arm is a tree");
+    }
+    // A second chain through `upper` (a passive hinge on the first one's axis, a ball on the
+    // second's): the same three links, four pairs — a closed loop, redundant by rank.
+    let looped = arm(quote! {
+        chain a = base - R(active q1, axis = O -> Oz) - upper - R(active q2, axis = J -> Jz) - platform;
+        chain b = base - R(passive, axis = O -> Oz) - upper - S(J) - platform;
+    });
+    eprintln!("{}", looped.counted);
+    assert_eq!(
+        looped.counted,
+        "Grübler–Kutzbach: M = 6(L − 1 − J) + Σf = 6(3 − 1 − 4) + 6 = -6, less 0 idle spins = -6"
+    );
+    assert!(!looped.open);
+}

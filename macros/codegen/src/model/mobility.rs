@@ -2,6 +2,7 @@
 //! freedoms it counts but no input can drive: the spin of a leg or rod about the line through
 //! its two spherical joints.
 
+use crate::front::ids::LinkId;
 use crate::front::resolved::{Chain, Decl, Pair, PairKind};
 use crate::model::Model;
 
@@ -60,18 +61,28 @@ fn idle_spin(n: &Chain) -> usize {
 }
 
 pub fn of(d: &Decl) -> Mobility {
+    // Every link once: the base and the platform, each declared link however many chains
+    // start, end or pass through it, and each unnamed link between two pairs of a chain.
+    let mut declared: Vec<LinkId> = vec![LinkId::BASE, LinkId::PLATFORM];
     let mut mob = Mobility {
-        links: 2,
+        links: 0,
         joints: 0,
         freedoms: 0,
         idle: 0,
     };
     for n in &d.chains {
-        mob.links += n.links.len().saturating_sub(2);
+        for link in &n.links {
+            match link {
+                Some(id) if declared.contains(id) => {}
+                Some(id) => declared.push(*id),
+                None => mob.links += 1,
+            }
+        }
         mob.joints += n.pairs.len();
         mob.freedoms += n.pairs.iter().map(|p| freedoms(p.kind)).sum::<usize>();
         mob.idle += idle_spin(n);
     }
+    mob.links += declared.len();
     mob
 }
 
