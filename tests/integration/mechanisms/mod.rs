@@ -17,6 +17,7 @@ mod five_bar;
 mod four_bar;
 mod geometry_hunt;
 mod goldberg;
+mod h4;
 mod home_by_inputs;
 mod linear_delta;
 mod linear_pentapod;
