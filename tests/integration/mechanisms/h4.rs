@@ -229,11 +229,12 @@ fn places(h4: &H4, v: &[f64; 36], x: &[f64; 4], want: &PlatePose, at: &str) {
 fn h4_has_four_freedoms_and_exact_jacobians() {
     let h4 = H4::new();
     assert_eq!(H4::INPUTS, ["q1", "q2", "q3", "q4"]);
-    // The rank decides: four freedoms. (The line's Grübler–Kutzbach figure, -8, leaves out the
-    // two side bars, links that chains only end and start at: with them, 6 · 15 − 78 = 12 less
-    // 8 idle spins of the rods, 4.)
-    let line = mobility_line(H4::LISTING);
-    assert!(line.contains("M = 36 + 4 − 36 = 4 "), "{line}");
+    // The rank decides: four freedoms; Grübler–Kutzbach agrees (15 links with the two side
+    // bars, which chains only end and start at: 6 · 15 − 78 = 12, less 8 idle spins of the rods).
+    assert_eq!(
+        mobility_line(H4::LISTING),
+        "mobility: rank of ∂F/∂(v, x) at home: M = 36 + 4 − 36 = 4 (Grübler–Kutzbach says 4)"
+    );
     let start = h4.home_start().unwrap();
     assert!(max_diff(start.x(), &[0.0; 4]) < 1e-12);
     // The reference agrees that home is the cranks' zero.
