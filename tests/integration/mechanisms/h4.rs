@@ -301,7 +301,7 @@ fn h4_forward_kinematics_against_the_closed_form_inverse() {
     let start = h4.home_start().unwrap();
     let mut rng = Rng::new(linkage_tests::sweep_seed(2005));
     let (mut solved, mut refused) = (0, 0);
-    for case in 0..linkage_tests::sweep(100, 1000) {
+    for case in 0..linkage_tests::sweep(100, 300) {
         let want = near_home(&mut rng);
         let x = inverse_kinematics(&want).unwrap();
         let sol = arc_length(&h4, &start, &x, &GENERAL_MODEL).unwrap();
@@ -379,7 +379,7 @@ fn h4_refuses_only_at_singularities_farther_out() {
     let start = h4.home_start().unwrap();
     let mut rng = Rng::new(linkage_tests::sweep_seed(2001));
     let (mut posed, mut other, mut refused, mut unreachable) = (0, 0, 0, 0);
-    for case in 0..linkage_tests::sweep(24, 800) {
+    for case in 0..linkage_tests::sweep(24, 200) {
         let want = PlatePose {
             t: add(HOME.t, [0; 3].map(|_| rng.uniform(-120.0, 120.0))),
             yaw: rng.uniform(-0.8, 0.8),
