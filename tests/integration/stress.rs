@@ -334,6 +334,22 @@ fn known_cases_corrector_tolerance_within_the_step() {
     );
 }
 
+/// At ×8 with `LINKAGE_STRESS_SEED=1618033`: a random 6-6 platform whose start is nearly
+/// singular across the legs' step (first-order travel 5.1e4, so the corrector's tolerance was
+/// 0.051). A step of 5.9 ending 0.11 short of λ = 1 was accepted after corrections of 0.065 and
+/// 0.039: the last within the tolerance, but at a ratio of 0.6, so the point was left 0.087 off
+/// the curve. The last step (0.11) and every shorter one after it measured that error against
+/// its own length and were refused, and PH ended `StepTooSmall` at λ = 1 − 2.2e-6 on a segment
+/// with |det B|/|det0| ≥ 0.085 all along (`ph_refused_reachable_target`). Cured by holding a
+/// correction within the tolerance to the contraction test too.
+#[test]
+fn known_cases_last_correction_contracts_too() {
+    forward_kinematics(
+        &Run::listed("forward_kinematics_by_continuation", 1618033, &[23613]),
+        fk::Solvers::Continuation,
+    );
+}
+
 /// NH solved its last step at x0 + (x* − x0), an ulp from the target, and near a singularity
 /// the correction measured at the target was then 2–4× the tolerance (×10). Cured by solving
 /// the last step at the target itself.
