@@ -137,7 +137,14 @@ impl Chords {
     /// [`Self::MEASURES`], and the correction enlarged by four times that change within the
     /// tolerance (the Newton correction there is within the change of it).
     pub(crate) fn vouched(&self, size: f64, moved: f64, tolerance: f64) -> Option<f64> {
-        let change = self.change(moved);
+        // q as this correction shows it too, after the Newton correction before it: where q was
+        // estimated from corrections far from the root, where B was well conditioned, it
+        // understates B's change next to a singular root (seen: q = 0.0052 from corrections of
+        // 2.97 and 0.046 predicted a change of 5e-4; the chord correction, 1.8e-4, was 16 times
+        // the Newton correction q predicted and a tenth of the one at the point, 1.8e-3 above a
+        // tolerance of 5e-4: NR answered ok there; stress seed 99999989, case 15039).
+        // `max` keeps q where no Newton correction precedes (NaN).
+        let change = 2.0 * self.q.max(size / (self.newton * self.newton)) * moved;
         if !(change <= Self::MEASURES) {
             return None;
         }
@@ -218,6 +225,24 @@ impl Contraction {
 #[cfg(test)]
 mod tests {
     use super::{Chords, Contraction, Convergence};
+
+    /// Stress seed 99999989, case 15039 (NR, `Linear::Generated`, tolerance 5e-4): Newton
+    /// corrections of 2.97 and 0.046 estimate q = 0.0052, and the chord correction of 1.8e-4
+    /// after the second vouched for the point, whose Newton correction was 1.8e-3. The chord
+    /// correction itself shows q too small: it may not vouch.
+    #[test]
+    fn a_chord_correction_larger_than_q_predicts_does_not_vouch() {
+        let mut c = Chords::new();
+        c.newton(2.9737970191792726);
+        c.newton(4.606310640184896e-2);
+        assert!(
+            c.vouched(1.80813716586652e-4, 4.606310640184896e-2, 5e-4)
+                .is_none()
+        );
+        // As q predicts it (the quadratic regime): it vouches, as before.
+        let predicted = c.predicted(4.606310640184896e-2);
+        assert!(c.vouched(predicted, 4.606310640184896e-2, 5e-4).is_some());
+    }
 
     #[test]
     fn a_first_large_correction_never_converges() {

@@ -350,6 +350,21 @@ fn known_cases_last_correction_contracts_too() {
     );
 }
 
+/// At ×6 with `LINKAGE_STRESS_SEED=99999989`: NR (`Linear::Generated`, tolerance 5e-4) to a
+/// target next to a singularity answered `Unverified` with an error estimate of 1.8e-4 where
+/// the Newton correction, in `f64` and in double-double alike, is 1.8e-3 (det B at 0.3 % of the
+/// start's; Newton from there halves its corrections: a root next to a fold). A chord
+/// correction had vouched for the point with q = 0.0052, estimated from the corrections 2.97
+/// and 0.046 (B well conditioned at the start), which predicted B to change by 5e-4 (`Chords`).
+/// Cured by letting the vouching chord correction raise q as it shows it.
+#[test]
+fn known_cases_chord_correction_vouches_with_its_own_q() {
+    forward_kinematics(
+        &Run::listed("forward_kinematics_by_newton", 99999989, &[15039]),
+        fk::Solvers::Newton,
+    );
+}
+
 /// NH solved its last step at x0 + (x* − x0), an ulp from the target, and near a singularity
 /// the correction measured at the target was then 2–4× the tolerance (×10). Cured by solving
 /// the last step at the target itself.
