@@ -318,8 +318,17 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
             self.factor = None;
             self.bend = None;
         }
-        // Continuation from the last accepted sample, whose branch is the start's.
-        let here = Start::accepted(self.v, self.x, self.det, *self.start.floor());
+        // Continuation from the last accepted sample, whose branch is the start's. Its point is
+        // on the branch to within the tolerance only, and continuation resolves a path far
+        // finer (a 1 kHz sample's step can be shorter than that tolerance: every first
+        // correction would then carry the point's own error and be refused), so it is refined
+        // first, as a start is, unless that moves it off or across the start's det B sign.
+        let here = match Start::new(&self.sys, self.v, self.x) {
+            Ok(refined) if refined.det() * self.start.det() > 0.0 => {
+                Start::accepted(*refined.v(), self.x, refined.det(), *self.start.floor())
+            }
+            _ => Start::accepted(self.v, self.x, self.det, *self.start.floor()),
+        };
         let sol = from_accepted(&self.sys, &here, x, &self.options).map_err(TrackError::Input)?;
         if !sol.is_ok() {
             return Err(TrackError::Lost(sol.status));

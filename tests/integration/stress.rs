@@ -365,6 +365,22 @@ fn known_cases_chord_correction_vouches_with_its_own_q() {
     );
 }
 
+/// At ×4 with `LINKAGE_STRESS_SEED=31415926` (`Linear::Dense`, tolerance 5e-4): the tracker's
+/// fast path refused five samples of a random 6-6 platform's trajectory, and continuation from
+/// the last accepted sample ended `StepTooSmall` at λ = 0, where PH from a start rebuilt there
+/// reached the truth (2.4e-5 off) on a segment with |det B|/|det0| ≥ 0.19. A 1 kHz sample's step
+/// (legs 1e-4 mm apart) is shorter than the tolerance the accepted point is on the branch to:
+/// every first correction carried the point's own error and was refused. Cured by refining the
+/// accepted point, as a start is, before continuing from it.
+#[test]
+fn known_cases_continuation_from_a_refined_sample() {
+    trajectories(&Run::listed(
+        "tracker_on_random_trajectories",
+        31415926,
+        &[987],
+    ));
+}
+
 /// NH solved its last step at x0 + (x* − x0), an ulp from the target, and near a singularity
 /// the correction measured at the target was then 2–4× the tolerance (×10). Cured by solving
 /// the last step at the target itself.
