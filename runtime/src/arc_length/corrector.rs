@@ -91,8 +91,9 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
             // but barely smaller than the one before leaves the point about as far again from
             // the curve (seen: corrections 0.065, 0.039 under a tolerance of 0.051 left the point
             // 0.087 off; every later step, however short, measured that error against its own
-            // length and was refused, and PH ended `StepTooSmall` 2e-6 short of λ = 1).
-            if k > 0 && !contraction.admits(size) {
+            // length and was refused, and PH ended `StepTooSmall` 2e-6 short of λ = 1). The
+            // first correction's bound includes the tolerance, so one within it always passes.
+            if !contraction.admits(size) {
                 return Err(its);
             }
             if size <= tol {
@@ -101,9 +102,6 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
                     iterations: its,
                     first,
                 });
-            }
-            if k == 0 && !contraction.admits(size) {
-                return Err(its);
             }
         }
         Err(MAX_CORRECTOR as u32)
