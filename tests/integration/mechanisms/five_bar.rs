@@ -2,7 +2,7 @@
 
 use super::check_inverse;
 use linkage::{arc_length, det_b, Mechanism, Options, Status};
-use linkage_tests::{check_factorization, check_jacobians, Rng};
+use linkage_tests::{check_factorization, check_jacobians, max_diff, Rng};
 
 linkage::mechanism! {
     /// A planar five-bar: two cranks driven about vertical axes, two distal links meeting at the
@@ -90,6 +90,16 @@ fn five_bar_forward_kinematics_matches_circle_intersection() {
                 pose.euler()
             );
         }
+        // The output point is a link too: where it is, by the convention of a point's pose.
+        let i = FiveBar::LINKS
+            .iter()
+            .position(|l| *l == "platform")
+            .unwrap();
+        let output = fb
+            .link_pose(i, &sol.v, &q)
+            .expect("a point platform has a pose");
+        assert_eq!(Some(output), linkage::pose_from_unknowns(&fb, &sol.v));
+        assert!(max_diff(&output.apply(fb.point_local(0)), &sol.v[..3]) < 1e-12);
         assert!(det_b(&fb, &sol.v, &q) * start.det() > 0.0);
         // The numerical inverse (Newton on the chains, from home).
         check_inverse(&fb, &sol.v, &q, &FiveBar::HOME_INPUTS, 1e-9);

@@ -157,7 +157,14 @@ fn a_linear_pentapod_places_its_tool_line() {
         let (q, e) = line(&sol.v);
         assert!(max_diff(&q, &p) < 1e-6, "case {case}: {q:?} vs {p:?}");
         assert!(max_diff(&e, &u) < 1e-8, "case {case}: {e:?} vs {u:?}");
-        assert_least_turn(&linkage::pose_from_unknowns(&sys, &sol.v).unwrap(), &sol.v);
+        let pose = linkage::pose_from_unknowns(&sys, &sol.v).unwrap();
+        assert_least_turn(&pose, &sol.v);
+        // The tool line is a link `link_pose` reports on, with the same pose.
+        let i = LinearPentapod::LINKS
+            .iter()
+            .position(|l| *l == "platform")
+            .unwrap();
+        assert_eq!(sys.link_pose(i, &sol.v, &x), Some(pose));
         if case < 3 {
             check_jacobians(&sys, &sol.v, &x);
             check_inverse(&sys, &sol.v, &x, start.x(), 1e-7);

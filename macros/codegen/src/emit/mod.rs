@@ -13,7 +13,7 @@ pub mod turns;
 use crate::emit::expr::{lit, tokens, Arithmetic, Emitter};
 use crate::expr::{Expr, Var};
 use crate::front::ast::Mechanism;
-use crate::model::{HomeOf, Inverse, Model, PointRef};
+use crate::model::{HomeOf, Inverse, Model, Placed, PointRef};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
@@ -360,20 +360,25 @@ pub fn expand(
     });
     let link_names = model.links.iter().map(|l| l.name.as_str());
     let nl = model.links.len();
-    let link_arms = model.links.iter().enumerate().map(|(i, l)| match &l.frame {
-        None => quote!(#i => ::core::option::Option::None,),
-        Some(frame) => {
-            let now = frame.iter().map(|(e, _)| {
-                let [a, b, c] = e.each_ref().map(tokens);
-                quote!([#a, #b, #c])
-            });
-            let from = frame.iter().map(|(_, h)| match h {
-                HomeOf::Point(p) => point3(model, *p),
-                HomeOf::Constants([a, b, c]) => quote!([c[#a], c[#b], c[#c]]),
-            });
-            quote!(#i => ::linkage::Pose::between([#(#from),*], [#(#now),*]),)
-        }
-    });
+    let link_arms = model
+        .links
+        .iter()
+        .enumerate()
+        .map(|(i, l)| match &l.placed {
+            Placed::Unmodelled => quote!(#i => ::core::option::Option::None,),
+            Placed::Unknowns => quote!(#i => ::linkage::pose_from_unknowns(self, v),),
+            Placed::Frame(frame) => {
+                let now = frame.iter().map(|(e, _)| {
+                    let [a, b, c] = e.each_ref().map(tokens);
+                    quote!([#a, #b, #c])
+                });
+                let from = frame.iter().map(|(_, h)| match h {
+                    HomeOf::Point(p) => point3(model, *p),
+                    HomeOf::Constants([a, b, c]) => quote!([c[#a], c[#b], c[#c]]),
+                });
+                quote!(#i => ::linkage::Pose::between([#(#from),*], [#(#now),*]),)
+            }
+        });
     // B at home, so that the factorisation's pivot order prefers pivots that are large there.
     let sample: Option<Vec<f64>> = home.and_then(|r| {
         let c = crate::model::reference::constants(model).ok()?;
@@ -457,15 +462,16 @@ pub fn expand(
 
             #closed_form_method
 
-            /// The moving links [`Self::link_pose`] reports on: the platform where three of its
-            /// pivots locate it (a point or line platform's pose is `linkage::pose_from_unknowns`),
-            /// then the named links between it and the base.
+            /// The moving links [`Self::link_pose`] reports on: the platform, then the named
+            /// links between it and the base.
             pub const LINKS: [&'static str; #nl] = [#(#link_names),*];
 
             /// The pose of moving link `link` (an index into [`Self::LINKS`]) at `(v, x)`: the
             /// rigid motion from its declared coordinates (the platform's own frame; the base
-            /// frame at home for the other links) to where it is. `None` for a rod, whose spin
-            /// about its axis is not modelled, or an index out of range.
+            /// frame at home for the other links) to where it is. A platform of one pivot or of
+            /// pivots on one line has the pose `linkage::pose_from_unknowns` gives it (its spin,
+            /// which no pair fixes, by that function's convention). `None` for a rod, whose
+            /// spin about its axis is not modelled, or an index out of range.
             #[allow(unused_variables)]
             pub fn link_pose(&self, link: usize, v: &[f64; #n], x: &[f64; #m]) -> ::core::option::Option<::linkage::Pose> {
                 let c = &self.constants;

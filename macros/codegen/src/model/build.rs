@@ -9,7 +9,9 @@ use crate::front::resolved::{Decl, Form, LinkRole, Pair, PairKind};
 use crate::model::general::{self, Added, Topology};
 use crate::model::shapes::{self, ChainModel};
 use crate::model::PointRef;
-use crate::model::{frame, rigid, Builder, HomeOf, Inverse, LinkFrame, Model, PlatformPoint};
+use crate::model::{
+    frame, rigid, Builder, HomeOf, Inverse, LinkFrame, Model, Placed, PlatformPoint,
+};
 use syn::Error;
 
 /// Builds the model; `None` with every independent mistake in `errors`.
@@ -204,15 +206,21 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     let shared = d.pairs().any(|p| p.shared);
     let by_rank = !general.is_empty() || frame.is_none() || shared;
     let mut links = Vec::new();
-    if let Some(f) = frame {
+    let platform = match frame {
+        Some(f) => Some(Placed::Frame(f.map(|p| {
+            (
+                unknown_point(p),
+                HomeOf::Point(PointRef::Slots(b.points[p].local)),
+            )
+        }))),
+        // A point or line platform has a pose by the runtime's convention.
+        None if !b.points.is_empty() => Some(Placed::Unknowns),
+        None => None,
+    };
+    if let Some(placed) = platform {
         links.push(LinkFrame {
             name: "platform".to_string(),
-            frame: Some(f.map(|p| {
-                (
-                    unknown_point(p),
-                    HomeOf::Point(PointRef::Slots(b.points[p].local)),
-                )
-            })),
+            placed,
         });
     }
     links.append(&mut added.links);

@@ -40,11 +40,24 @@ pub enum HomeOf {
     Constants([usize; 3]),
 }
 
-/// A moving link and three of its points (where they are, where they were declared): its pose
-/// is the motion between the two. `None` for a link whose points are collinear (a rod).
+/// A moving link and how its pose is found.
 pub struct LinkFrame {
     pub name: String,
-    pub frame: Option<[(Vec3, HomeOf); 3]>,
+    pub placed: Placed,
+}
+
+/// How [`LinkFrame`]'s pose is found.
+// A few per mechanism, at generation time: the size of the frame variant does not matter.
+#[allow(clippy::large_enum_variant)]
+pub enum Placed {
+    /// By three of its points (where they are, where they were declared): the motion between
+    /// the two.
+    Frame([(Vec3, HomeOf); 3]),
+    /// A platform of one pivot or of pivots on one line: the runtime's convention for it
+    /// (`linkage::pose_from_unknowns`), which no pair fixes entirely.
+    Unknowns,
+    /// Not at all: a link whose points are collinear (a rod), whose spin is not modelled.
+    Unmodelled,
 }
 
 pub struct Constant {
@@ -140,7 +153,7 @@ pub struct Model {
     /// No closed loop: the pairs join the links as a tree (a serial arm), so the inputs place
     /// every link and there is one configuration for them, whatever the geometry.
     pub open: bool,
-    /// The moving links whose pose `link_pose` reports: the platform (when located), then the
+    /// The moving links whose pose `link_pose` reports: the platform (where it has a pivot), then
     /// named intermediate links of the general model.
     pub links: Vec<LinkFrame>,
     /// Candidate symmetries of the equations, per chain: unknowns to reflect through an

@@ -297,7 +297,10 @@ pub fn model(
         });
         added.links.push(crate::model::LinkFrame {
             name: l.name.clone(),
-            frame,
+            placed: frame.map_or(
+                crate::model::Placed::Unmodelled,
+                crate::model::Placed::Frame,
+            ),
         });
     }
     // The pairs' own equations.
