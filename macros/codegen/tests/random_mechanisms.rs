@@ -986,3 +986,25 @@ fn a_driven_hinge_near_a_dead_point_is_followed_through_it() {
     );
     assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
 }
+
+/// A Sarrus linkage whose driven hinge is at a dead point at home itself: to first order the
+/// model's unknowns move 0.026 mm over the whole step (0.05 rad of q0), while the corrections
+/// to that prediction are 0.11 mm at a tenth of the step, a quarter of that at each halving
+/// (the tangent's zero extrapolates to 0.001 of the step behind home). No step passed
+/// the path follower's prediction test, down to the shortest (the correction 3.5e-5 against
+/// half a move of 4.1e-5), nor the curvature rule, which needs a step already kept, and the
+/// model's side stopped at 0 of the step ("Newton on F stops at 0.0000 of the step") where the
+/// oracle's joint values, moving to first order, went on. The follower now also keeps, where no
+/// step has passed yet, a correction that is a quarter of the one at twice the step
+/// (`random_mechanisms/path.rs`). Found by the overconstrained sweep
+/// (`LINKAGE_SWEEP_FROM=500000 LINKAGE_STRESS=6`); the model was not at fault: it agrees with
+/// the oracle at the step's end.
+#[test]
+fn a_driven_hinge_at_a_dead_point_at_home_is_followed_from_it() {
+    let counts = check_seed(
+        202613499,
+        "sarrus",
+        "chain c1 = base - R(active q0, axis = b6 -> b7) - l1_1",
+    );
+    assert_eq!((counts.checked, counts.stepped, counts.folds), (1, 1, 0));
+}

@@ -17,6 +17,15 @@
 //! pass, or whose solve fails, is halved; one that must be shorter than [`SHORTEST`] ends the
 //! path with an `Err`: the branch from home folds there (or the solver cannot follow it), for
 //! the caller to compare with the other side.
+//!
+//! "Some step always passes" needs a tangent of some size: where it nearly vanishes (a driven
+//! hinge at a dead point of the platform's motion) the move is second order, as the correction
+//! is, and the step that passes is shorter than the tangent over the curvature. Two rules
+//! cover that: within twice the curvature met so far, where the tangent has shrunk on the way
+//! (seed 202152299); and, at the point where no step has passed yet, a correction that is a
+//! quarter of the one at twice the step, as a vector (seed 202613499, home itself at the dead
+//! point): the answers at both steps lie on one smooth branch through the point, tangent to the
+//! prediction. A jump to another branch, at the longer step or at both, does not scale so.
 
 /// The first step's length, as a fraction of the whole: the ten steps the sweep took before.
 const FIRST: f64 = 0.1;
@@ -65,6 +74,9 @@ pub fn follow(
     // prediction (the path's curvature as met so far), and the tangent's size at the start.
     let mut curvature: Option<f64> = None;
     let mut speed: Option<f64> = None;
+    // The correction (answer less prediction) of the step tried last from this t, refused, if
+    // its solve converged: the next try is at half that step.
+    let mut longer: Option<Vec<f64>> = None;
     while t < 1.0 {
         let step = h.min(1.0 - t);
         let slope = tangent(t, &s).map_err(|why| Stop { at: t, why })?;
@@ -72,6 +84,8 @@ pub fn follow(
         let why = match solve(t + step, predicted.clone()) {
             Ok(next) => {
                 let (moved, corrected) = (apart(&predicted, &s), apart(&next, &predicted));
+                let correction: Vec<f64> =
+                    next.iter().zip(&predicted).map(|(a, p)| a - p).collect();
                 let start_speed = *speed.get_or_insert(moved / step);
                 // Or, where the tangent has shrunk to less than half its size at the start,
                 // within twice what the curvature met so far predicts: where the path's
@@ -83,11 +97,26 @@ pub fn follow(
                 let fits = corrected <= 0.5 * moved + ROUNDING;
                 let curved = moved / step < 0.5 * start_speed
                     && curvature.is_some_and(|c| corrected <= 2.0 * c * step * step);
-                if fits || curved {
-                    if fits {
+                // Or, at the point where no step has passed yet (so no curvature is known),
+                // where the tangent nearly vanishes: the correction, second order in the step,
+                // is a quarter of the one at twice the step, to within a quarter of that (the
+                // third-order terms), and the curvature they show is the path's. A Sarrus
+                // linkage whose driven hinge is at a dead point at home (seed 202613499: the
+                // model's unknowns move 0.026 mm to first order over the whole step, the
+                // corrections are 0.11 mm at a tenth of it and fall by 3.6 to 3.98 per halving)
+                // passed no step by the other rules, where the oracle's joint values, moving to
+                // first order, went on.
+                let quarter = curvature.is_none()
+                    && longer.as_ref().is_some_and(|d| {
+                        let four: Vec<f64> = correction.iter().map(|c| 4.0 * c).collect();
+                        apart(d, &four) <= 0.25 * d.iter().fold(0.0f64, |m, c| m.max(c.abs()))
+                    });
+                if fits || curved || quarter {
+                    if fits || quarter {
                         let c = corrected / (step * step);
                         curvature = Some(curvature.map_or(c, |k| k.max(c)));
                     }
+                    longer = None;
                     s = next;
                     t = if 1.0 - (t + step) < 1e-12 {
                         1.0
@@ -97,11 +126,15 @@ pub fn follow(
                     h = (2.0 * h).min(FIRST);
                     continue;
                 }
+                longer = Some(correction);
                 format!(
                     "the answer is {corrected:.1e} from the prediction, which moved {moved:.1e}"
                 )
             }
-            Err(e) => e,
+            Err(e) => {
+                longer = None;
+                e
+            }
         };
         if step <= SHORTEST * (1.0 + 1e-9) {
             return Err(Stop { at: t, why });
@@ -146,6 +179,43 @@ mod tests {
         )
         .unwrap();
         assert!((x[0] - 2f64.sqrt()).abs() < 1e-15);
+    }
+
+    /// x = 1 + 1e-4 t + 10 t² (a tangent of 1e-4 at the start, a curvature of 10): no step
+    /// down to the shortest passes by its prediction (the correction 10 h² against half the
+    /// move, 5e-5 h), but each correction is a quarter of the one at twice the step, and the
+    /// path goes on to the end. With the solver jumping to x + 1 from the start at steps longer
+    /// than 0.02, the first step kept is shorter than that.
+    #[test]
+    fn a_vanishing_tangent_at_the_start_is_followed() {
+        let x = |t: f64| 1.0 + 1e-4 * t + 10.0 * t * t;
+        let end = follow(
+            vec![1.0],
+            |t, _| Ok(vec![1e-4 + 20.0 * t]),
+            |t, _| Ok(vec![x(t)]),
+        )
+        .unwrap();
+        assert!((end[0] - x(1.0)).abs() < 1e-12, "{end:?}");
+        // The points steps were tried from, in order (the tangent is asked for at each try).
+        let passed = std::cell::RefCell::new(Vec::new());
+        let mut from_start = true;
+        let end = follow(
+            vec![1.0],
+            |t, _| {
+                passed.borrow_mut().push(t);
+                Ok(vec![1e-4 + 20.0 * t])
+            },
+            |t, _| {
+                from_start &= passed.borrow().iter().all(|&p| p == 0.0);
+                let jump = if from_start && t > 0.02 { 1.0 } else { 0.0 };
+                Ok(vec![x(t) + jump])
+            },
+        )
+        .unwrap();
+        assert!((end[0] - x(1.0)).abs() < 1e-12, "{end:?}");
+        let passed = passed.into_inner();
+        let first = passed.iter().find(|&&p| p > 0.0);
+        assert!(first.is_some_and(|&p| p < 0.02), "{passed:?}");
     }
 
     /// A solver that jumps to another branch (here the negative root, as if from far off) is
