@@ -63,6 +63,14 @@ pub fn check_compile_time(
     Ok(())
 }
 
+/// [`linkage_geometry::check_axis`] on every pair axis, given by the geometry slots of its two
+/// points.
+pub fn check_axes(g: &[f64], axes: &[[[usize; 3]; 2]]) -> Result<(), GeometryError> {
+    let point = |s: [usize; 3]| s.map(|k| g.get(k).copied().unwrap_or(f64::NAN));
+    axes.iter()
+        .try_for_each(|[a, b]| linkage_geometry::check_axis(point(*a), point(*b)))
+}
+
 pub fn check_values(
     names: &[&'static str],
     followed: &[(&'static str, &'static str)],

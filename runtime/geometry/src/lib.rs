@@ -178,14 +178,24 @@ pub fn collinear_coefficients(line: [[f64; 3]; 2], q: [f64; 3]) -> Result<[f64; 
     Ok([1.0 - b, b])
 }
 
+/// Whether the axis `a → b` of a pair is given by (nearly) coincident points: closer than 1e-9
+/// of their size (at least one length unit), or not finite. The one rule for a declared axis
+/// (at compile time) and a run-time one, and for the axes the closed forms turn about.
+pub fn check_axis(a: [f64; 3], b: [f64; 3]) -> Result<(), GeometryError> {
+    let len = norm3(sub3(b, a));
+    if len > 1e-9 * norm3(a).max(norm3(b)).max(1.0) && len.is_finite() {
+        Ok(())
+    } else {
+        Err(GeometryError::DegenerateAxis)
+    }
+}
+
 /// `origin + unit(toward − origin)`: a point one length unit along a direction, for the axis of a
 /// prismatic pair on a moving link.
 pub fn along(origin: [f64; 3], toward: [f64; 3]) -> Result<[f64; 3], GeometryError> {
+    check_axis(origin, toward)?;
     let d = sub3(toward, origin);
     let len = norm3(d);
-    if !(len > 1e-12 * norm3(origin).max(norm3(toward)).max(1.0)) {
-        return Err(GeometryError::DegenerateAxis);
-    }
     Ok([0, 1, 2].map(|k| origin[k] + d[k] / len))
 }
 
@@ -297,12 +307,9 @@ pub fn least_rotation(from: [f64; 3], to: [f64; 3]) -> [[f64; 3]; 3] {
 /// `[e, o, u, w]` for rotating `q` about the axis `a → b`: e the unit axis, o the foot of q on
 /// the axis, u = q − o the arm and w = e × u, so that Eq. 2 gives `o + u cos θ + w sin θ`.
 pub fn axis_frame(a: [f64; 3], b: [f64; 3], q: [f64; 3]) -> Result<[f64; 12], GeometryError> {
+    check_axis(a, b)?;
     let d = sub3(b, a);
     let len = norm3(d);
-    let scale = norm3(a).max(norm3(b)).max(1.0);
-    if !(len > 1e-12 * scale) {
-        return Err(GeometryError::DegenerateAxis);
-    }
     let e = [d[0] / len, d[1] / len, d[2] / len];
     let r = sub3(q, a);
     let t = dot3(e, r);

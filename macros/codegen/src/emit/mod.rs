@@ -45,6 +45,15 @@ pub fn expand(
             }
         }
     });
+    // Every pair axis given by two points of one link, checked apart as at compile time
+    // (`set_pivot` can move one onto the other).
+    let axis_checks = (!model.axes.is_empty()).then(|| {
+        let each = model
+            .axes
+            .iter()
+            .map(|[a, b]| quote!([[#(#a),*], [#(#b),*]]));
+        quote!(::linkage::__private::check_axes(&geometry, &[#(#each),*])?;)
+    });
     let defaults = model.slots.iter().map(|s| lit(s.default));
     // Slots declared as formulas of parameters, set from them before anything else (emitted
     // only where there are some).
@@ -432,6 +441,7 @@ pub fn expand(
                 ::linkage::__private::check_values(&Self::GEOMETRY_NAMES, #followed, &geometry)?;
                 #compile_time_check
                 #(#positive_checks)*
+                #axis_checks
                 use ::linkage::__private::recipe;
                 const RECIPES: recipe::Recipes<'static> = #recipes;
                 let mut auto = [[0.0f64; 3]; #na];

@@ -17,6 +17,7 @@ use syn::Error;
 /// Builds the model; `None` with every independent mistake in `errors`.
 pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     let mut b = Builder::new(d);
+    let axes = axes(d, &b, errors);
 
     // A named link inside a closed-form shape must belong to that chain alone; a crank an
     // active pair places may carry other chains (it is explicit in the input either way).
@@ -246,6 +247,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         points: b.points,
         frame,
         located,
+        axes,
         coplanar,
         inverses: b.inverses,
         home_pose: b.home_pose,
@@ -391,4 +393,33 @@ fn check_system(model: &Model, d: &Decl) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// The geometry slots of every pair axis `A -> B` whose points are on one link, for the
+/// run-time check of a changed geometry; an error for each given by points that coincide at the
+/// declared geometry (the rule of [`linkage_geometry::check_axis`]).
+fn axes(d: &Decl, b: &Builder, errors: &mut Errors) -> Vec<[[usize; 3]; 2]> {
+    let mut axes = Vec::new();
+    for p in d.pairs() {
+        let Some([a, c]) = p.axis else { continue };
+        if d.pivot(a.id).link != d.pivot(c.id).link {
+            continue;
+        }
+        if linkage_geometry::check_axis(d.point(a.id), d.point(c.id)).is_err() {
+            errors.add(Error::new(
+                c.span,
+                format!(
+                    "the axis of pair `{}` is given by coincident points `{}` and `{}`",
+                    p.kind.letter(),
+                    d.pivot(a.id).name,
+                    d.pivot(c.id).name
+                ),
+            ));
+        }
+        let slots = [b.pivot_slots(a.id), b.pivot_slots(c.id)];
+        if !axes.contains(&slots) {
+            axes.push(slots);
+        }
+    }
+    axes
 }

@@ -122,6 +122,9 @@ pub struct Model {
     /// Whether `frame` locates the platform (three points off one line); a platform of one
     /// point or two has no frame, only a position.
     pub located: bool,
+    /// The geometry slots of the two points of every pair axis on one link (checked apart at
+    /// run time, as at compile time).
+    pub axes: Vec<[[usize; 3]; 2]>,
     pub coplanar: bool,
     pub inverses: Vec<Inverse>,
     /// The platform's declared home pose (identity if none): where the general model places the

@@ -102,29 +102,6 @@ fn center(d: &Decl, p: &Pair, chain: ChainId) -> Result<PivotId, Error> {
     }
 }
 
-/// The axis `A -> B` of a pair must not be given by points that coincide at the declared geometry.
-fn check_axis(d: &Decl, p: &Pair) -> Result<(), Error> {
-    let Some([a, b]) = p.axis else { return Ok(()) };
-    let on_base = |q: PivotId| d.pivot(q).link == LinkId::BASE;
-    if on_base(a.id) && on_base(b.id) {
-        let (pa, pb) = (d.point(a.id), d.point(b.id));
-        let dist = (0..3).map(|k| (pa[k] - pb[k]).powi(2)).sum::<f64>().sqrt();
-        let scale = pa.iter().fold(1.0f64, |s, x| s.max(x.abs()));
-        if dist <= 1e-9 * scale {
-            return Err(Error::new(
-                b.span,
-                format!(
-                    "the axis of pair `{}` is given by coincident points `{}` and `{}`",
-                    p.kind.letter(),
-                    d.pivot(a.id).name,
-                    d.pivot(b.id).name
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
 /// Why a chain is not reduced in closed form: it is not one of the shapes (`None`: the general
 /// model takes it), or it is one with a mistake (`Some`: a spanned error).
 type Fail = Option<Error>;
@@ -144,9 +121,6 @@ pub fn classify(d: &Decl, c: ChainId) -> Result<Option<Shape<'_>>, Error> {
 
 fn shape(d: &Decl, c: ChainId) -> Result<Shape<'_>, Fail> {
     let chain = d.chain(c);
-    for p in &chain.pairs {
-        check_axis(d, p).map_err(Some)?;
-    }
     let unsupported = || None;
     // A U at both ends of a leg constrains the leg's spin, and with it the platform: only a leg
     // with at least one S reduces to a distance.
