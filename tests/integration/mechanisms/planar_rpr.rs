@@ -76,12 +76,6 @@ fn planar_rpr_forward_kinematics_against_inverse() {
     }
 }
 
-/// Axes declared by points 1 mm apart sense the platform's rotation through 1 mm levers: the
-/// `f64` residual's rounding then hides errors of about 1e-10 mm. Answers were labelled ok at
-/// a tolerance of 1e-11 mm while up to 1.4e-10 mm from the root of the same `f64` equations
-/// (and from the closed form). Every answer that meets the tolerance must be within it of that
-/// root, found in double-double arithmetic; near the floor the solvers now measure their
-/// correction the same way, and refine by it, so that most answers do meet it.
 /// A revolute axis given by two pivots of a moving link is refused at run time when they
 /// coincide, as it is at compile time: moved so by `set_pivot` (or in `from_geometry`), the
 /// 3-RPR's third platform hinge has no axis, and the equations the generator left out as
@@ -115,6 +109,12 @@ fn a_platform_axis_given_by_coincident_pivots_is_refused() {
     );
 }
 
+/// Axes declared by points 1 mm apart sense the platform's rotation through 1 mm levers: the
+/// `f64` residual's rounding then hides errors of about 1e-10 mm. Answers were labelled ok at
+/// a tolerance of 1e-11 mm while up to 1.4e-10 mm from the root of the same `f64` equations
+/// (and from the closed form). Every answer that meets the tolerance must be within it of that
+/// root, found in double-double arithmetic; near the floor the solvers now measure their
+/// correction the same way, and refine by it, so that most answers do meet it.
 #[test]
 fn planar_rpr_answers_within_a_tolerance_below_its_rounding_floor_are_so() {
     let rpr = PlanarRpr::new();
