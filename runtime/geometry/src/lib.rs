@@ -421,6 +421,25 @@ mod tests {
         assert!((trace - 1.0 - 2.0 * dot3(ua, ub)).abs() < 1e-9, "{trace}");
     }
 
+    /// One rule for every axis: points closer than 1e-9 of their size (at least one unit), or
+    /// not finite, give no axis.
+    #[test]
+    fn an_axis_needs_two_points_apart() {
+        let a = [200.0, 0.0, 0.0];
+        assert!(check_axis(a, [200.0, 0.0, 1.0]).is_ok());
+        assert!(check_axis(a, [200.0, 0.0, 1e-6]).is_ok());
+        assert_eq!(
+            check_axis(a, [200.0, 0.0, 1e-8]),
+            Err(GeometryError::DegenerateAxis)
+        );
+        assert_eq!(check_axis(a, a), Err(GeometryError::DegenerateAxis));
+        // Small mechanisms: at least one unit of size, so 1e-9 apart is always too close.
+        assert!(check_axis([0.0; 3], [0.0, 0.0, 1e-9]).is_err());
+        assert!(check_axis([0.0; 3], [0.0, 0.0, 2e-9]).is_ok());
+        assert!(check_axis(a, [f64::NAN, 0.0, 0.0]).is_err());
+        assert!(check_axis(a, [f64::INFINITY, 0.0, 0.0]).is_err());
+    }
+
     #[test]
     fn least_rotation_turns_by_the_angle_between_and_no_more() {
         let dirs = [

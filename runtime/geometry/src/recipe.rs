@@ -5,8 +5,8 @@
 //! constant: a mechanism's constructor is a table, not thousands of lines for the compiler.
 
 use crate::{
-    along, axis_frame, collinear_coefficients, distance, normal_point, place, rigid_coefficients,
-    GeometryError,
+    along, axis_frame, check_axis, collinear_coefficients, distance, normal_point, place,
+    rigid_coefficients, GeometryError,
 };
 
 /// Where a point's position at the home configuration comes from, in the base frame.
@@ -223,11 +223,10 @@ impl Recipes<'_> {
                 Recipe::Slot(s) => g.get(s).copied(),
                 Recipe::Distance { a, b } => Some(distance(at(a), at(b))),
                 Recipe::InverseDistance { a, b } => {
-                    let d = distance(at(a), at(b));
-                    if !(d > 0.0 && d.is_finite()) {
-                        return Err(fail(GeometryError::DegenerateAxis));
-                    }
-                    Some(1.0 / d)
+                    // A slide's axis: refused by the rule of every axis, not only at zero (an
+                    // axis 1e-12 of its size long would give a constant of 1e12).
+                    check_axis(at(a), at(b)).map_err(fail)?;
+                    Some(1.0 / distance(at(a), at(b)))
                 }
                 Recipe::Coordinate { point, index } => at(point).get(index).copied(),
                 Recipe::Rigid { index, .. }
