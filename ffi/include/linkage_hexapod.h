@@ -32,7 +32,7 @@ extern "C" {
 #define LINKAGE_UNPROVEN 9            /* certification on: the step was not proven to keep the branch */
 #define LINKAGE_NULL_POINTER (-1)
 #define LINKAGE_NON_FINITE (-2)       /* a NaN or infinite leg, pose or option value */
-#define LINKAGE_INVALID_INPUT (-3)    /* a leg length out of range (not positive) */
+#define LINKAGE_INVALID_INPUT (-3)    /* a leg length out of range (not positive), or an angle word beyond 2^16 rad (3.75e6 deg) */
 #define LINKAGE_INVALID_GEOMETRY (-4) /* non-finite geometry or a collinear platform frame */
 #define LINKAGE_INVALID_OPTIONS (-5)  /* tolerance not finite and positive, or zero iterations */
 #define LINKAGE_POSE_MISMATCH (-6)    /* the start pose does not match the legs */
@@ -119,7 +119,8 @@ int32_t linkage_hexapod_inverse(const linkage_hexapod *h, const linkage_pose *po
 
 /* Forward kinematics. pose is in-out: when not tracking, the pose to start at (the legs must
    match it to 1 % of the platform's size); when tracking, the angle words nearest which to
-   report. Written only on LINKAGE_OK. report may be NULL. */
+   report (each within 2^16 rad, about 3.75e6 degrees). Written only on LINKAGE_OK, and then its
+   strut lengths match the legs to the tolerance. report may be NULL. */
 int32_t linkage_hexapod_forward(linkage_hexapod *h, const double legs[6], linkage_pose *pose,
                                 linkage_report *report);
 

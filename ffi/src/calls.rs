@@ -151,7 +151,9 @@ pub fn strut_corrections(
 }
 
 /// Forward kinematics on the tracked branch. `pose` is in–out: the start pose when not yet
-/// tracking, otherwise the angle words nearest which to report; written only on success.
+/// tracking, otherwise the angle words nearest which to report (each within 2¹⁶ rad, else
+/// `INVALID_INPUT`); written only on success, and then its strut lengths match the legs to the
+/// tolerance.
 /// `report` may be null.
 pub fn forward(
     h: Option<&mut Hexapod>,

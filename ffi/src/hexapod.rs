@@ -120,18 +120,53 @@ fn start_with<S: SixSix>(
     })
 }
 
+/// The largest angle word accepted, degrees: 2¹⁶ rad (about 10 400 turns), the runtime's bound
+/// on an inverse's reference angle. The words reported are the solved angles moved by whole
+/// turns to lie nearest the caller's; beyond this a double near the caller's word no longer
+/// holds the solved angle (at 1e20° the words of an `OK` pose gave legs 8.8 units off).
+const MAX_ANGLE_WORD: f64 = 65536.0 * (180.0 / core::f64::consts::PI);
+
+/// Whether every angle word of `pose` is within [`MAX_ANGLE_WORD`].
+fn angle_words_in_range(pose: &LinkagePose) -> bool {
+    [pose.a, pose.b, pose.c]
+        .iter()
+        .all(|w| w.abs() <= MAX_ANGLE_WORD)
+}
+
+/// One tracker update; on `OK`, `pose` holds the solution in the angle words nearest the ones
+/// it held. Those words must give back the legs to the tolerance, as strut lengths
+/// |R p_i + t − b_i| of `geometry` (the check the `stewart` command line makes on every `ok`
+/// row): words moved by whole turns round, and the configuration solved is only the answer
+/// if the pose reported places it. On any refusal the tracker is left where it was.
 fn track<S: SixSix>(
     tracker: &mut Tracker<S, 18, 6>,
     legs: &[f64; 6],
     pose: &mut LinkagePose,
     report: &mut LinkageReport,
+    geometry: &LinkageGeometry,
+    tolerance: f64,
 ) -> i32 {
+    let before = tracker.clone();
     match tracker.update(legs) {
         Ok(sample) => {
-            let Some(p) = linkage::pose_from_unknowns(tracker.mechanism(), &sample.v) else {
+            let words = linkage::pose_from_unknowns(tracker.mechanism(), &sample.v)
+                .map(|p| LinkagePose::from_pose(&p, pose));
+            let Some(words) = words else {
+                *tracker = before;
                 return status::FAILED;
             };
-            *pose = LinkagePose::from_pose(&p, pose);
+            let placed = words.to_pose();
+            let gives_back = (0..6).all(|i| {
+                let w = placed.apply(geometry.platform[i]);
+                let d = [0, 1, 2].map(|k| w[k] - geometry.base[i][k]);
+                let strut = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                (strut - legs[i]).abs() <= tolerance
+            });
+            if !gives_back {
+                *tracker = before;
+                return status::TOLERANCE_NOT_MET;
+            }
+            *pose = words;
             report.proximity = sample.proximity;
             report.newton_iterations = sample.newton_iterations;
             report.fell_back = i32::from(sample.fell_back);
@@ -265,6 +300,9 @@ impl Hexapod {
         if !pose.is_finite() {
             return status::NON_FINITE;
         }
+        if !angle_words_in_range(pose) {
+            return status::INVALID_INPUT;
+        }
         if self.correction.is_on() {
             return self.forward_corrected(legs, pose, report);
         }
@@ -346,7 +384,11 @@ impl Hexapod {
         report: &mut LinkageReport,
     ) -> i32 {
         report.started = 0;
-        if self.tracking.is_none() {
+        // A start this call made is kept only if the call succeeds: on a refusal the handle is
+        // left as it was, not tracking (the tracker made for options every sample refuses, or
+        // whose first sample missed the tolerance, was kept, and `is_tracking` said 1).
+        let starting = self.tracking.is_none();
+        if starting {
             let started = match &self.model {
                 Model::Coplanar(s) => {
                     start_with(s, legs, pose, self.options, self.certify).map(Tracking::Coplanar)
@@ -359,16 +401,32 @@ impl Hexapod {
                 Ok(t) => self.tracking = Some(t),
                 Err(code) => return code,
             }
-            report.started = 1;
         }
         let mut out = *pose;
         let code = match self.tracking.as_mut() {
-            Some(Tracking::Coplanar(t)) => track(t, legs, &mut out, report),
-            Some(Tracking::General(t)) => track(t, legs, &mut out, report),
+            Some(Tracking::Coplanar(t)) => track(
+                t,
+                legs,
+                &mut out,
+                report,
+                &self.geometry,
+                self.options.tolerance,
+            ),
+            Some(Tracking::General(t)) => track(
+                t,
+                legs,
+                &mut out,
+                report,
+                &self.geometry,
+                self.options.tolerance,
+            ),
             None => status::FAILED,
         };
         if code == status::OK {
             *pose = out;
+            report.started = i32::from(starting);
+        } else if starting {
+            self.tracking = None;
         }
         code
     }
@@ -768,6 +826,80 @@ pub(crate) mod tests {
         bad.base_n[2] = [f64::NAN, 0.0, 1.0];
         assert_eq!(h.set_strut_correction(&bad), Err(status::NON_FINITE));
         assert_eq!(h.inverse(&HOME).unwrap(), home);
+    }
+
+    /// The pose words reported are the solved angles moved by whole turns to lie nearest the
+    /// caller's: with the caller's C at 1e10 or 1e20 degrees no double there held the angle
+    /// solved, and forward said OK with words whose legs were 1.4e-7 and 8.8 units off the
+    /// legs given (the tolerance is 1e-9). Angle words beyond 2¹⁶ rad are now INVALID_INPUT,
+    /// and every OK pose gives back its legs to the tolerance, or the call is refused with
+    /// the tracker left alone.
+    #[test]
+    fn far_angle_words_are_refused_and_every_ok_pose_gives_back_its_legs() {
+        for c in [1e6, 3.7e6, 3.8e6, 1e10, 1e15, 1e20, 1e300] {
+            for tolerance in [1e-9, 1e-11] {
+                let mut h = Hexapod::new(&genhex()).unwrap();
+                h.set_options(tolerance, 20).unwrap();
+                let start = LinkagePose { c, ..HOME };
+                let legs = h.inverse(&start).unwrap();
+                let mut pose = start;
+                let mut report = LinkageReport::default();
+                let code = h.forward(&legs, &mut pose, &mut report);
+                if c.abs() > MAX_ANGLE_WORD {
+                    assert_eq!(code, status::INVALID_INPUT, "C = {c:e}");
+                    assert_eq!(pose, start, "C = {c:e}: the pose untouched on refusal");
+                    assert!(!h.is_tracking(), "C = {c:e}");
+                    continue;
+                }
+                // The rotation's own angle, moved 3° on: the words must follow it.
+                let own = (c.to_radians() % core::f64::consts::TAU).to_degrees();
+                let moved = LinkagePose {
+                    x: 0.5,
+                    z: 20.5,
+                    c: own + 3.0,
+                    ..HOME
+                };
+                let legs = h.inverse(&moved).unwrap();
+                for _ in 0..2 {
+                    let before = pose;
+                    let code = h.forward(&legs, &mut pose, &mut report);
+                    if code == status::OK {
+                        let back = h.inverse(&pose).unwrap();
+                        let off = (0..6).fold(0.0f64, |m, i| m.max((back[i] - legs[i]).abs()));
+                        assert!(
+                            off <= tolerance,
+                            "C = {c:e}, tolerance {tolerance:e}: OK {off:e} off"
+                        );
+                    } else {
+                        assert_eq!(code, status::TOLERANCE_NOT_MET, "C = {c:e}");
+                        assert_eq!(pose, before, "C = {c:e}: the pose untouched on refusal");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A call that starts tracking and is then refused leaves the handle not tracking: with a
+    /// tolerance every sample refuses (above 1e-3 of the mechanism's size, refused only
+    /// when checked against the start), the first call said INVALID_OPTIONS and left a
+    /// tracker behind, `is_tracking` 1 and `report.started` 1.
+    #[test]
+    fn a_refused_first_call_starts_no_tracking() {
+        let mut h = Hexapod::new(&genhex()).unwrap();
+        h.set_options(1e3, 20).unwrap();
+        let legs = h.inverse(&HOME).unwrap();
+        let mut pose = HOME;
+        let mut report = LinkageReport::default();
+        assert_eq!(
+            h.forward(&legs, &mut pose, &mut report),
+            status::INVALID_OPTIONS
+        );
+        assert!(!h.is_tracking());
+        assert_eq!(report.started, 0);
+        h.set_options(1e-9, 20).unwrap();
+        assert_eq!(h.forward(&legs, &mut pose, &mut report), status::OK);
+        assert_eq!(report.started, 1);
+        assert!(h.is_tracking());
     }
 
     #[test]

@@ -21,7 +21,8 @@ pub const NOT_CONVERGED: i32 = 3;
 pub const STEP_TOO_SMALL: i32 = 4;
 /// B became singular and the method could not go on.
 pub const SINGULAR: i32 = 5;
-/// The iteration stopped short of the requested tolerance.
+/// The iteration stopped short of the requested tolerance, or the pose it gives, in the angle
+/// words nearest the caller's, misses the legs by more than the tolerance.
 pub const TOLERANCE_NOT_MET: i32 = 6;
 /// A non-ok solver status this interface does not name (never counted as a success).
 pub const FAILED: i32 = 7;
@@ -37,7 +38,8 @@ pub const UNPROVEN: i32 = 9;
 pub const NULL_POINTER: i32 = -1;
 /// A leg length, pose or option value is NaN or infinite.
 pub const NON_FINITE: i32 = -2;
-/// A leg length is out of range (not positive).
+/// A leg length is out of range (not positive), or a pose angle word is beyond ±2¹⁶ rad
+/// (about 3.75e6 degrees), where a double no longer holds an angle to report near it.
 pub const INVALID_INPUT: i32 = -3;
 /// The geometry cannot be modelled (non-finite values, collinear platform frame).
 pub const INVALID_GEOMETRY: i32 = -4;
