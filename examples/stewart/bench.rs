@@ -10,6 +10,38 @@ use linkage_examples::stewart::{home_start, Stewart};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+/// Most solves timed in one run: each one's time is kept (8 bytes) for the percentiles, and
+/// `--seconds 3600` of sub-microsecond solves would keep about 2e9 of them, 17 GB, until the
+/// allocator gave up and the program aborted with no report. 4 Mi times (32 MB) are plenty for
+/// a p99; a run that reaches it stops timing there and says so.
+const MAX_TIMED: usize = 1 << 22;
+
+/// Whether to time another pass of `per_pass` solves: at least 3 passes, then until `seconds`
+/// have passed or another pass would go beyond [`MAX_TIMED`].
+fn another_pass(
+    repetitions: usize,
+    began: Instant,
+    seconds: f64,
+    timed: usize,
+    per_pass: usize,
+) -> bool {
+    repetitions < 3
+        || (began.elapsed() < Duration::from_secs_f64(seconds)
+            && timed.saturating_add(per_pass) <= MAX_TIMED)
+}
+
+/// Said when the timing stopped at [`MAX_TIMED`] before `--seconds` had passed.
+fn say_if_capped(began: Instant, seconds: f64, timed: usize) -> bool {
+    let capped = began.elapsed() < Duration::from_secs_f64(seconds);
+    if capped {
+        eprintln!(
+            "bench: stopped after {timed} timed solves ({:.1} s), the most one run keeps, before --seconds {seconds}",
+            began.elapsed().as_secs_f64()
+        );
+    }
+    capped
+}
+
 pub fn run(
     method: Method,
     track: bool,
@@ -59,7 +91,7 @@ pub fn run(
     let (mut failures, mut unproven, mut repetitions) = (0usize, 0usize, 0usize);
     let began = Instant::now();
     // At least 3 passes and `seconds` of solving (1 s by default, for stable statistics).
-    while repetitions < 3 || began.elapsed() < Duration::from_secs_f64(seconds) {
+    while another_pass(repetitions, began, seconds, times.len(), rows.len()) {
         repetitions += 1;
         let tracker = Tracker::new(sys.clone(), start, options);
         let mut tracker = if certify {
@@ -113,6 +145,7 @@ pub fn run(
             }
         }
     }
+    let capped = say_if_capped(began, seconds, times.len());
     times.sort_by(f64::total_cmp);
     let mean = times.iter().sum::<f64>() / times.len() as f64;
     let pick = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize];
@@ -126,7 +159,7 @@ pub fn run(
         let out = serde_json::json!({
             "method": name, "track": track, "linear": if dense { "dense" } else { "generated" },
             "certify": certify,
-            "points": rows.len(), "repetitions": repetitions, "failures_per_pass": failures / repetitions,
+            "points": rows.len(), "repetitions": repetitions, "capped": capped, "failures_per_pass": failures / repetitions,
             "unproven_per_pass": certify.then_some(unproven / repetitions),
             "mean_us": mean, "median_us": pick(0.5), "p99_us": pick(0.99),
             "best_of_passes_mean_us": best_mean, "best_of_passes_median_us": best_median,
@@ -224,7 +257,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
     let mut best = vec![f64::INFINITY; points.len()];
     let (mut incomplete, mut steps, mut real, mut repetitions) = (0usize, 0usize, 0usize, 0usize);
     let began = Instant::now();
-    while repetitions < 3 || began.elapsed() < Duration::from_secs_f64(seconds) {
+    while another_pass(repetitions, began, seconds, times.len(), points.len()) {
         repetitions += 1;
         for (r, x) in points.iter().enumerate() {
             let t0 = Instant::now();
@@ -237,6 +270,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
             real += roots.real().len();
         }
     }
+    let capped = say_if_capped(began, seconds, times.len());
     times.sort_by(f64::total_cmp);
     let mean = times.iter().sum::<f64>() / times.len() as f64;
     let pick = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize];
@@ -246,7 +280,7 @@ fn time_all<S: linkage_examples::stewart::SixSix>(
     let steps_per_path = steps as f64 / (solves * paths as f64);
     if json {
         let out = serde_json::json!({
-            "method": "all", "points": points.len(), "repetitions": repetitions,
+            "method": "all", "points": points.len(), "repetitions": repetitions, "capped": capped,
             "paths": paths, "setup_ms": setup * 1e3,
             "incomplete_per_pass": incomplete / repetitions,
             "real_per_point": real as f64 / solves, "steps_per_path": steps_per_path,

@@ -849,6 +849,33 @@ fn bench_counts_unverified_answers_as_solve_does() {
     }
 }
 
+/// `bench --seconds 3600` (a value the parser accepts) kept every solve's time, 8 bytes each:
+/// at about a microsecond a solve, 17 GB after the hour, and the program aborted when the
+/// allocator gave up, with no report. Timing now stops after 4 Mi solves and says so.
+#[test]
+fn bench_keeps_a_bounded_number_of_timings() {
+    let dir = scratch("bench-cap");
+    let legs = dir.join("legs.csv");
+    std::fs::write(&legs, csv(&[HEADER, HOME, NEAR_HOME, FURTHER])).unwrap();
+    let out = run(
+        &[
+            "bench",
+            "--method",
+            "nr",
+            "--input",
+            legs.to_str().unwrap(),
+            "--json",
+            "--seconds",
+            "3600",
+        ],
+        b"",
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(report.contains("\"capped\":true"), "{report}");
+    assert!(stderr(&out).contains("timed solves"), "{}", stderr(&out));
+}
+
 #[test]
 fn rows_report_min_det_ratio_and_how_they_were_reached() {
     use linkage::{arc_length, arc_length_detour, Options, Status, Tracker};
