@@ -88,11 +88,22 @@ pub fn table_iii(
     Ok(recentred(modes, rows))
 }
 
+/// Row `x` with a leg beyond the bound `stewart solve` puts on legs (`MAX_LEG_OVER_SIZE` times
+/// the mechanism's size): `invalid_input`, not a query whose every path fails.
+fn absurd<S: SixSix>(sys: &S, x: &[f64; 6]) -> bool {
+    let max_leg = crate::solve::MAX_LEG_OVER_SIZE * crate::solve::mechanism_size(sys);
+    x.iter().any(|l| *l > max_leg)
+}
+
 fn recentred<S: SixSix>(
     mut modes: Box<AllModes<S, 18, 6, CAPACITY>>,
     rows: &[legs_csv::Row],
 ) -> Box<AllModes<S, 18, 6, CAPACITY>> {
-    let valid: Vec<&[f64; 6]> = rows.iter().filter_map(|r| r.as_ref().ok()).collect();
+    let valid: Vec<&[f64; 6]> = rows
+        .iter()
+        .filter_map(|r| r.as_ref().ok())
+        .filter(|x| !absurd(modes.mechanism(), x))
+        .collect();
     if !valid.is_empty() {
         let mut centre = [0.0; 6];
         for x in &valid {
@@ -116,6 +127,7 @@ fn run_on<S: SixSix>(
     for (i, row) in rows.iter().enumerate() {
         let n = i + 1;
         let result = match row {
+            Ok(x) if absurd(modes.mechanism(), x) => Err("invalid_input"),
             Ok(x) => modes.solve(x, &mut roots).map_err(|e| match e {
                 linkage::modes::ModesError::InvalidInput { .. } => "invalid_input",
                 _ => "non_finite",

@@ -14,7 +14,7 @@ use linkage_examples::stewart::{
 /// Legs longer than this many times the mechanism's size are `invalid_input`: there double
 /// precision leaves no room for a useful tolerance, and further on the equations overflow
 /// (a 1e308 leg is not a singularity).
-const MAX_LEG_OVER_SIZE: f64 = 1e6;
+pub const MAX_LEG_OVER_SIZE: f64 = 1e6;
 
 /// The status of a row the solver called converged with an error estimate above the
 /// tolerance (near a singularity rounding can forbid the tolerance), or whose pose, its leg
@@ -49,15 +49,31 @@ pub fn run(args: &SolveArgs) -> Result<(), String> {
             if platform_is_coplanar(&g.platform) {
                 let sys = Stewart::with_joints(&g.base, &g.platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
+                check_start_legs(&sys, &g.legs)?;
                 let check = mode_check(&sys, g.legs, args)?;
                 solve_stream(sys, g.legs, pose, check, args)
             } else {
                 let sys = StewartGeneral::with_joints(&g.base, &g.platform)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
+                check_start_legs(&sys, &g.legs)?;
                 let check = mode_check(&sys, g.legs, args)?;
                 solve_stream(sys, g.legs, pose, check, args)
             }
         }
+    }
+}
+
+/// The rows' bound on the start's legs too: past it the start search met overflow and called
+/// the geometry architecture-singular (`[start] legs = [1e300, …]`).
+fn check_start_legs<S: SixSix>(sys: &S, legs: &[f64; 6]) -> Result<(), String> {
+    let size = mechanism_size(sys);
+    match legs.iter().position(|l| *l > MAX_LEG_OVER_SIZE * size) {
+        Some(i) => Err(format!(
+            "start configuration: start leg L{} = {:e} mm is more than {MAX_LEG_OVER_SIZE:e} times the mechanism's size ({size:e} mm)",
+            i + 1,
+            legs[i],
+        )),
+        None => Ok(()),
     }
 }
 
@@ -392,7 +408,7 @@ fn start_size(v: &[f64; 18]) -> f64 {
 
 /// The largest joint coordinate (base or platform): the scale of the mechanism (not floored at
 /// 1 mm: a machine a micrometre across is that size).
-fn mechanism_size<S: SixSix>(sys: &S) -> f64 {
+pub fn mechanism_size<S: SixSix>(sys: &S) -> f64 {
     let base = sys.base_joints().into_iter().flatten();
     let platform = (0..6).flat_map(|p| sys.point_local(p));
     base.chain(platform).fold(0.0f64, |m, c| m.max(c.abs()))

@@ -757,6 +757,48 @@ fn absurd_legs_are_invalid_input_not_singular() {
     }
 }
 
+/// `modes` took the rows `solve` calls `invalid_input` (a leg over 1e6 times the mechanism's
+/// size) as queries: every path failed and the row read "0 of 28 paths end at roots …
+/// (28 failed)", status `incomplete`, as if the solver had given up on a sound row. And a
+/// geometry file's start legs past that bound were called architecture-singular. Both now
+/// name the legs.
+#[test]
+fn absurd_legs_are_named_by_modes_and_in_a_geometry_file() {
+    let input = csv(&[
+        HEADER,
+        HOME,
+        "1e300,170,170,170,170,170",
+        "1e12,1e12,1e12,1e12,1e12,1e12",
+    ]);
+    let out = run(&["modes", "--json", "--input", "/dev/stdin"], &input);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3, "{text}");
+    assert!(lines[0].contains("\"status\":\"ok\""), "{text}");
+    for line in &lines[1..] {
+        assert!(line.contains("\"status\":\"invalid_input\""), "{text}");
+    }
+    let dir = scratch("absurd-start");
+    let geometry = dir.join("geometry.toml");
+    std::fs::write(
+        &geometry,
+        "base = [[200.764, 53.795, 0.0], [169.706, 0.0, 0.0], [0.0, 0.0, 0.0], \
+        [-31.058, 53.795, 0.0], [53.795, 200.764, 0.0], [115.911, 200.764, 0.0]]\n\
+        platform = [[122.475, 122.475, 0.0], [51.764, 0.0, 0.0], [0.0, 0.0, 0.0], \
+        [-70.711, 122.475, 0.0], [-44.829, 167.303, 0.0], [96.593, 167.303, 0.0]]\n\
+        [start]\nlegs = [170, 170, 1e300, 170, 170, 170]\n",
+    )
+    .unwrap();
+    let g = geometry.to_str().unwrap();
+    let out = run(
+        &["solve", "--geometry", g, "--input", "-"],
+        &csv(&[HEADER, HOME]),
+    );
+    assert_refused(&out, "start leg L3 = 1e300 mm");
+    assert!(!stderr(&out).contains("architecture"), "{}", stderr(&out));
+}
+
 #[test]
 fn bad_option_values_are_refused_while_parsing() {
     let input = csv(&[HEADER, HOME]);
