@@ -193,10 +193,17 @@ pub fn check_axis(a: [f64; 3], b: [f64; 3]) -> Result<(), GeometryError> {
 /// `origin + unit(toward − origin)`: a point one length unit along a direction, for the axis of a
 /// prismatic pair on a moving link.
 pub fn along(origin: [f64; 3], toward: [f64; 3]) -> Result<[f64; 3], GeometryError> {
+    lever(origin, toward, 1.0)
+}
+
+/// `origin + length · unit(toward − origin)`: a point `length` along the axis `origin → toward`,
+/// for a revolute pair's axis declared by pivots far closer together than the mechanism is large
+/// (see the general model's `levers`).
+pub fn lever(origin: [f64; 3], toward: [f64; 3], length: f64) -> Result<[f64; 3], GeometryError> {
     check_axis(origin, toward)?;
     let d = sub3(toward, origin);
     let len = norm3(d);
-    Ok([0, 1, 2].map(|k| origin[k] + d[k] / len))
+    Ok([0, 1, 2].map(|k| origin[k] + d[k] / len * length))
 }
 
 /// `origin + |b1 − b0| unit((a1 − a0) × (b1 − b0))`: a point along the common normal of two
@@ -438,6 +445,23 @@ mod tests {
         assert!(check_axis([0.0; 3], [0.0, 0.0, 2e-9]).is_ok());
         assert!(check_axis(a, [f64::NAN, 0.0, 0.0]).is_err());
         assert!(check_axis(a, [f64::INFINITY, 0.0, 0.0]).is_err());
+    }
+
+    /// A lever is `length` along the axis whatever the declared points' spacing, `along` one
+    /// unit; both refuse what `check_axis` refuses.
+    #[test]
+    fn a_lever_is_its_length_along_the_axis() {
+        let a = [200.0, 0.0, 0.0];
+        let p = lever(a, [200.0, 0.0, 1.0], 346.0).unwrap();
+        assert_eq!(p, [200.0, 0.0, 346.0]);
+        let q = lever(a, [201.0, 1.0, 0.0], 10.0).unwrap();
+        assert!((norm3(sub3(q, a)) - 10.0).abs() < 1e-12 && (q[0] - q[1] - 200.0).abs() < 1e-12);
+        assert_eq!(along(a, [200.0, 0.0, 5.0]).unwrap(), [200.0, 0.0, 1.0]);
+        assert_eq!(lever(a, a, 10.0), Err(GeometryError::DegenerateAxis));
+        assert_eq!(
+            along(a, [200.0, 0.0, 1e-8]),
+            Err(GeometryError::DegenerateAxis)
+        );
     }
 
     #[test]

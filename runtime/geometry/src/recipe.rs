@@ -5,7 +5,7 @@
 //! constant: a mechanism's constructor is a table, not thousands of lines for the compiler.
 
 use crate::{
-    along, axis_frame, check_axis, collinear_coefficients, distance, normal_point, place,
+    along, axis_frame, check_axis, collinear_coefficients, distance, lever, normal_point, place,
     rigid_coefficients, GeometryError,
 };
 
@@ -27,6 +27,12 @@ pub enum PointRef {
 pub enum Auto {
     /// `origin + unit(toward − origin)`: the axis of a prismatic pair on its rail.
     Along { origin: PointRef, toward: PointRef },
+    /// `origin + length · unit(toward − origin)`: a revolute pair's axis at the mechanism's scale.
+    Lever {
+        origin: PointRef,
+        toward: PointRef,
+        length: f64,
+    },
     /// `origin + unit((a1 − a0) × (b1 − b0))`: a universal joint's second axis.
     Normal {
         origin: PointRef,
@@ -269,6 +275,11 @@ impl Recipes<'_> {
         let at = |p: PointRef| self.point(g, auto, p);
         match *a {
             Auto::Along { origin, toward } => along(at(origin), at(toward)),
+            Auto::Lever {
+                origin,
+                toward,
+                length,
+            } => lever(at(origin), at(toward), length),
             Auto::Normal { origin, a, b } => normal_point(at(origin), a.map(at), b.map(at)),
             Auto::Foot { a, b, point } => {
                 axis_frame(at(a), at(b), at(point)).map(|f| [f[3], f[4], f[5]])

@@ -43,6 +43,14 @@ fn auto(a: &Auto) -> TokenStream {
             let (o, t) = (point(origin), point(toward));
             quote!(#r::Auto::Along { origin: #o, toward: #t })
         }
+        Auto::Lever {
+            origin,
+            toward,
+            length,
+        } => {
+            let (o, t) = (point(origin), point(toward));
+            quote!(#r::Auto::Lever { origin: #o, toward: #t, length: #length })
+        }
         Auto::Normal { origin, a, b } => {
             let o = point(origin);
             let [a0, a1] = a.map(point);

@@ -15,7 +15,32 @@ use crate::model::{
 use syn::Error;
 
 /// Builds the model; `None` with every independent mistake in `errors`.
+///
+/// A short declared axis gets a lever of the model's own (`general::topology`'s `levers`), and
+/// the model with it is kept where no equation is left out as dependent. Where some are (an
+/// over-constrained mechanism), the model is built again as declared: the rank test's choice of
+/// the square system among the rewritten equations gave false folds on a Bennett linkage, 6
+/// roots for a Stephenson III six-bar's 12 and NR on another configuration of an Orthoglide
+/// (BENCHMARKS.md, thirty-seventh session). A declaration in error is reported as declared.
 pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
+    let mut trial = Errors::default();
+    match build_with(d, &mut trial, Levers::Short) {
+        Some((model, false)) => return Some(model),
+        Some((model, true)) if model.dependent.is_empty() => return Some(model),
+        _ => {}
+    }
+    build_with(d, errors, Levers::AsDeclared).map(|(model, _)| model)
+}
+
+/// Whether short declared axes get levers of the model's own.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Levers {
+    Short,
+    AsDeclared,
+}
+
+/// The model, and whether any lever was added.
+fn build_with(d: &Decl, errors: &mut Errors, levers: Levers) -> Option<(Model, bool)> {
     let mut b = Builder::new(d);
     let axes = axes(d, &b, errors);
 
@@ -44,7 +69,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
             Err(e) => errors.add(e),
         }
     }
-    let topo = general::topology(&mut b, d, &general, errors);
+    let topo = general::topology(&mut b, d, &general, errors, levers == Levers::Short);
     if let Some(pl) = topo
         .as_ref()
         .and_then(|t| t.link(LinkId::PLATFORM).map(|l| &t.links[l]))
@@ -60,6 +85,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
     let (Some(frame_idx), Some(topo)) = (frame, topo) else {
         return None;
     };
+    let levered = topo.levered;
     if !errors.is_empty() {
         return None;
     }
@@ -270,7 +296,7 @@ pub fn build(d: &Decl, errors: &mut Errors) -> Option<Model> {
         check_system(&model, d)
     };
     match checked {
-        Ok(()) => Some(model),
+        Ok(()) => Some((model, levered)),
         Err(e) => {
             errors.add(e);
             None

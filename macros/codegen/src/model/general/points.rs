@@ -26,6 +26,9 @@ impl PointId {
 pub enum Addition {
     /// The tip of a slide's axis, one unit from `origin` towards `towards`.
     AxisTip { origin: PointId, towards: PointId },
+    /// A revolute pair's axis at the mechanism's scale: on the axis `origin → towards`, as far
+    /// from `origin` as the mechanism is large (see `topology::levers`).
+    AxisLever { origin: PointId, towards: PointId },
     /// A universal joint's second axis, one unit from its centre.
     SecondAxis { centre: PointId },
     /// A cylindrical pair's slider's own copy of an end of the rail's axis (0: its origin, 1:
@@ -87,6 +90,11 @@ impl Points {
 
     pub fn home(&self, q: PointId) -> PointRef {
         self.homes[q.index()]
+    }
+
+    /// Every point's home position, in order.
+    pub fn homes(&self) -> impl Iterator<Item = PointRef> + '_ {
+        self.homes.iter().copied()
     }
 
     /// The declared pivot a point is, if it is one.

@@ -2,12 +2,12 @@
 //! an unnamed link between every two pairs, the points the pairs share between the links they
 //! join, and the points some pairs add (a slide's axis, a U's second axis).
 
-use super::points::Points;
+use super::points::{Addition, Points};
 use super::{prismatic, universal, PointId};
 use crate::front::errors::Errors;
 use crate::front::ids::{ChainId, LinkId, PivotId};
 use crate::front::resolved::{Decl, LinkRole, Pair, PairKind, Value};
-use crate::model::{Builder, PointRef};
+use crate::model::{Auto, Builder, PointRef};
 
 /// A link of the general model: a declared one, or an unnamed one between two pairs.
 pub struct Link {
@@ -21,6 +21,8 @@ pub struct Link {
     pub length: Option<Value>,
     /// Its points, in order of first use.
     pub members: Vec<PointId>,
+    /// The pivots declared on it (none for an unnamed link).
+    pub own: Vec<PointId>,
 }
 
 impl Link {
@@ -51,6 +53,8 @@ pub struct Topology<'a> {
     pub joints: Vec<Joint<'a>>,
     /// Where each declared link is among `links`, by [`LinkId`].
     declared: Vec<Option<usize>>,
+    /// Whether a short declared axis got a lever of the model's own (see [`levers`]).
+    pub levered: bool,
 }
 
 impl Topology<'_> {
@@ -92,12 +96,14 @@ pub fn topology<'a>(
     d: &'a Decl,
     general: &[ChainId],
     errors: &mut Errors,
+    with_levers: bool,
 ) -> Option<Topology<'a>> {
     let mut topo = Topology {
         links: Vec::new(),
         points: Points::new(b, d),
         joints: Vec::new(),
         declared: vec![None; d.links.len()],
+        levered: false,
     };
     for &c in general {
         let chain = d.chain(c);
@@ -117,6 +123,7 @@ pub fn topology<'a>(
                                 role: decl.role,
                                 length: decl.length,
                                 members: decl.pivots.iter().map(|&p| PointId::of(p)).collect(),
+                                own: decl.pivots.iter().map(|&p| PointId::of(p)).collect(),
                             }
                         }
                         None => Link {
@@ -126,6 +133,7 @@ pub fn topology<'a>(
                             role: LinkRole::Intermediate,
                             length: None,
                             members: Vec::new(),
+                            own: Vec::new(),
                         },
                     };
                     topo.links.push(link);
@@ -179,5 +187,110 @@ pub fn topology<'a>(
             ok = false;
         }
     }
+    if with_levers {
+        topo.levered = levers(b, &mut topo);
+    }
     ok.then_some(topo)
+}
+
+/// Whether no unknown places the link: the base, or a link an active pair with an axis moves
+/// from the base (explicit in that pair's inputs, as `build`'s `explicit_pairs` takes it).
+fn known(topo: &Topology, li: usize) -> bool {
+    let link = &topo.links[li];
+    link.role == LinkRole::Base
+        || link.role == LinkRole::Intermediate
+            && link.declared.is_some()
+            && topo.joints.iter().any(|j| {
+                j.after == li
+                    && topo.links[j.before].role == LinkRole::Base
+                    && j.pair.active
+                    && j.pair.axis.is_some()
+                    && matches!(
+                        j.pair.kind,
+                        PairKind::R | PairKind::P | PairKind::H | PairKind::C
+                    )
+            })
+}
+
+/// Below this fraction of the mechanism's size, a passive revolute pair's declared axis is given
+/// a lever of the model's own (see [`levers`]).
+const SHORT_AXIS: f64 = 0.25;
+
+/// A passive revolute pair whose axis `A -> B` is declared by pivots far closer together than
+/// the mechanism is large (a second pivot 1 mm from a hinge beside links of hundreds of
+/// millimetres, as most declarations give an axis) shares, instead of B, a point of the
+/// model's own on the same axis as far from A as the mechanism is large, so that the equations
+/// read the axis over a lever of the mechanism's scale. Read over 1 mm, a 3-RRS's ∂F/∂v had
+/// σmin 1.0 against σmax 600 at home, a Krawczyk radius of 0.11 mm and every sample of its
+/// certified tracker refused; with the lever σmin 220, 7.1 mm and every sample proven
+/// (`mechanisms::rrs`; BENCHMARKS.md, thirty-seventh session). B stays where it is declared,
+/// placed there by that link's equations; the link that only shares it through the pair no
+/// longer holds it. Only where one of the two links is placed without unknowns (the base, or a
+/// crank an active pair turns from it), so that the lever is a constant or explicit in the
+/// inputs and adds no unknown; and not for a pivot another pair also uses. `build` keeps the
+/// model with levers only where no equation is left out as dependent.
+fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
+    let mut added = false;
+    let at = |b: &Builder, topo: &Topology, q: PointId| b.home(topo.home(q));
+    let distance = |p: [f64; 3], q: [f64; 3]| {
+        ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+    };
+    // The mechanism's size: the largest distance between two of its points at home. One length
+    // for every lever, so that a symmetric mechanism's levers are symmetric too.
+    let homes: Vec<[f64; 3]> = topo.points.homes().map(|h| b.home(h)).collect();
+    let size = homes
+        .iter()
+        .flat_map(|p| homes.iter().map(move |q| distance(*p, *q)))
+        .fold(0.0f64, f64::max);
+    for k in 0..topo.joints.len() {
+        let p = topo.joints[k].pair;
+        let (PairKind::R, false, Some([from, to])) = (p.kind, p.active, p.axis) else {
+            continue;
+        };
+        let (a, e) = (PointId::of(from.id), PointId::of(to.id));
+        // On a link the unknowns do not place (the base, or one an active pair turns or slides
+        // from the base) the lever is a constant or explicit in the inputs: no unknowns added.
+        // Between two links the unknowns place it would be three more; not done.
+        let (before, after) = (topo.joints[k].before, topo.joints[k].after);
+        if !(known(topo, before) ^ known(topo, after)) {
+            continue;
+        }
+        let used_elsewhere = topo.joints.iter().enumerate().any(|(j, other)| {
+            j != k
+                && (other.pair.centre.is_some_and(|c| c.id == to.id)
+                    || other
+                        .pair
+                        .axis
+                        .is_some_and(|[x, y]| x.id == to.id || y.id == to.id))
+        });
+        if used_elsewhere {
+            continue;
+        }
+        let declared = distance(at(b, topo, a), at(b, topo, e));
+        if !(declared < SHORT_AXIS * size) {
+            continue;
+        }
+        let home = b.auto_point(Auto::Lever {
+            origin: topo.home(a),
+            toward: topo.home(e),
+            length: size,
+        });
+        let name = format!("{}_lever", topo.name(e));
+        let q = topo.points.add(
+            Addition::AxisLever {
+                origin: a,
+                towards: e,
+            },
+            name,
+            home,
+        );
+        for li in [before, after] {
+            topo.add_member(li, q);
+            if !topo.links[li].own.contains(&e) {
+                topo.links[li].members.retain(|&m| m != e);
+            }
+        }
+        added = true;
+    }
+    added
 }
