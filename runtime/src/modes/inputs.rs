@@ -13,14 +13,21 @@ use crate::Mechanism;
 /// The kind of each input and the length scale.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Inputs<const M: usize> {
-    /// Input j enters only through cos and sin (F is 2π-periodic in it).
+    /// Input j is an angle: it enters through cos and sin (F is 2π-periodic in it, or the
+    /// generated kernels turn by it, as by a helical pair's angle, which also enters linearly
+    /// through its slide).
     pub(crate) angular: [bool; M],
     pub(crate) scale: f64,
 }
 
 impl<const M: usize> Inputs<M> {
     /// Tells angles from lengths by periodicity: F(v, x + 2π e_j) = F(v, x) at a random real
-    /// point, while F(v, x + π e_j) differs (a polynomial in x_j is never 2π-periodic).
+    /// point, while F(v, x + π e_j) differs (a polynomial in x_j is never 2π-periodic); and
+    /// an input whose sine or cosine the generated kernels read ([`Mechanism::turns`]) is an
+    /// angle too, periodic or not: a helical pair's θ enters as cos θ, sin θ and its slide
+    /// pθ/2π. Sampled as a length (complex, the mechanism's size), its cos θ was near 10⁸⁰:
+    /// a 3-HRS's start set stopped at 1 of its 16 roots (every monodromy loop failed), and a
+    /// query 0.05 rad from home answered complete with no real root where there are 8.
     pub(crate) fn detect<S: Mechanism<N, M>, const N: usize>(
         sys: &S,
         scale: f64,
@@ -39,8 +46,16 @@ impl<const M: usize> Inputs<M> {
             (0..N).map(|i| (g[i] - f[i]).abs()).fold(0.0f64, f64::max) > 1e-9 * size
         };
         let tau = 2.0 * core::f64::consts::PI;
+        // x lies in [0.5, 1.5]: a sine or cosine the kernels read is nonzero there.
+        let turned = if S::TURNS {
+            sys.turns(&x).0
+        } else {
+            [[0.0; 2]; M]
+        };
         Inputs {
-            angular: core::array::from_fn(|j| !differs(tau, j) && differs(0.5 * tau, j)),
+            angular: core::array::from_fn(|j| {
+                turned[j] != [0.0, 0.0] || (!differs(tau, j) && differs(0.5 * tau, j))
+            }),
             scale,
         }
     }
