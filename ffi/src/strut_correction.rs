@@ -41,7 +41,7 @@ impl LinkageStrutCorrection {
         if !self.screw_lead.is_finite() || !axes.clone().flatten().all(|v| v.is_finite()) {
             return Err(status::NON_FINITE);
         }
-        if self.is_on() && axes.clone().any(|n| norm(*n) == 0.0) {
+        if self.is_on() && axes.clone().any(|n| direction(*n).is_none()) {
             return Err(status::INVALID_GEOMETRY);
         }
         Ok(())
@@ -57,8 +57,12 @@ impl LinkageStrutCorrection {
         for (i, c) in out.iter_mut().enumerate() {
             let w = pose.apply(g.platform[i]);
             let u = unit(sub(w, g.base[i])).ok_or(status::FAILED)?;
-            let n3 = unit(cross(u, cross(self.base_n[i], u))).ok_or(status::FAILED)?;
-            let turned = sub(pose.apply(self.platform_n[i]), pose.translation);
+            // The axes as directions: their length is the caller's unit, not the strut's (axes
+            // 1e300 long overflowed the cross products, and every call failed).
+            let (nb, np) = (direction(self.base_n[i]), direction(self.platform_n[i]));
+            let (nb, np) = (nb.ok_or(status::FAILED)?, np.ok_or(status::FAILED)?);
+            let n3 = unit(cross(u, cross(nb, u))).ok_or(status::FAILED)?;
+            let turned = sub(pose.apply(np), pose.translation);
             let n2 = unit(cross(turned, u)).ok_or(status::FAILED)?;
             // Rounding may put the dot product of two unit vectors just outside [-1, 1].
             let dot = (n3[0] * n2[0] + n3[1] * n2[1] + n3[2] * n2[2]).clamp(-1.0, 1.0);
@@ -84,8 +88,63 @@ fn norm(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
+/// `a / |a|` for an axis of any length a double holds (scaled by its largest component first,
+/// so that neither 1e300 nor 1e-300 over- or underflows); None for a zero or non-finite one.
+fn direction(a: [f64; 3]) -> Option<[f64; 3]> {
+    let m = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    let b = a.map(|v| v / m);
+    let n = norm(b);
+    Some(b.map(|v| v / n))
+}
+
 /// `a / |a|`, or None when `a` is (relative to rounding) zero.
 fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     let n = norm(a);
     (n > 1e-12 && n.is_finite()).then(|| a.map(|v| v / n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An axis is a direction: scaled by 1e300 or 1e-300 it gives the corrections of the unit
+    /// axis (1e300 overflowed the cross products, and every forward call failed), and a zero
+    /// axis is refused when the correction is set.
+    #[test]
+    fn axes_of_any_length_give_the_corrections_of_their_directions() {
+        let g = LinkageGeometry {
+            base: core::array::from_fn(|i| {
+                let a = i as f64 * core::f64::consts::TAU / 6.0;
+                [200.0 * a.cos(), 200.0 * a.sin(), 0.0]
+            }),
+            platform: core::array::from_fn(|i| {
+                let a = (i as f64 + 0.5) * core::f64::consts::TAU / 6.0;
+                [100.0 * a.cos(), 100.0 * a.sin(), 0.0]
+            }),
+        };
+        let pose = Pose::from_euler(0.1, -0.05, 0.2, [3.0, -4.0, 250.0]);
+        let with = |scale: f64| LinkageStrutCorrection {
+            base_n: core::array::from_fn(|i| [0.3 * scale, -0.2 * scale, (1.0 + i as f64) * scale]),
+            platform_n: core::array::from_fn(|i| {
+                [-0.1 * scale, 0.4 * scale, (2.0 - 0.1 * i as f64) * scale]
+            }),
+            screw_lead: 5.0,
+        };
+        let unit = with(1.0).at(&g, &pose).unwrap();
+        assert!(unit.iter().any(|c| c.abs() > 1e-3), "{unit:?}");
+        for scale in [1e300, 1e-300, 3.7] {
+            let c = with(scale);
+            assert_eq!(c.check(), Ok(()));
+            let got = c.at(&g, &pose).unwrap();
+            for (a, b) in got.iter().zip(&unit) {
+                assert!((a - b).abs() < 1e-12, "scale {scale}: {got:?} vs {unit:?}");
+            }
+        }
+        let mut zero = with(1.0);
+        zero.platform_n[3] = [0.0; 3];
+        assert_eq!(zero.check(), Err(status::INVALID_GEOMETRY));
+    }
 }
