@@ -1581,3 +1581,33 @@ fn an_ok_pose_gives_back_the_legs_of_a_nearly_coplanar_platform() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// `-` is standard input for every command that reads legs, as for `solve`: `modes` and `bench`
+/// read a file named `-` instead ("cannot read -").
+#[test]
+fn modes_and_bench_read_standard_input_from_a_dash() {
+    let input = csv(&[HEADER, HOME, NEAR_HOME]);
+    let out = run(&["modes", "--json", "--input", "-"], &input);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.lines().count(), 2, "{text}");
+    assert!(
+        text.lines().all(|l| l.contains("\"status\":\"ok\"")),
+        "{text}"
+    );
+    let out = run(
+        &[
+            "bench",
+            "--method",
+            "nr",
+            "--input",
+            "-",
+            "--json",
+            "--seconds",
+            "0",
+        ],
+        &input,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("\"points\":2"));
+}

@@ -178,11 +178,11 @@ impl<R: Read> Iterator for LegRows<R> {
     }
 }
 
-/// Reads every row of a file into memory (for `bench`, which replays them).
+/// Reads every row of a file (`-`: standard input, as `solve` reads it) into memory (for
+/// `bench`, which replays them, and `modes`).
 pub fn read(path: &std::path::Path) -> Result<Vec<Row>, String> {
-    let file =
-        std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    read_from(file).map_err(|e| format!("{}: {e}", path.display()))
+    let source = super::stream::open_input(path)?;
+    read_from(source).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Reads every row from any reader; a missing or repeated `L1`…`L6` column, an unreadable
