@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --example stewart -- equations [--json]
 //! cargo run --release --example stewart -- solve [--geometry FILE] [--method ph|nh|nr] [--track] [--certify] [--modes-within MM] --input legs.csv|- [--output out.csv]
-//! cargo run --release --example stewart -- modes [--geometry FILE] --input legs.csv [--json] [--png FILE [--row N]]
+//! cargo run --release --example stewart -- modes [--geometry FILE] --input legs.csv|- [--json] [--png FILE [--row N]]
 //! cargo run --release --example stewart -- table-v [--seed S] [--json]
 //! cargo run --release --example stewart -- map --out DIR
 //! cargo run --release --example stewart -- errors --out DIR
@@ -52,7 +52,7 @@ enum Command {
         /// omitted. Default: Table III.
         #[arg(long)]
         geometry: Option<PathBuf>,
-        /// CSV with a header containing L1…L6 (mm).
+        /// CSV with a header containing L1…L6 (mm); `-` reads standard input.
         #[arg(long)]
         input: PathBuf,
         /// One JSON object per row: {"row", "status", "paths", "complex", "real": [{"yaw",
@@ -110,6 +110,7 @@ enum Command {
         /// Solve each row from the previous row's solution (PH: the trajectory tracker).
         #[arg(long)]
         track: bool,
+        /// CSV with a header containing L1…L6 (mm); `-` reads standard input.
         #[arg(long)]
         input: PathBuf,
         /// {"method", "points", "mean_us", "median_us", "p99_us", ...}
