@@ -53,7 +53,7 @@ pub struct Topology<'a> {
     pub joints: Vec<Joint<'a>>,
     /// Where each declared link is among `links`, by [`LinkId`].
     declared: Vec<Option<usize>>,
-    /// Whether a short declared axis got a lever of the model's own (see [`levers`]).
+    /// Whether a short declared axis got a lever of the model's own (see `levers`).
     pub levered: bool,
 }
 
