@@ -88,16 +88,32 @@ fn norm(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
-/// `a / |a|` for an axis of any length a double holds (scaled by its largest component first,
-/// so that neither 1e300 nor 1e-300 over- or underflows); None for a zero or non-finite one.
+/// An axis of any length a double holds, scaled by a power of two so that its largest
+/// component is in [1, 2): exact, so the corrections are bit for bit those of the axis as
+/// given wherever that one neither overflows nor underflows (genhexkins' formula near
+/// asin(±1) is ill-conditioned enough that dividing by the norm instead moved a correction by
+/// 1.2e-12), and neither 1e300 nor 1e-300 over- or underflows. None for a zero or non-finite
+/// axis.
 fn direction(a: [f64; 3]) -> Option<[f64; 3]> {
     let m = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if !(m > 0.0 && m.is_finite()) {
         return None;
     }
-    let b = a.map(|v| v / m);
-    let n = norm(b);
-    Some(b.map(|v| v / n))
+    // m's binary exponent (a subnormal m brought up by 2^64 first).
+    let (m, pre) = if m < f64::MIN_POSITIVE {
+        (m * pow2(64), 64)
+    } else {
+        (m, 0)
+    };
+    let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023 - pre;
+    // 2^-e in two factors, each a normal number.
+    let half = -e / 2;
+    Some(a.map(|v| v * pow2(half) * pow2(-e - half)))
+}
+
+/// 2^k for k in [-1022, 1023].
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((1023 + k) as u64) << 52)
 }
 
 /// `a / |a|`, or None when `a` is (relative to rounding) zero.
