@@ -5,7 +5,7 @@
 use crate::expr::{Expr, Vec3};
 use crate::front::errors::Errors;
 use crate::front::ids::{LinkId, PivotId};
-use crate::front::resolved::{Decl, Form, LinkRole, Pair, PairKind};
+use crate::front::resolved::{Decl, Form, Pair};
 use crate::model::general::{self, Added, Topology};
 use crate::model::shapes::{self, ChainModel};
 use crate::model::PointRef;
@@ -366,18 +366,10 @@ fn explicit_pairs<'d>(d: &'d Decl, topo: &Topology) -> Vec<(&'d Pair, usize)> {
             let (Some(before), Some(after)) = (chain.links[k], chain.links[k + 1]) else {
                 continue;
             };
-            let moves = matches!(
-                p.kind,
-                PairKind::R | PairKind::P | PairKind::H | PairKind::C
-            );
             let Some(link) = topo.link(after) else {
                 continue;
             };
-            if d.link(before).role == LinkRole::Base
-                && d.link(after).role == LinkRole::Intermediate
-                && p.active
-                && moves
-                && p.axis.is_some()
+            if general::explicit::places(p, d.link(before).role, d.link(after).role)
                 && !out.iter().any(|&(_, l)| l == link)
             {
                 out.push((p, link));

@@ -5,10 +5,25 @@
 
 use super::{err, PointId, Topology};
 use crate::expr::{self, Expr, Vec3};
-use crate::front::resolved::{Pair, PairKind};
+use crate::front::resolved::{LinkRole, Pair, PairKind};
 use crate::model::builder::Scalar;
 use crate::model::{turn, Builder, PointRef, Recipe};
 use syn::Error;
+
+/// Whether `pair`, from a link of role `before` to a declared link of role `after`, places that
+/// link explicitly in its inputs: an active R, P, H or C with an axis, from the base to an
+/// intermediate link. The one rule for which links are explicit (`build`'s `explicit_pairs`)
+/// and for the links a lever may be added to (`topology`'s `levers`).
+pub fn places(pair: &Pair, before: LinkRole, after: LinkRole) -> bool {
+    before == LinkRole::Base
+        && after == LinkRole::Intermediate
+        && pair.active
+        && pair.axis.is_some()
+        && matches!(
+            pair.kind,
+            PairKind::R | PairKind::P | PairKind::H | PairKind::C
+        )
+}
 
 /// Point `q` of a link placed by `pair` from the base, in closed form.
 pub fn placed(

@@ -198,17 +198,10 @@ pub fn topology<'a>(
 fn known(topo: &Topology, li: usize) -> bool {
     let link = &topo.links[li];
     link.role == LinkRole::Base
-        || link.role == LinkRole::Intermediate
-            && link.declared.is_some()
+        || link.declared.is_some()
             && topo.joints.iter().any(|j| {
                 j.after == li
-                    && topo.links[j.before].role == LinkRole::Base
-                    && j.pair.active
-                    && j.pair.axis.is_some()
-                    && matches!(
-                        j.pair.kind,
-                        PairKind::R | PairKind::P | PairKind::H | PairKind::C
-                    )
+                    && super::explicit::places(j.pair, topo.links[j.before].role, link.role)
             })
 }
 
