@@ -225,9 +225,7 @@ const SHORT_AXIS: f64 = 0.25;
 fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
     let mut added = false;
     let at = |b: &Builder, topo: &Topology, q: PointId| b.home(topo.home(q));
-    let distance = |p: [f64; 3], q: [f64; 3]| {
-        ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-    };
+    let distance = linkage_geometry::distance;
     // The mechanism's size: the largest distance between two of its points at home. One length
     // for every lever, so that a symmetric mechanism's levers are symmetric too.
     let homes: Vec<[f64; 3]> = topo.points.homes().map(|h| b.home(h)).collect();
