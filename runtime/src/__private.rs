@@ -1,6 +1,6 @@
 //! Helpers the generated code calls. Not public API: names and signatures may change.
 
-use crate::GeometryError;
+use crate::error::GeometryError;
 
 #[inline(always)]
 pub fn sq(x: f64) -> f64 {

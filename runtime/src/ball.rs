@@ -130,7 +130,7 @@ impl<const D: usize> Mul for Ball<D> {
     }
 }
 
-impl<const D: usize> crate::Scalar for Ball<D> {
+impl<const D: usize> crate::scalar::Scalar for Ball<D> {
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
         Ball {
@@ -169,7 +169,7 @@ impl<const D: usize> crate::Scalar for Ball<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Scalar;
+    use crate::scalar::Scalar;
 
     /// Whether `b` at box size ρ holds `x`.
     fn holds<const D: usize>(b: &Ball<D>, rho: f64, x: f64) -> bool {

@@ -1,9 +1,12 @@
 //! Pseudo-arc-length continuation with a proof: the answer of [`arc_length`] is the start
 //! continued along the straight joint-space segment, proven by chained parametric Krawczyk
-//! certificates over the segment (as [`crate::CertifiedSteps`] chains a tracker's steps).
+//! certificates over the segment (as [`crate::certified_steps::CertifiedSteps`] chains a tracker's steps).
 
+use crate::arc_length::arc_length;
 use crate::certified_steps::{PATH_DEPTH, PATH_PIECES, StepProof, prove};
-use crate::{Mechanism, Options, Solution, SolveError, Start, arc_length};
+use crate::mechanism::Mechanism;
+use crate::solution::{Options, Solution, SolveError};
+use crate::start::Start;
 
 /// [`arc_length`], and for a converged answer the proof that it lies on the start's branch:
 /// the segment from the start's inputs to `target` covered by parametric Krawczyk certificates

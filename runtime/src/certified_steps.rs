@@ -8,15 +8,15 @@
 //! the chain keeps one (from [`certify`] at its first point, then from each step's certificate,
 //! which encloses the root at the step's end) and checks it against the next box.
 
-use crate::Mechanism;
 use crate::certify::{CertifyError, certify, certify_step};
 use crate::interval::Interval;
+use crate::mechanism::Mechanism;
 
 /// Pieces a tracked step may be split into, at most (in halves, then quarters, …).
 const MAX_PIECES: u32 = 64;
 /// How often a tracked step's piece may be halved: pieces down to 1/2⁸ of the step.
 const MAX_DEPTH: usize = 8;
-/// For a whole continuation path ([`crate::arc_length_certified`]): pieces, and halvings
+/// For a whole continuation path ([`crate::certified_path::arc_length_certified`]): pieces, and halvings
 /// (down to 1/2³² of the segment, for paths that end near a singularity).
 pub(crate) const PATH_PIECES: u32 = 4096;
 pub(crate) const PATH_DEPTH: usize = 32;

@@ -31,7 +31,8 @@
 use crate::ball::{Ball, U, up};
 use crate::interval::Interval;
 use crate::lu::Lu;
-use crate::{Mechanism, Scalar};
+use crate::mechanism::Mechanism;
+use crate::scalar::Scalar;
 
 /// A proven statement about the roots near a point.
 #[derive(Clone, Copy, Debug, PartialEq)]

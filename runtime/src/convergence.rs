@@ -14,7 +14,7 @@
 /// whose successor, extrapolated from the contraction so far (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≤ 0.1), would be
 /// below the tolerance. [`Self::stalled`] says that the corrections stopped decreasing while
 /// already below 1e-6 of the scale: the floor rounding sets near a singularity, where the
-/// tolerance cannot be met — a distinct outcome ([`Status::ToleranceNotMet`](crate::Status)),
+/// tolerance cannot be met — a distinct outcome ([`Status::ToleranceNotMet`](crate::solution::Status)),
 /// never a success. Linear convergence (ratio ½, as at a double root) keeps iterating.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Convergence {

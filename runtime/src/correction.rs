@@ -2,7 +2,9 @@
 
 use crate::lu::Lu;
 use crate::math::{norm, size};
-use crate::{Linear, Mechanism, Turns};
+use crate::mechanism::Mechanism;
+use crate::solution::Linear;
+use crate::turns::Turns;
 
 /// A Newton correction at a point, with what factoring B there told.
 #[derive(Clone, Copy, Debug)]

@@ -15,7 +15,9 @@ use crate::arc_length::{arc_length, from_accepted};
 use crate::correction::det_b;
 use crate::lu::Lu;
 use crate::math::norm;
-use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
+use crate::mechanism::Mechanism;
+use crate::solution::{Options, Solution, SolveError, Status};
+use crate::start::Start;
 
 /// How far back from the last point before the fold (a share of the way to it) the detour
 /// leaves the straight segment.

@@ -117,7 +117,7 @@ impl Mul for DoubleDouble {
     }
 }
 
-impl crate::Scalar for DoubleDouble {
+impl crate::scalar::Scalar for DoubleDouble {
     fn from_f64(x: f64) -> Self {
         Self::new(x)
     }
@@ -139,7 +139,7 @@ impl crate::Scalar for DoubleDouble {
 #[cfg(test)]
 mod tests {
     use super::DoubleDouble;
-    use crate::Scalar;
+    use crate::scalar::Scalar;
 
     fn dd(x: f64) -> DoubleDouble {
         DoubleDouble::from_f64(x)

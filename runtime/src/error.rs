@@ -9,12 +9,12 @@ pub use linkage_geometry::GeometryError;
 pub enum InverseError {
     /// No joint value of input `input` places the chain's pivots there.
     Unreachable {
-        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        /// The input's index in [`Mechanism::INPUTS`](crate::mechanism::Mechanism::INPUTS).
         input: usize,
     },
     /// Input `input` has no closed-form inverse for this chain.
     NoClosedForm {
-        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        /// The input's index in [`Mechanism::INPUTS`](crate::mechanism::Mechanism::INPUTS).
         input: usize,
     },
     /// The pose, the pivots or the reference contain NaN or infinite values, or the inputs
@@ -28,7 +28,7 @@ pub enum InverseError {
     /// reference is too large for that (beyond 2¹⁶ rad, about 10 400 turns): a double near it
     /// no longer holds the angle found. Give a reference within a few turns.
     FarReference {
-        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        /// The input's index in [`Mechanism::INPUTS`](crate::mechanism::Mechanism::INPUTS).
         input: usize,
     },
 }

@@ -26,7 +26,8 @@
 use crate::double_double::DoubleDouble;
 use crate::interval::Interval;
 use crate::math::size;
-use crate::{Mechanism, Scalar};
+use crate::mechanism::Mechanism;
+use crate::scalar::Scalar;
 
 /// How close (as a share of the tolerance) the floor predicted from the start's may come
 /// before the floor is measured at the answer itself. The prediction scales the start's floor

@@ -43,7 +43,8 @@
 //! half a turn of the reference (the generated caller refuses a reference too far out for
 //! that, `InverseError::FarReference`).
 
-use crate::{InverseError, Mechanism};
+use crate::error::InverseError;
+use crate::mechanism::Mechanism;
 
 /// Levenberg–Marquardt iterations per solve from a guess (far from home, with several inputs,
 /// a hundred can end short of the answer, at a residual that looks small only because the

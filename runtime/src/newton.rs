@@ -5,7 +5,9 @@
 use crate::convergence::{Chords, Convergence};
 use crate::correction::{Correction, Failure};
 use crate::math::size;
-use crate::{Linear, Mechanism, Options, Turns};
+use crate::mechanism::Mechanism;
+use crate::solution::{Linear, Options};
+use crate::turns::Turns;
 
 /// Corrections that did not shrink at the rounding floor before a final run ends `Stalled`.
 const MAX_STALLS: u32 = 3;
@@ -104,7 +106,7 @@ pub(crate) fn newton<S: Mechanism<N, M>, const N: usize, const M: usize>(
     newton_scaled(sys, &v, size(&v), x, options, rule, Shortcuts::NONE)
 }
 
-/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::Start)'s, computed once), and the
+/// [`newton`] with `scale` = ‖v‖ known (a [`Start`](crate::start::Start)'s, computed once), and the
 /// `shortcuts` Newton–Raphson takes. Chord steps pay in a long run from a distant start; a
 /// final correction after continuation starts next to the root, where they would save nothing
 /// and, near a singularity, would only move the answer to another point of the rounding floor.

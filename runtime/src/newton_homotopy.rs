@@ -3,12 +3,14 @@
 //! iteration fails is halved. It follows the start's branch while steps are small compared with
 //! the distance to a singularity, and it cannot pass a fold — but nothing shows when a step
 //! was not small enough (it may jump across a fold to another assembly mode of the same det B
-//! sign), so a converged result is [`Status::Unverified`](crate::Status::Unverified), never
+//! sign), so a converged result is [`Status::Unverified`](crate::solution::Status::Unverified), never
 //! `Converged`.
 
+use crate::mechanism::Mechanism;
 use crate::newton::{Ending, Rule, newton};
 use crate::outcome::{Account, conclude, finish, not_converged, unverified};
-use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
+use crate::solution::{Options, Solution, SolveError, Status};
+use crate::start::Start;
 
 /// Solves F(v, x*) = 0 by Newton homotopy from the start.
 pub fn newton_homotopy<S: Mechanism<N, M>, const N: usize, const M: usize>(

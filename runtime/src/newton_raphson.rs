@@ -1,14 +1,16 @@
 //! Newton–Raphson (the paper's NRA): Newton's method ([`newton`]) on F(v, x*) = 0 from the
 //! start's v. Fast, and with no notion of branch: near a singularity it may converge to another
 //! assembly mode. The det B sign check catches some of those, not all, so a converged result is
-//! [`Status::Unverified`](crate::Status::Unverified), never `Converged`.
+//! [`Status::Unverified`](crate::solution::Status::Unverified), never `Converged`.
 
+use crate::mechanism::Mechanism;
 use crate::newton::{Ending, Prefactored, Rule, Shortcuts, newton_scaled};
 use crate::outcome::{Account, conclude, unverified};
-use crate::{Mechanism, Options, Solution, SolveError, Start};
+use crate::solution::{Options, Solution, SolveError};
+use crate::start::Start;
 
 /// Solves F(v, x) = 0 by Newton's method from `start.v`. A result that meets the tolerance
-/// with det B of the start's sign is [`Status::Unverified`](crate::Status::Unverified):
+/// with det B of the start's sign is [`Status::Unverified`](crate::solution::Status::Unverified):
 /// Newton's method may converge to another assembly mode of the same det B sign, and nothing
 /// here can tell (where the branch matters, solve with [`arc_length`](crate::arc_length)).
 ///
@@ -92,7 +94,7 @@ pub struct NewtonRaphson<S: Mechanism<N, M>, const N: usize, const M: usize> {
 }
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize> NewtonRaphson<S, N, M> {
-    /// Newton–Raphson for `sys` (owned, like a [`Tracker`](crate::Tracker)'s) from `start`,
+    /// Newton–Raphson for `sys` (owned, like a [`Tracker`](crate::tracker::Tracker)'s) from `start`,
     /// with B factored there if it serves every target.
     pub fn new(sys: S, start: Start<N, M>) -> Self {
         let at_start = if S::JACOBIAN_USES_INPUTS {

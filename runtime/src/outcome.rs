@@ -7,8 +7,10 @@
 use crate::correction::{correction, det_b};
 use crate::floor::{Floor, Vouched, vouch};
 use crate::math::{norm, size, squares};
+use crate::mechanism::Mechanism;
 use crate::newton::{Ending, Newton};
-use crate::{Mechanism, Solution, Start, Status};
+use crate::solution::{Solution, Status};
+use crate::start::Start;
 
 /// What a solve met on its way, for its [`Solution`].
 #[derive(Clone, Copy, Debug)]

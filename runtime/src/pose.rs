@@ -1,7 +1,7 @@
 //! Poses of the moving platform and their relation to the unknowns v.
 
-use crate::Mechanism;
 use crate::math::{asin, atan2, cos, cross3, dot3, norm3, scale3, sin, sub3};
+use crate::mechanism::Mechanism;
 use linkage_geometry::least_rotation;
 
 /// A rigid transformation: `p_base = rotation · p_platform + translation`.

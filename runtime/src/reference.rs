@@ -5,7 +5,8 @@
 
 use crate::correction::dense_b;
 use crate::lu::Lu;
-use crate::{Mechanism, Start};
+use crate::mechanism::Mechanism;
+use crate::start::Start;
 
 /// The start's branch at `target` by natural-parameter continuation along the straight segment
 /// from the start's inputs, in `steps` equal steps (Newton at each), with the number of sign

@@ -27,7 +27,7 @@ pub enum Status {
     },
     /// The sign of det B differs from the start's: the result lies across a singular
     /// surface, on another branch. Also where an equation left out as dependent at home
-    /// fails at the result ([`Mechanism::dependent_offset`](crate::Mechanism::dependent_offset)):
+    /// fails at the result ([`Mechanism::dependent_offset`](crate::mechanism::Mechanism::dependent_offset)):
     /// another component of an over-constrained mechanism's square system.
     BranchChanged,
     /// Newton did not converge within the iteration limit, or its iterates overflowed.
@@ -158,7 +158,7 @@ pub enum SolveError {
     },
     /// Joint input `input` is out of its physical range (e.g. a negative leg length).
     InvalidInput {
-        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        /// The input's index in [`Mechanism::INPUTS`](crate::mechanism::Mechanism::INPUTS).
         input: usize,
     },
     /// B is singular at the start configuration.
@@ -264,43 +264,6 @@ impl Options {
     /// Largest tolerance, as a share of the problem's scale ‖v0‖ (1 where v0 = 0): a tolerance
     /// larger than that would call points converged that lie anywhere on a small mechanism.
     pub const MAX_RELATIVE_TOLERANCE: f64 = 1e-3;
-
-    /// Whether these options can be used from `start` (every solver and the tracker checks
-    /// them so, and refuses with this error): a positive tolerance within
-    /// [`MAX_RELATIVE_TOLERANCE`](Self::MAX_RELATIVE_TOLERANCE) of the start's size, and
-    /// positive iteration and step counts. For a program that would rather say so once than
-    /// for every solve.
-    ///
-    /// ```
-    /// use linkage::{Options, SolveError, Start};
-    /// # linkage::mechanism! {
-    /// #     pub struct Rps;
-    /// #     base {
-    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
-    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
-    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
-    /// #     }
-    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
-    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
-    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
-    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
-    /// # }
-    /// # use linkage::Mechanism;
-    /// let rps = Rps::new();
-    /// let v0 = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
-    /// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
-    /// let start = Start::new(&rps, v0, x0).unwrap();
-    /// assert_eq!(Options::TIGHT.check_for(&start), Ok(()));
-    /// // A tolerance of 1 m on a platform 200 mm across would call anything converged.
-    /// let loose = Options { tolerance: 1000.0, ..Options::TIGHT };
-    /// assert!(matches!(loose.check_for(&start), Err(SolveError::InvalidOptions { .. })));
-    /// ```
-    pub fn check_for<const N: usize, const M: usize>(
-        &self,
-        start: &crate::Start<N, M>,
-    ) -> Result<(), SolveError> {
-        self.check(start.scale())
-    }
 
     /// Checks the options for a problem whose start has `‖v0‖ = scale`.
     pub(crate) fn check(&self, scale: f64) -> Result<(), SolveError> {

@@ -2,10 +2,14 @@
 //! solution, never leaving the start's branch.
 
 use crate::arc_length::from_accepted;
+use crate::certified_steps::StepProof;
 use crate::convergence::Contraction;
 use crate::correction::{Correction, det_b};
 use crate::math::size;
-use crate::{Mechanism, Options, SolveError, Start, Status, StepProof, Turns};
+use crate::mechanism::Mechanism;
+use crate::solution::{Options, SolveError, Status};
+use crate::start::Start;
+use crate::turns::Turns;
 
 /// Corrections the fast path may take before it gives the sample to continuation.
 const MAX_CORRECTIONS: u32 = 8;
@@ -43,8 +47,8 @@ pub struct Sample<const N: usize> {
     /// Whether the fast path failed and continuation had to take over.
     pub fell_back: bool,
     /// With [`Tracker::certified`]: the proof that this step kept the branch (always
-    /// [`StepProof::Proven`](crate::StepProof::Proven): an unproven step is refused).
-    pub proof: Option<crate::StepProof>,
+    /// [`StepProof::Proven`](crate::certified_steps::StepProof::Proven): an unproven step is refused).
+    pub proof: Option<crate::certified_steps::StepProof>,
 }
 
 /// Why a sample was refused. The tracker keeps its last good state and stays usable.
@@ -55,13 +59,13 @@ pub enum TrackError {
     /// The sample cannot be reached on the branch from the last one.
     Lost(Status),
     /// With [`Tracker::certified`]: the sample was solved, but the step to it could not be
-    /// proven to keep the branch ([`StepProof::Unproven`](crate::StepProof::Unproven) says
+    /// proven to keep the branch ([`StepProof::Unproven`](crate::certified_steps::StepProof::Unproven) says
     /// after how many pieces and why). Not a statement that the branch changed.
     Unproven {
         /// How many pieces had been certified before the one that failed.
         pieces: u32,
         /// Why that piece failed.
-        reason: crate::CertifyError,
+        reason: crate::certify::CertifyError,
     },
 }
 
@@ -176,7 +180,7 @@ pub struct Tracker<S: Mechanism<N, M>, const N: usize, const M: usize> {
     /// prediction, and the input step it belongs to; `None` after continuation.
     bend: Option<Bend<N, M>>,
     /// With [`Tracker::certified`]: the chain of step certificates.
-    certified: Option<crate::CertifiedSteps<N, M>>,
+    certified: Option<crate::certified_steps::CertifiedSteps<N, M>>,
     /// The options checked against the start once: neither changes while tracking.
     options_checked: Result<(), SolveError>,
     /// The sines and cosines of the inputs (for a mechanism that turns by them) at the inputs
@@ -212,7 +216,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
         }
     }
 
-    /// Certifies every step ([`CertifiedSteps`](crate::CertifiedSteps)): a sample is accepted
+    /// Certifies every step ([`CertifiedSteps`](crate::certified_steps::CertifiedSteps)): a sample is accepted
     /// only when the joint segment from the last accepted sample is proven, by parametric
     /// Krawczyk certificates (the segment split into up to 64 pieces when it does not pass
     /// whole), to lead along one branch without a singularity; [`Sample::proof`] holds the
@@ -251,7 +255,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Tracker<S, N, M> {
     /// }
     /// ```
     pub fn certified(mut self) -> Self {
-        self.certified = Some(crate::CertifiedSteps::new());
+        self.certified = Some(crate::certified_steps::CertifiedSteps::new());
         self
     }
 

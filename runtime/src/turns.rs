@@ -1,12 +1,10 @@
 //! Sines and cosines of the inputs, evaluated once where the inputs stay fixed.
 
-use crate::Mechanism;
-
 /// `[sin xⱼ, cos xⱼ]` for each input `j` that a mechanism's kernels turn by (a crank's angle),
-/// zeros for the others: [`Mechanism::turns`](crate::Mechanism::turns) evaluates them, and a
+/// zeros for the others: [`Mechanism::turns`](crate::mechanism::Mechanism::turns) evaluates them, and a
 /// Newton run at fixed inputs passes them to every residual and factorisation
-/// ([`Mechanism::residual_turned`](crate::Mechanism::residual_turned),
-/// [`Mechanism::factor_turned`](crate::Mechanism::factor_turned)) instead of each evaluating
+/// ([`Mechanism::residual_turned`](crate::mechanism::Mechanism::residual_turned),
+/// [`Mechanism::factor_turned`](crate::mechanism::Mechanism::factor_turned)) instead of each evaluating
 /// them again: in a rotary hexapod they were about 40 % of a Newton iteration.
 ///
 /// Only `turns(x)` of the same mechanism at the same `x` is meaningful to pass on.
@@ -42,21 +40,4 @@ pub struct Turns<const M: usize>(pub [[f64; 2]; M]);
 impl<const M: usize> Turns<M> {
     /// No input turned: what a mechanism without angle inputs passes.
     pub const NONE: Self = Turns([[0.0; 2]; M]);
-
-    /// `sys.turns(x)`, kept in `slot`, where the mechanism turns by an input
-    /// ([`Mechanism::TURNS`]); otherwise the shared [`Self::NONE`], with nothing evaluated
-    /// or stored (the kernels then never read it).
-    #[inline(always)]
-    pub(crate) fn of<'a, S: Mechanism<N, M>, const N: usize>(
-        sys: &S,
-        x: &[f64; M],
-        slot: &'a mut Self,
-    ) -> &'a Self {
-        if S::TURNS {
-            *slot = sys.turns(x);
-            slot
-        } else {
-            &Self::NONE
-        }
-    }
 }

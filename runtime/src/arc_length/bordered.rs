@@ -6,7 +6,8 @@
 use super::path::{Path, Point, Tangent, dot};
 use crate::lu::{Bordered, BorderedLu, Extended, Lu};
 use crate::math::norm;
-use crate::{Linear, Mechanism};
+use crate::mechanism::Mechanism;
+use crate::solution::Linear;
 
 /// Below this pivot ratio the generated factorisation is not trusted for bordering.
 const MIN_PIVOT_RATIO: f64 = 1e-10;

@@ -4,10 +4,10 @@
 
 use super::bordered::{DenseFrame, Frame};
 use super::path::{Path, Point, Tangent, dot};
-use crate::Mechanism;
 use crate::convergence::Contraction;
 use crate::correction::correction_in;
 use crate::lu::Extended;
+use crate::mechanism::Mechanism;
 
 /// Most corrections of one step.
 const MAX_CORRECTOR: usize = 5;

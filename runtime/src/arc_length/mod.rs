@@ -35,9 +35,11 @@ mod step;
 
 use crate::correction::det_b;
 use crate::math::norm;
+use crate::mechanism::Mechanism;
 use crate::newton::{Rule, newton};
 use crate::outcome::{Account, conclude, finish};
-use crate::{Mechanism, Options, Solution, SolveError, Start, Status};
+use crate::solution::{Options, Solution, SolveError, Status};
+use crate::start::Start;
 use path::{Path, Point, Tangent, dot, first_order_travel};
 use step::{Previous, StepControl, det_dips};
 
@@ -182,8 +184,10 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
         // one where it declines or the dense baseline was asked for.
         let mut factor = sys.new_factor();
         let generated = match options.linear {
-            crate::Linear::Dense => None,
-            crate::Linear::Generated => sys.factor(&v, &x, &mut factor).map(|info| info.det),
+            crate::solution::Linear::Dense => None,
+            crate::solution::Linear::Generated => {
+                sys.factor(&v, &x, &mut factor).map(|info| info.det)
+            }
         };
         (generated.unwrap_or_else(|| det_b(sys, &v, &x)), chord)
     };

@@ -1,7 +1,9 @@
 //! The homotopy path in `y = (v, μ)`: its points, tangents, and H and its derivatives there.
 
 use crate::math::norm;
-use crate::{Linear, Mechanism, Start};
+use crate::mechanism::Mechanism;
+use crate::solution::Linear;
+use crate::start::Start;
 
 /// The straight joint-space segment from the start to the target, parametrised by
 /// μ = λ‖Δv‖ (see the module docs of `arc_length`).
@@ -90,14 +92,14 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize> Path<'_, S, N, M> {
 /// to first order. With `check`, the factorisation also measures the start's own Newton
 /// correction ‖B⁻¹ F(v0, x0)‖ first (one residual and one solve more): a start that is not a
 /// solution for the mechanism it is given (made before `set_geometry`) is refused with
-/// [`SolveError::InconsistentStart`](crate::SolveError::InconsistentStart), as
+/// [`SolveError::InconsistentStart`](crate::solution::SolveError::InconsistentStart), as
 /// [`crate::start::check_consistent`] says.
 pub(super) fn first_order_travel<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     start: &Start<N, M>,
     dx: &[f64; M],
     check: bool,
-) -> Result<Option<f64>, crate::SolveError> {
+) -> Result<Option<f64>, crate::solution::SolveError> {
     let mut fac = sys.new_factor();
     if sys.factor(start.v(), start.x(), &mut fac).is_none() {
         // B singular here, where `Start::new` found it regular: judged (and refused) as

@@ -7,10 +7,13 @@
 //! one from a SCARA's home, at the edge of its reach, leaves it at once).
 
 use super::levenberg_marquardt::{ACCEPT, STALL, STALLED, Solver, Work, off_by};
+use crate::arc_length::arc_length;
 use crate::damped_least_squares::DampedLeastSquares;
 use crate::lu::Lu;
 use crate::math::sqrt;
-use crate::{Mechanism, Options, Start, Status, arc_length};
+use crate::mechanism::Mechanism;
+use crate::solution::{Options, Status};
+use crate::start::Start;
 
 /// Iterations over the inputs (each a forward solve).
 const ITERATIONS: usize = 60;

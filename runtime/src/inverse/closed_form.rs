@@ -11,7 +11,7 @@
 //! not as far apart as declared (`platform_keeps_its_distances`, for every model, whether or
 //! not it has such equations).
 
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 use linkage_geometry::distance;
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the equations on the

@@ -2,7 +2,7 @@
 //! given pose, each step solved by Levenberg–Marquardt from the last.
 
 use super::levenberg_marquardt::Solver;
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 use crate::pose::{Pose, pose_from_unknowns, unknowns_from_pose};
 
 /// Levenberg–Marquardt iterations per step along the path (each starts near its answer).

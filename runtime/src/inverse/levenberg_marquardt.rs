@@ -3,9 +3,9 @@
 
 use core::cell::Cell;
 
-use crate::Mechanism;
 use crate::damped_least_squares::DampedLeastSquares;
 use crate::math::sqrt;
+use crate::mechanism::Mechanism;
 
 /// How far, relative to the scale (1 + the largest platform coordinate), the given platform
 /// may be from the mechanism's motion and the answer's pivots from satisfying the equations.

@@ -2,9 +2,9 @@
 //! inputs place it, each placement by Newton on F(·, x) = 0 over every unknown.
 
 use super::levenberg_marquardt::{Solver, off_by};
-use crate::Mechanism;
 use crate::damped_least_squares::DampedLeastSquares;
 use crate::lu::Lu;
+use crate::mechanism::Mechanism;
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize, const Z: usize> Solver<'_, S, N, M, Z> {
     /// The unknowns where the inputs `x` place the mechanism: Newton on F(·, x) = 0 over every

@@ -5,7 +5,9 @@
 extern crate std;
 
 use super::Work;
-use crate::{Mechanism, Options, Status, arc_length};
+use crate::arc_length::arc_length;
+use crate::mechanism::Mechanism;
+use crate::solution::{Options, Status};
 use core::cell::Cell;
 use std::{eprintln, thread_local};
 
@@ -48,7 +50,7 @@ crate::mechanism! {
 /// The unknowns at `x`, by continuation from home.
 fn forward<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
-    start: &crate::Start<N, M>,
+    start: &crate::start::Start<N, M>,
     x: &[f64; M],
 ) -> [f64; N] {
     let options = Options {
@@ -63,7 +65,7 @@ fn forward<S: Mechanism<N, M>, const N: usize, const M: usize>(
 /// Largest distance of a platform coordinate of `v` from where `back` places it.
 fn misplaced<S: Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
-    start: &crate::Start<N, M>,
+    start: &crate::start::Start<N, M>,
     v: &[f64; N],
     back: &[f64; M],
 ) -> f64 {
@@ -269,7 +271,7 @@ fn a_platform_out_of_shape_is_refused_without_a_search() {
     for by in [1e-3, 1e-5, -2e-6] {
         let r = rrs.inverse(&moved(by), &Rrs::HOME_INPUTS);
         assert!(
-            matches!(r, Err(crate::InverseError::Unreachable { .. })),
+            matches!(r, Err(crate::error::InverseError::Unreachable { .. })),
             "G3 moved by {by} of the scale: {r:?}"
         );
         assert_eq!(take()[0], 0, "G3 moved by {by} of the scale: a search ran");
@@ -277,7 +279,7 @@ fn a_platform_out_of_shape_is_refused_without_a_search() {
     // Between the acceptance and FAR: searched, and refused.
     let r = rrs.inverse(&moved(1e-7), &Rrs::HOME_INPUTS);
     assert!(
-        matches!(r, Err(crate::InverseError::Unreachable { .. })),
+        matches!(r, Err(crate::error::InverseError::Unreachable { .. })),
         "{r:?}"
     );
     assert!(take()[0] > 0);
@@ -306,7 +308,7 @@ fn a_platform_placed_through_links_out_of_shape_is_refused_without_a_search() {
         off[2 * k + 2] += by * scale;
         let r = arm.inverse(&off, &ScaraWrist::HOME_INPUTS);
         assert!(
-            matches!(r, Err(crate::InverseError::Unreachable { .. })),
+            matches!(r, Err(crate::error::InverseError::Unreachable { .. })),
             "Q moved by {by} of the scale: {r:?}"
         );
         assert_eq!(take()[0], 0, "Q moved by {by} of the scale: a search ran");
@@ -322,7 +324,7 @@ fn a_platform_placed_through_links_out_of_shape_is_refused_without_a_search() {
     take();
     let r = calibrated.inverse(&v, &ScaraWrist::HOME_INPUTS);
     assert!(
-        matches!(r, Err(crate::InverseError::Unreachable { .. })),
+        matches!(r, Err(crate::error::InverseError::Unreachable { .. })),
         "{r:?}"
     );
     assert_eq!(take()[0], 0, "a search ran");

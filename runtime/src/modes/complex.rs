@@ -1,5 +1,5 @@
 //! A small complex number type for the homotopy: the generated `residual_in` and
-//! `jacobian_in` evaluate F and ∂F/∂v in it through [`Scalar`](crate::Scalar).
+//! `jacobian_in` evaluate F and ∂F/∂v in it through [`Scalar`](crate::scalar::Scalar).
 
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -174,7 +174,7 @@ impl MulAssign for Complex {
     }
 }
 
-impl crate::Scalar for Complex {
+impl crate::scalar::Scalar for Complex {
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
         Complex::real(x)

@@ -4,8 +4,8 @@ use super::complex::Complex;
 use super::polish::polish;
 use super::roots::{Endpoint, EndpointKind};
 use super::track::{Model, Outcome, Tracked, Workspace};
-use crate::Mechanism;
 use crate::lu::Lu;
+use crate::mechanism::Mechanism;
 
 /// A path that stops this close to the target without reaching it is taken to approach a
 /// singular endpoint.
@@ -158,7 +158,7 @@ pub(crate) fn real_root<S: Mechanism<N, M>, const N: usize, const M: usize>(
     let residual = f.iter().fold(0.0f64, |m, r| m.max(r.abs()));
     let det = match sys.factor(&w, x, &mut fac) {
         Some(factored) => factored.det,
-        None => crate::det_b(sys, &w, x),
+        None => crate::correction::det_b(sys, &w, x),
     };
     Some((w, residual, det))
 }

@@ -101,7 +101,7 @@ impl Mul for Wide {
     }
 }
 
-impl crate::Scalar for Wide {
+impl crate::scalar::Scalar for Wide {
     fn from_f64(x: f64) -> Self {
         Wide::from(Complex::real(x))
     }
@@ -111,17 +111,17 @@ impl crate::Scalar for Wide {
     }
     // The inputs' sines and cosines in f64 (see the module docs).
     fn sin(self) -> Self {
-        Wide::from(<Complex as crate::Scalar>::sin(self.round()))
+        Wide::from(<Complex as crate::scalar::Scalar>::sin(self.round()))
     }
     fn cos(self) -> Self {
-        Wide::from(<Complex as crate::Scalar>::cos(self.round()))
+        Wide::from(<Complex as crate::scalar::Scalar>::cos(self.round()))
     }
 }
 
 /// The equations in tracking coordinates at (z, p), evaluated in double-double and rounded:
 /// F(z, p), or with a projective chart `w^d F(z / w)` with `w = 1 − c·z` (whose cancellation
 /// near infinity is exactly what needs the extra digits).
-pub(crate) fn residual<S: crate::Mechanism<N, M>, const N: usize, const M: usize>(
+pub(crate) fn residual<S: crate::mechanism::Mechanism<N, M>, const N: usize, const M: usize>(
     sys: &S,
     chart: Option<(&[Complex; N], &[u8; N])>,
     z: &[Complex; N],

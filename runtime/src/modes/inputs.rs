@@ -8,7 +8,7 @@
 
 use super::complex::Complex;
 use super::rng::Rng;
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// The kind of each input and the length scale.
 #[derive(Clone, Copy, Debug)]

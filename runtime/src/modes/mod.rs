@@ -72,7 +72,7 @@ pub use options::{Ended, ModesError, ModesOptions, StartReport};
 pub use roots::{Endpoint, EndpointKind, RealRoot, Roots};
 pub use taylor::Series;
 
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 use inputs::Inputs;
 use sparse_lu::Plan;
 use track::{Chart, Model};

@@ -16,7 +16,7 @@ use super::polish::{SAME, contains, polish};
 use super::rng::Rng;
 use super::symmetry::Symmetries;
 use super::track::{Model, Outcome, Settings, Workspace};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// The loop points' size relative to p₀'s, alternating: loops as small as p₀ itself leave many
 /// roots fixed (their branch points lie further out), so that monodromy on a general 6-6

@@ -4,7 +4,7 @@
 #[cfg(doc)]
 use super::AllModes;
 #[cfg(doc)]
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// How the start solutions are computed.
 ///
@@ -84,7 +84,7 @@ pub enum ModesError {
     NonFinite,
     /// Input `input` is out of its range (e.g. a negative leg length).
     InvalidInput {
-        /// The input's index in [`Mechanism::INPUTS`](crate::Mechanism::INPUTS).
+        /// The input's index in [`Mechanism::INPUTS`](crate::mechanism::Mechanism::INPUTS).
         input: usize,
     },
     /// The seeding reached solutions of F(v, x) = 0, and ∂F/∂v was singular at every one: the

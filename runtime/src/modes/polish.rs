@@ -6,7 +6,7 @@
 use super::complex::Complex;
 use super::extended::WIDE_BEYOND;
 use super::track::{Model, Workspace};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// Newton at fixed parameters to full precision. `true` if it converges as at a nonsingular
 /// root: the correction falls below 1e-13 (weighted), or it stalls at the floor rounding sets

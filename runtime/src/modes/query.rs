@@ -7,7 +7,7 @@ use super::polish::{SAME, contains};
 use super::roots::{Endpoint, EndpointKind, RealRoot, Roots};
 use super::track::{Model, Settings, Workspace};
 use super::{AllModes, ModesError};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllModes<S, N, M, K> {
     /// Every root at inputs `x`, into `out`. No heap, no panic; NaN, infinite or out-of-range
@@ -181,7 +181,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             };
             *slot = RealRoot {
                 v,
-                pose: crate::pose_from_unknowns(&self.sys, &v),
+                pose: crate::pose::pose_from_unknowns(&self.sys, &v),
                 det,
                 residual,
                 nearest: out.endpoints[i].nearest,

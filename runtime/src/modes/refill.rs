@@ -28,7 +28,7 @@ use super::path::ParameterPath;
 use super::polish::{SAME, contains};
 use super::roots::{Endpoint, EndpointKind, Roots};
 use super::track::{Model, Settings, Workspace};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// A root reached along another γ is new only if it is this many times [`SAME`] away from
 /// every known root (weighted, in tracking coordinates).

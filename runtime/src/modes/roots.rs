@@ -2,7 +2,7 @@
 //! poses.
 
 use super::complex::Complex;
-use crate::Pose;
+use crate::pose::Pose;
 
 /// How a path from a start solution ended at the target inputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -21,7 +21,7 @@ pub enum EndpointKind {
     /// The tracker gave up before the target, away from it.
     Failed,
     /// A real root of the square system at which an equation left out as dependent at home
-    /// fails ([`Mechanism::dependent_offset`](crate::Mechanism::dependent_offset)): not an
+    /// fails ([`Mechanism::dependent_offset`](crate::mechanism::Mechanism::dependent_offset)): not an
     /// assembly of the mechanism.
     Spurious,
 }

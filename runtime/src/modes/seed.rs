@@ -15,7 +15,7 @@ use super::rng::Rng;
 use super::sparse_lu::Lu;
 use super::taylor::Series;
 use super::track::Model;
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// A complex rotation matrix from a quaternion with complex entries: `Rᵀ R = I`, det R = 1
 /// whenever `q·q ≠ 0`.

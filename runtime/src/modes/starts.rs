@@ -11,7 +11,7 @@ use super::rng::Rng;
 use super::sparse_lu::Plan;
 use super::track::{self, Chart, Settings, Workspace};
 use super::{AllModes, ModesError, ModesOptions, StartReport, seed, symmetry};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// Random seeds tried before [`AllModes::new`] gives up.
 const SEED_ATTEMPTS: usize = 12;

@@ -4,7 +4,7 @@
 
 use super::AllModes;
 use super::complex::Complex;
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 use core::fmt::{self, Write};
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllModes<S, N, M, K> {

@@ -9,7 +9,7 @@
 use super::complex::Complex;
 use super::polish::{SAME, contains, polish};
 use super::track::{Model, Workspace};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// At most this many candidates are looked at (orbits of up to 2¹⁶ roots).
 pub(crate) const MAX: usize = 16;

@@ -124,7 +124,7 @@ impl<const K: usize> Mul for Series<K> {
     }
 }
 
-impl<const K: usize> crate::Scalar for Series<K> {
+impl<const K: usize> crate::scalar::Scalar for Series<K> {
     #[inline(always)]
     fn from_f64(x: f64) -> Self {
         Self::constant(Complex::real(x))
@@ -185,7 +185,7 @@ fn sin_cos<const K: usize>(a: Series<K>) -> (Series<K>, Series<K>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Scalar;
+    use crate::scalar::Scalar;
 
     #[test]
     fn coefficients_of_products_and_sines() {

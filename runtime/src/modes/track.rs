@@ -26,7 +26,7 @@ use super::complex::Complex;
 use super::path::ParameterPath;
 use super::sparse_lu::{Border, Lu, Plan};
 use super::taylor::Series;
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// Tolerances and limits of one path.
 #[derive(Clone, Copy, Debug)]

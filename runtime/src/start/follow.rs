@@ -4,7 +4,8 @@
 use super::Start;
 use super::path::{MAX_STEPS, MIN_STEP, PATH_TOLERANCE, correct};
 use crate::math::{norm, scale_or_one, size};
-use crate::{Mechanism, SolveError};
+use crate::mechanism::Mechanism;
+use crate::solution::SolveError;
 
 impl<const N: usize, const M: usize> Start<N, M> {
     /// [`Start::new`] for a configuration `v` that solved the mechanism before its geometry

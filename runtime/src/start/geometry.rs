@@ -6,7 +6,8 @@ use super::Start;
 use super::path::{MAX_STEPS, MIN_STEP, PATH_TOLERANCE, correct};
 use crate::correction::correction;
 use crate::math::{norm, scale_or_one, size};
-use crate::{Mechanism, SolveError};
+use crate::mechanism::Mechanism;
+use crate::solution::SolveError;
 
 impl<const N: usize, const M: usize> Start<N, M> {
     /// A configuration `v` at inputs `x` of the mechanism as it was (`along(0.0)` builds it)

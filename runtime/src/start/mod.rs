@@ -3,7 +3,8 @@
 use crate::correction::{Failure, correction};
 use crate::lu::Lu;
 use crate::math::{norm, size};
-use crate::{Mechanism, Options, SolveError};
+use crate::mechanism::Mechanism;
+use crate::solution::{Options, SolveError};
 
 mod follow;
 mod geometry;
@@ -22,16 +23,16 @@ const MIN_RCOND: f64 = 1e-7;
 /// A start belongs to the mechanism it was checked against, geometry included. Changing the
 /// geometry afterwards (`set_geometry`, `set_pivot`) leaves `(v0, x0)` off the new solution
 /// set: the solvers that claim the start's branch ([`arc_length`](crate::arc_length),
-/// [`arc_length_detour`](crate::arc_length_detour),
-/// [`arc_length_certified`](crate::arc_length_certified),
-/// [`newton_homotopy`](crate::newton_homotopy), [`Tracker`](crate::Tracker)) measure the
+/// [`arc_length_detour`](crate::detour::arc_length_detour),
+/// [`arc_length_certified`](crate::certified_path::arc_length_certified),
+/// [`newton_homotopy`](crate::newton_homotopy), [`Tracker`](crate::tracker::Tracker)) measure the
 /// start's own Newton correction and refuse such a start with
 /// [`SolveError::InconsistentStart`]; make a new start for the new geometry
 /// ([`Start::follow_geometry`], and the generated `follow_from`, carry the old one's
 /// configuration there along the change of geometry, on its branch).
-/// [`newton_raphson`](crate::newton_raphson) and [`NewtonRaphson`](crate::NewtonRaphson)
+/// [`newton_raphson`](crate::newton_raphson) and [`NewtonRaphson`](crate::newton_raphson::NewtonRaphson)
 /// take `v0` as a guess only and do not check it (their answer is
-/// [`Status::Unverified`](crate::Status::Unverified) either way).
+/// [`Status::Unverified`](crate::solution::Status::Unverified) either way).
 ///
 /// Only checked constructors make one ([`Start::new`]), so every solve can rely on it:
 ///
@@ -307,6 +308,47 @@ impl<const N: usize, const M: usize> Start<N, M> {
     /// det B at `(v0, x0)`: its sign marks the start's branch.
     pub fn det(&self) -> f64 {
         self.det
+    }
+}
+
+/// Options are checked against a start's scale, so the check that takes a start lives beside
+/// it (options are a lower layer than the start, which reads them).
+impl Options {
+    /// Whether these options can be used from `start` (every solver and the tracker checks
+    /// them so, and refuses with this error): a positive tolerance within
+    /// [`MAX_RELATIVE_TOLERANCE`](Self::MAX_RELATIVE_TOLERANCE) of the start's size, and
+    /// positive iteration and step counts. For a program that would rather say so once than
+    /// for every solve.
+    ///
+    /// ```
+    /// use linkage::{Options, SolveError, Start};
+    /// # linkage::mechanism! {
+    /// #     pub struct Rps;
+    /// #     base {
+    /// #         A1 = [0.0, 100.0, 0.0],     B1 = [-10.0, 100.0, 0.0],
+    /// #         A2 = [-86.603, -50.0, 0.0], B2 = [-81.603, -58.660, 0.0],
+    /// #         A3 = [86.603, -50.0, 0.0],  B3 = [91.603, -41.340, 0.0],
+    /// #     }
+    /// #     platform { G1 = [0.0, 50.0, 0.0], G2 = [-43.301, -25.0, 0.0], G3 = [43.301, -25.0, 0.0] }
+    /// #     chain leg1 = base - R(passive, axis = A1 -> B1) - P(active L1) - S(G1) - platform;
+    /// #     chain leg2 = base - R(passive, axis = A2 -> B2) - P(active L2) - S(G2) - platform;
+    /// #     chain leg3 = base - R(passive, axis = A3 -> B3) - P(active L3) - S(G3) - platform;
+    /// # }
+    /// # use linkage::Mechanism;
+    /// let rps = Rps::new();
+    /// let v0 = linkage::unknowns_from_pose(&rps, &linkage::Pose::from_euler(0.0, 0.0, 0.0, [0.0, 0.0, 150.0]));
+    /// let x0 = rps.inverse(&v0, &[0.0; 3]).unwrap();
+    /// let start = Start::new(&rps, v0, x0).unwrap();
+    /// assert_eq!(Options::TIGHT.check_for(&start), Ok(()));
+    /// // A tolerance of 1 m on a platform 200 mm across would call anything converged.
+    /// let loose = Options { tolerance: 1000.0, ..Options::TIGHT };
+    /// assert!(matches!(loose.check_for(&start), Err(SolveError::InvalidOptions { .. })));
+    /// ```
+    pub fn check_for<const N: usize, const M: usize>(
+        &self,
+        start: &Start<N, M>,
+    ) -> Result<(), SolveError> {
+        self.check(start.scale())
     }
 }
 

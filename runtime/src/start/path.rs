@@ -6,9 +6,9 @@
 //! [`Start::follow_geometry`]: super::Start::follow_geometry
 
 use super::singular_to_rounding;
-use crate::Mechanism;
 use crate::convergence::Contraction;
 use crate::math::size;
+use crate::mechanism::Mechanism;
 
 /// Attempts (accepted and rejected steps together) before the path is given up.
 pub(super) const MAX_STEPS: u32 = 400;

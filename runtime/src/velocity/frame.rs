@@ -3,8 +3,9 @@
 use super::{Twist, VelocityError};
 use crate::lu::Lu;
 use crate::math::{cross3, dot3, norm3, sub3};
+use crate::mechanism::Mechanism;
+use crate::pose::pose_from_unknowns;
 use crate::pose::{PlatformPivots, platform_pivots};
-use crate::{Mechanism, pose_from_unknowns};
 
 /// The platform's frame pivots where `v` has them, and its frame's origin.
 pub(super) struct Frame {

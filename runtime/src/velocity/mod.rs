@@ -43,8 +43,8 @@ mod statics;
 
 pub use statics::{Wrench, input_efforts};
 
-use crate::Mechanism;
 use crate::math::{cross3, scale_or_one, size, sub3};
+use crate::mechanism::Mechanism;
 use frame::Frame;
 use least_squares::least_squares;
 
@@ -91,7 +91,7 @@ impl core::fmt::Display for VelocityError {
 impl std::error::Error for VelocityError {}
 
 /// The platform's velocity: its angular velocity and the velocity of its frame's origin (the
-/// point [`Pose::translation`](crate::Pose) places), both in base-frame axes; per unit of time
+/// point [`Pose::translation`](crate::pose::Pose) places), both in base-frame axes; per unit of time
 /// of the input rates (rad and mm per second for rates per second). For a line platform (a
 /// linear pentapod's tool axis), whose spin about itself no pair fixes, ω is square to the
 /// line: its part along the line is no motion of the platform's pivots, and no input makes or

@@ -2,7 +2,7 @@
 //! Jacobian.
 
 use super::{Twist, VelocityError, platform_jacobian};
-use crate::Mechanism;
+use crate::mechanism::Mechanism;
 
 /// A load on the platform: a force through its frame's origin and a moment, both in base-frame
 /// axes (length times force for the moment, in the same length unit as the mechanism).
