@@ -32,6 +32,30 @@ linkage::mechanism! {
     chain close = base - R(passive, axis = D -> Dz) - platform;
 }
 
+// The same linkage with each axis's second point declared 250 along its z instead of 50:
+// the same motion, other equations. Both greedy orders of the rank test kept, of these, a
+// square system whose det vanished 0.35 rad of θ1 from home, where the linkage is regular
+// (continuation stopped with a fold there); the swap search of `simplify/along.rs` finds one
+// that stays regular.
+linkage::mechanism! {
+    /// The Bennett linkage driven at its first joint, its axes declared by points 250 apart.
+    pub struct BennettFarAxes;
+    base {
+        A = [0.0, 0.0, 0.0], Az = [0.0, 0.0, 250.0],
+        D = [-70.0, 1.4210854715202004e-14, -3.552713678800501e-15],
+        Dz = [-70.0, 151.55444566227675, 198.82467150733584],
+    }
+    platform {
+        P1 = [-108.394693331362, -8.921802448165723, 6.800659164122969],
+        P2 = [-61.58636628770009, -10.777081214716691, 33.36263311320991],
+        P3 = [-34.192618574561905, -12.393178886958053, 9.446721787426974],
+    }
+    link l1 { B = [54.03023058681398, 84.14709848078965, 0.0], Bz = [236.2140429346009, -32.831782170490115, 125.00000000000003] }
+    link l2 { C = [25.986733328405016, 22.30450612041436, -17.001647910307437], Cz = [86.70690443664583, -67.19515530338661, 208.3932753368921] }
+    chain driven = base - R(active q, axis = A -> Az) - l1 - R(passive, axis = B -> Bz) - l2 - R(passive, axis = C -> Cz) - platform;
+    chain close = base - R(passive, axis = D -> Dz) - platform;
+}
+
 /// A rigid motion as a 4×4 homogeneous matrix.
 pub(super) type M4 = [[f64; 4]; 4];
 
@@ -161,21 +185,35 @@ fn the_bennett_linkage_has_one_freedom_by_rank_and_exact_jacobians() {
 #[test]
 fn bennett_forward_kinematics_against_the_closed_form() {
     let bennett = Bennett::new();
-    let start = bennett.home_start().unwrap();
+    against_the_closed_form(&bennett, &bennett.home_start().unwrap());
+}
+
+#[test]
+fn bennett_with_its_axes_declared_far_out_against_the_closed_form() {
+    let far = BennettFarAxes::new();
+    assert!(
+        mobility_line(BennettFarAxes::LISTING).contains("M = 15 + 1 − 15 = 1"),
+        "{}",
+        BennettFarAxes::LISTING
+    );
+    against_the_closed_form(&far, &far.home_start().unwrap());
+}
+
+fn against_the_closed_form<S: Mechanism<15, 1>>(bennett: &S, start: &linkage::Start<15, 1>) {
     for k in 0..=63 {
         let theta1 = -5.3 + 0.2 * k as f64;
         let x = [theta1 - THETA1_HOME];
-        let sol = arc_length(&bennett, &start, &x, &GENERAL_MODEL).unwrap();
+        let sol = arc_length(bennett, start, &x, &GENERAL_MODEL).unwrap();
         assert_eq!(sol.status, Status::Converged, "θ1 {theta1}");
         for (name, at) in PLATFORM {
-            let got = point::<Bennett, 15, 1>(&sol.v, name);
+            let got = point::<S, 15, 1>(&sol.v, name);
             let want = carried(theta1, at);
             assert!(
                 max_diff(&got, &want) < 1e-7,
                 "θ1 {theta1}, {name}: {got:?} vs {want:?}"
             );
         }
-        check_inverse(&bennett, &sol.v, &x, &[x[0] + 0.05], 1e-8);
+        check_inverse(bennett, &sol.v, &x, &[x[0] + 0.05], 1e-8);
     }
 }
 

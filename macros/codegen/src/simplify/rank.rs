@@ -98,7 +98,7 @@ fn select(b: &[Vec<f64>], classes: &[Vec<usize>], weak: f64) -> Vec<usize> {
 }
 
 /// The smallest singular value of the rows kept over their largest.
-fn condition(b: &[Vec<f64>], kept: &[usize]) -> f64 {
+pub(super) fn condition(b: &[Vec<f64>], kept: &[usize]) -> f64 {
     if kept.is_empty() || b[0].is_empty() {
         return 0.0;
     }
@@ -112,7 +112,7 @@ fn condition(b: &[Vec<f64>], kept: &[usize]) -> f64 {
 /// before the links'), and it decides more than the condition at home — on the planar 3-RPR
 /// and 3-RRR declared in space, the other choice, though 50× better conditioned there (1e-5
 /// against 7e-4), gave a square system of 12 roots for the mechanism's 6.
-const NEARLY_SINGULAR: f64 = 1e-7;
+pub(super) const NEARLY_SINGULAR: f64 = 1e-7;
 
 /// `classes`: the equations' indices in the order they are offered to the basis, class by
 /// class (a partition of the indices); of dependent ones, the later is left out. Two choices
