@@ -18,11 +18,15 @@ pub enum Status {
     /// [`newton_homotopy`](crate::newton_homotopy) return where [`arc_length`](crate::arc_length)
     /// would return `Converged`; not ok.
     Unverified,
-    /// The straight joint-space path from the start to the target turns back in λ at this λ:
-    /// it leaves the valid joint space through a fold (a direct singularity). Continuing
-    /// along the curve would lead to another assembly mode.
+    /// The straight joint-space path from the start to the target meets a direct
+    /// singularity: det B changed sign within the last step. At a fold the path turns back in
+    /// λ there and leaves the valid joint space; at a singular point where branches cross it
+    /// need not turn back. Either way, continuing along the curve would lead to another
+    /// assembly mode.
     Fold {
-        /// Where on the path: λ is 0 at the start and 1 at the target.
+        /// The larger λ of that step (0 at the start, 1 at the target): a bound on where the
+        /// branch ends, which may lie past the point returned (at a crossing near λ = 0.98, 1.0
+        /// was reported for a point returned at 0.92).
         lambda: f64,
     },
     /// The sign of det B differs from the start's: the result lies across a singular
