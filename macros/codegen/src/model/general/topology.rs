@@ -220,8 +220,9 @@ const SHORT_AXIS: f64 = 0.25;
 /// placed there by that link's equations; the link that only shares it through the pair no
 /// longer holds it. Only where one of the two links is placed without unknowns (the base, or a
 /// crank an active pair turns from it), so that the lever is a constant or explicit in the
-/// inputs and adds no unknown; and not for a pivot another pair also uses. `build` keeps the
-/// model with levers only where no equation is left out as dependent.
+/// inputs and adds no unknown; and not for a pivot another pair also uses, or that a third
+/// link declares (which the pair's sharing of it holds on the axis). `build` keeps the model
+/// with levers only where no equation is left out as dependent.
 fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
     let mut added = false;
     let at = |b: &Builder, topo: &Topology, q: PointId| b.home(topo.home(q));
@@ -254,7 +255,12 @@ fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
                         .axis
                         .is_some_and(|[x, y]| x.id == to.id || y.id == to.id))
         });
-        if used_elsewhere {
+        // B leaves the link that only shares it through this pair; declared on a third link,
+        // it would leave both, and the sharing is what holds that third link on the axis.
+        let declared_on_either = [before, after]
+            .iter()
+            .any(|&li| topo.links[li].own.contains(&e));
+        if used_elsewhere || !declared_on_either {
             continue;
         }
         let declared = distance(at(b, topo, a), at(b, topo, e));
