@@ -21,8 +21,6 @@ pub struct Link {
     pub length: Option<Value>,
     /// Its points, in order of first use.
     pub members: Vec<PointId>,
-    /// The pivots declared on it (none for an unnamed link).
-    pub own: Vec<PointId>,
 }
 
 impl Link {
@@ -123,7 +121,6 @@ pub fn topology<'a>(
                                 role: decl.role,
                                 length: decl.length,
                                 members: decl.pivots.iter().map(|&p| PointId::of(p)).collect(),
-                                own: decl.pivots.iter().map(|&p| PointId::of(p)).collect(),
                             }
                         }
                         None => Link {
@@ -133,7 +130,6 @@ pub fn topology<'a>(
                             role: LinkRole::Intermediate,
                             length: None,
                             members: Vec::new(),
-                            own: Vec::new(),
                         },
                     };
                     topo.links.push(link);
@@ -216,13 +212,12 @@ const SHORT_AXIS: f64 = 0.25;
 /// read the axis over a lever of the mechanism's scale. Read over 1 mm, a 3-RRS's ∂F/∂v had
 /// σmin 1.0 against σmax 600 at home, a Krawczyk radius of 0.11 mm and every sample of its
 /// certified tracker refused; with the lever σmin 220, 7.1 mm and every sample proven
-/// (`mechanisms::rrs`; BENCHMARKS.md, thirty-seventh session). B stays where it is declared,
-/// placed there by that link's equations; the link that only shares it through the pair no
-/// longer holds it. Only where one of the two links is placed without unknowns (the base, or a
+/// (`mechanisms::rrs`; BENCHMARKS.md, thirty-seventh session). B stays on the known link,
+/// whichever link declares it, and the moving link no longer holds it. Only where one of the
+/// two links is placed without unknowns (the base, or a
 /// crank an active pair turns from it), so that the lever is a constant or explicit in the
-/// inputs and adds no unknown; and not for a pivot another pair also uses, or that a third
-/// link declares (which the pair's sharing of it holds on the axis). `build` keeps the model
-/// with levers only where no equation is left out as dependent.
+/// inputs and adds no unknown; and not for a pivot another pair also uses. `build` keeps the
+/// model with levers only where no equation is left out as dependent.
 fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
     let mut added = false;
     let at = |b: &Builder, topo: &Topology, q: PointId| b.home(topo.home(q));
@@ -255,12 +250,7 @@ fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
                         .axis
                         .is_some_and(|[x, y]| x.id == to.id || y.id == to.id))
         });
-        // B leaves the link that only shares it through this pair; declared on a third link,
-        // it would leave both, and the sharing is what holds that third link on the axis.
-        let declared_on_either = [before, after]
-            .iter()
-            .any(|&li| topo.links[li].own.contains(&e));
-        if used_elsewhere || !declared_on_either {
+        if used_elsewhere {
             continue;
         }
         let declared = distance(at(b, topo, a), at(b, topo, e));
@@ -281,12 +271,15 @@ fn levers(b: &mut Builder, topo: &mut Topology) -> bool {
             name,
             home,
         );
-        for li in [before, after] {
-            topo.add_member(li, q);
-            if !topo.links[li].own.contains(&e) {
-                topo.links[li].members.retain(|&m| m != e);
-            }
-        }
+        // B leaves the moving link and stays on the known one, whichever declares it: a
+        // constant or explicit point there, on the axis and so where the moving link carries it
+        // too. Kept on its declaring link's side it would, declared on the moving link, be three
+        // unknowns more with a distance to A implied (a dependent equation: no lever), and
+        // taken from both links where a third declares it, free that third of the axis.
+        let moving = if known(topo, before) { after } else { before };
+        topo.add_member(before, q);
+        topo.add_member(after, q);
+        topo.links[moving].members.retain(|&m| m != e);
         added = true;
     }
     added
