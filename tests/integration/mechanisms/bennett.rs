@@ -34,7 +34,7 @@ linkage::mechanism! {
 
 // The same linkage with each axis's second point declared 250 along its z instead of 50:
 // the same motion, other equations. Both greedy orders of the rank test kept, of these, a
-// square system whose det vanished 0.35 rad of θ1 from home, where the linkage is regular
+// square system whose det vanished about 1 rad of θ1 from home, where the linkage is regular
 // (continuation stopped with a fold there); the swap search of `simplify/along.rs` finds one
 // that stays regular.
 linkage::mechanism! {

@@ -179,8 +179,8 @@ pub fn steady(
 /// swap that crosses fewest taken while it crosses fewer, within [`SWAP_WORK`]. The greedy
 /// orders above take rows one at a time, each the best at its turn; a row that only pairs well
 /// with a later one is out of their reach. (A Bennett linkage with its axes' second points
-/// 250 mm out: both orders kept rows whose det vanished a third of a radian from home, where
-/// one swap of a platform equation for a dropped one crosses nowhere.) A swap must leave the
+/// 250 mm out: both orders kept rows whose det vanished about 1 rad of the input from home,
+/// where one swap of a platform equation for a dropped one crosses nowhere.) A swap must leave the
 /// rows as well conditioned at home, where every ray starts, as the rank test asks there.
 fn swapped(rays: &[Ray], mut choice: Vec<usize>, mut count: usize, equations: usize) -> Vec<usize> {
     let Some(home) = rays.first().and_then(|ray| ray.first()) else {
