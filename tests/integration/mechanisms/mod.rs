@@ -21,6 +21,7 @@ mod h4;
 mod home_by_inputs;
 mod linear_delta;
 mod linear_pentapod;
+mod literature;
 mod motors;
 mod numerical_inverse;
 mod orthoglide;
