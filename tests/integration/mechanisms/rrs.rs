@@ -145,7 +145,19 @@ fn rrs_assembly_modes_above_and_below_the_cranks() {
 #[test]
 fn a_3_rrs_with_hinge_axes_declared_1_mm_long_is_tracked_with_a_proof_of_every_sample() {
     let rrs = Rrs::new();
-    let start = rrs.home_start().unwrap();
+    tracked_with_proofs(&rrs, rrs.home_start().unwrap(), |_, _, _| {});
+}
+
+/// A certified tracker on `rrs` along 200 samples of a smooth crank motion (about 0.3 mm of
+/// platform motion a sample): every sample proven, each the pose whose closed-form inverse
+/// gives the cranks back; `each(k, q, v)` checks more of sample `k`.
+fn tracked_with_proofs<S, const N: usize>(
+    rrs: &S,
+    start: linkage::Start<N, 3>,
+    mut each: impl FnMut(usize, [f64; 3], &[f64; N]),
+) where
+    S: linkage::Mechanism<N, 3> + Clone,
+{
     let mut tracker = linkage::Tracker::new(rrs.clone(), start, Options::TIGHT).certified();
     for k in 1..=200 {
         let u = k as f64 * 0.01;
@@ -158,12 +170,13 @@ fn a_3_rrs_with_hinge_axes_declared_1_mm_long_is_tracked_with_a_proof_of_every_s
             "sample {k}: {:?}",
             sample.proof
         );
-        let pose = pose_from_unknowns(&rrs, &sample.v).unwrap();
+        let pose = pose_from_unknowns(rrs, &sample.v).unwrap();
         let (back, _) = rrs_inverse(&pose, q).unwrap();
         assert!(
             linkage_tests::max_diff(&back, &q) < 1e-9,
             "sample {k}: {back:?} vs {q:?}"
         );
+        each(k, q, &sample.v);
     }
 }
 
@@ -202,33 +215,15 @@ linkage::mechanism! {
 #[test]
 fn a_3_rrs_with_its_hinge_pivots_declared_on_the_legs_gets_the_levers_too() {
     let rrs = RrsPivotsOnLegs::new();
-    let start = rrs.home_start().unwrap();
-    let mut tracker = linkage::Tracker::new(rrs.clone(), start, Options::TIGHT).certified();
     let leg1 = RrsPivotsOnLegs::LINKS
         .iter()
         .position(|l| *l == "leg1")
         .unwrap();
-    for k in 1..=200 {
-        let u = k as f64 * 0.01;
-        let q = [0.3 * u.sin(), 0.3 * (1.3 * u).sin(), -0.3 * (0.7 * u).sin()];
-        let sample = tracker
-            .update(&q)
-            .unwrap_or_else(|e| panic!("sample {k}: {e:?}"));
-        assert!(
-            matches!(sample.proof, Some(linkage::StepProof::Proven { .. })),
-            "sample {k}: {:?}",
-            sample.proof
-        );
-        let pose = pose_from_unknowns(&rrs, &sample.v).unwrap();
-        let (back, _) = rrs_inverse(&pose, q).unwrap();
-        assert!(
-            linkage_tests::max_diff(&back, &q) < 1e-9,
-            "sample {k}: {back:?} vs {q:?}"
-        );
+    tracked_with_proofs(&rrs, rrs.home_start().unwrap(), |k, q, v| {
         // D1 where the leg carries it: 1 mm from C1 along the hinge axis, both turned by q1
         // about the crank's axis (the y axis through A1), C1 100 mm inwards of A1.
         let d1 = rrs
-            .link_pose(leg1, &sample.v, &q)
+            .link_pose(leg1, v, &q)
             .unwrap()
             .apply([RB - RC, 1.0, 0.0]);
         let c1 = [RB - RC * q[0].cos(), 0.0, RC * q[0].sin()];
@@ -237,5 +232,5 @@ fn a_3_rrs_with_its_hinge_pivots_declared_on_the_legs_gets_the_levers_too() {
             linkage_tests::max_diff(&d1, &expected) < 1e-9,
             "sample {k}: D1 {d1:?} vs {expected:?}"
         );
-    }
+    });
 }
