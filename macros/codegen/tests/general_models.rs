@@ -441,3 +441,99 @@ fn an_axis_pivot_a_third_link_declares_still_holds_that_link_on_the_axis() {
         );
     }
 }
+
+/// A 6-PUS after the Hexaglide, each slider's U on an unnamed rod to a joint on the platform,
+/// leg k's of kind `ends[k]` (`"S"`, or `"U"` with its first axis along x on the platform; legs
+/// past the end of `ends` left out); the U's first axis from `A` to `A{first}`: `"x"` along the
+/// rail, `"g"` towards the ball at home (along the rod).
+fn pus(first: &str, ends: &[&str]) -> TokenStream {
+    let (rp, h) = (60.0f64, 250.0);
+    let at = [-1.4f64, -1.9, 0.3, 2.9, 1.2, 2.0];
+    let g = |i: usize| {
+        [
+            rp * at[i].cos(),
+            rp * at[i].sin(),
+            if i == 5 { 10.0 } else { 0.0 },
+        ]
+    };
+    let a = [
+        [160.0, -150.0, 0.0],
+        [-170.0, -150.0, 0.0],
+        [210.0, 0.0, 60.0],
+        [-210.0, 0.0, 60.0],
+        [170.0, 150.0, 0.0],
+        [-175.0, 150.0, 0.0],
+    ];
+    let v = |p: [f64; 3]| format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2]);
+    let (mut platform, mut links, mut chains) = (String::new(), String::new(), String::new());
+    for (i, &end) in ends.iter().enumerate() {
+        let (n, rail) = (i + 1, i / 2 + 1);
+        let gi = g(i);
+        let ball = [gi[0] - a[i][0], gi[1] - a[i][1], gi[2] - h - a[i][2]];
+        platform += &format!("G{n} = {},", v(gi));
+        if end == "U" {
+            platform += &format!("G{n}x = {},", v([gi[0] + 1.0, gi[1], gi[2]]));
+        }
+        links += &format!(
+            "link s{n} {{ A{n} = {}, A{n}x = {}, A{n}g = {} }}\n",
+            v(a[i]),
+            v([a[i][0] + 100.0, a[i][1], a[i][2]]),
+            v([0, 1, 2].map(|k| a[i][k] + 0.5 * ball[k]))
+        );
+        let end_axis = if end == "U" {
+            format!(", axis = G{n} -> G{n}x")
+        } else {
+            String::new()
+        };
+        chains += &format!(
+            "chain leg{n} = base - P(active d{n}, axis = R{rail} -> R{rail}x) - s{n} - U(A{n}, axis = A{n} -> A{n}{first}) - {end}(G{n}{end_axis}) - platform;\n"
+        );
+    }
+    format!(
+        "pub struct Pus;
+        base {{
+            R1 = [-200.0, -150.0, 0.0], R1x = [200.0, -150.0, 0.0],
+            R2 = [-200.0, 0.0, 60.0], R2x = [200.0, 0.0, 60.0],
+            R3 = [-200.0, 150.0, 0.0], R3x = [200.0, 150.0, 0.0],
+        }}
+        platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, -{h:?}]) {{ {platform} }}
+        {links}
+        {chains}"
+    )
+    .parse()
+    .unwrap()
+}
+
+/// A passive U on an unnamed rod whose other end is a ball holds only the rod's spin, which
+/// nothing else sees: the rod is reduced to its length as between two S, and the 6-PUS has the
+/// 18 unknowns of a 6-6 platform (it had 36: each rod's second-axis point). A U at the rod's
+/// other end turns with the spin, so there the points stay; and a first axis along the rod at
+/// home is still refused, as the README says.
+#[test]
+fn a_u_on_a_rod_to_a_ball_is_reduced_to_the_rods_length() {
+    let m = build(pus("x", &["S"; 6]));
+    assert_eq!(m.unknowns.len(), 18, "{:?}", m.unknowns);
+    assert!(
+        m.unknowns.iter().all(|u| u.contains("_G")),
+        "{:?}",
+        m.unknowns
+    );
+    assert_eq!(m.equations.len(), 18);
+    assert!(
+        !m.auto_points
+            .iter()
+            .any(|a| matches!(a, linkage_geometry::recipe::Auto::Normal { .. })),
+        "{:?}",
+        m.auto_points
+    );
+    // A U–U rod holds the platform by its length and by the spin the two U's share: four
+    // legs to balls and one such (five slides) are square, and the rod's points stay.
+    let both = build(pus("x", &["S", "S", "S", "S", "U"]));
+    let seconds: Vec<&String> = both.unknowns.iter().filter(|u| u.contains("_u")).collect();
+    assert_eq!(seconds.len(), 6, "{:?}", both.unknowns);
+    let e = match model(pus("g", &["S"; 6])) {
+        Ok(_) => panic!("a U whose first axis lies along its rod was accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("second axis is undefined"), "{e}");
+}

@@ -15,9 +15,7 @@
 //! - a 6-PUS on parallel rails after the Hexaglide (Honegger, Codourey & Burdet 1997):
 //!   sliders on rails, a U at each slider, a rod to a ball on the platform.
 //!
-//! Not run here: `AllModes` on the 6-PUS, whose rods are solved for (36 unknowns: a U–S rod is
-//! not reduced to its length as an S–S rod is, so each rod's two placements multiply the 6-6
-//! platform's 40 roots), and on the 3-RUU (672 complex roots, 80 real at one input, each a
+//! Not run here: `AllModes` on the 3-RUU (672 complex roots, 80 real at one input, each a
 //! placement; 16–28 s to build the start set in the tests' profile).
 //!
 //! The dimensions are ours.
@@ -802,6 +800,50 @@ fn pus_on_parallel_rails_against_closed_form_inverse() {
 // ---------------------------------------------------------------------------------------------
 // Hostile inputs, on each: out of reach (never ok), NaN (an error or not ok), and a start at a
 // singular configuration refused.
+
+/// With its rods reduced to their lengths (a U on an unnamed rod to a ball holds only the rod's
+/// spin), the 6-PUS is, at fixed slides, a 6-6 platform: 18 unknowns (the type says so) and the
+/// 40 complex roots of one. Every real root keeps each rod at its length from its slider, and
+/// the home pose is among them. (Before the reduction: 36 unknowns, each rod's second axis a
+/// point, and twice as many placements per rod.)
+#[test]
+fn pus_has_the_forty_assembly_modes_of_a_six_six_platform() {
+    let m = Pus::new();
+    let modes = AllModes::<_, 18, 6, 64>::new(m.clone(), &ModesOptions::default()).unwrap();
+    assert_eq!(modes.start_count(), 40, "{:?}", modes.report());
+    let mut roots = Box::new(Roots::new());
+    let (g, rods) = (pus_g(), pus_rods());
+    let mut rng = Rng::new(40);
+    for case in 0..2 {
+        let d: [f64; 6] = if case == 0 {
+            Pus::HOME_INPUTS
+        } else {
+            std::array::from_fn(|_| rng.uniform(-20.0, 20.0))
+        };
+        modes.solve(&d, &mut roots).unwrap();
+        assert!(roots.is_complete(), "{d:?}");
+        for r in roots.real() {
+            let pose = pose_from_unknowns(&m, &r.v).unwrap();
+            for i in 0..6 {
+                let a = add(PUS_A[i], [d[i], 0.0, 0.0]);
+                let off = (dist(pose.apply(g[i]), a) - rods[i]).abs();
+                assert!(off < 1e-6 * rods[i], "{d:?}: rod {i} off by {off:e}");
+            }
+        }
+        if case == 0 {
+            let home = pus_home();
+            assert!(
+                roots.real().iter().any(|r| {
+                    let p = pose_from_unknowns(&m, &r.v).unwrap();
+                    g.iter().all(|&q| dist(p.apply(q), home.apply(q)) < 1e-6)
+                }),
+                "the home pose is not among the {} real roots",
+                roots.real().len()
+            );
+        }
+        println!("6-PUS at {d:?}: {} real modes of 40", roots.real().len());
+    }
+}
 
 #[test]
 fn literature_mechanisms_refuse_hostile_inputs() {

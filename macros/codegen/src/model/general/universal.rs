@@ -3,7 +3,8 @@
 //! and to the leg (the line from C to the next joint's centre through the other link) at home,
 //! is fixed in the other link, which carries the point `C_u` along it, as far from C as the leg
 //! is long (a lever of the mechanism's size: `linkage_geometry::normal_point`). The constraint:
-//! `(Q − P)·(C_u − C) = 0`, the two axes stay perpendicular — degree 2 in the points.
+//! `(Q − P)·(C_u − C) = 0`, the two axes stay perpendicular — degree 2 in the points. A
+//! passive U on an unnamed rod to an `S` gets no such point: it holds only the rod's spin.
 
 use super::points::Addition;
 use super::{err, named, PointId, Repr, Reprs, Topology};
@@ -87,12 +88,18 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             ),
         ));
     };
-    let auto = b.auto_point(Auto::Normal {
+    let normal = Auto::Normal {
         origin: topo.home(c),
         a: [topo.home(a), topo.home(q)],
         b: [topo.home(c), topo.home(towards)],
-    });
-    if b.home(auto).iter().any(|x| !x.is_finite()) {
+    };
+    let defined = linkage_geometry::normal_point(
+        b.home(topo.home(c)),
+        [b.home(topo.home(a)), b.home(topo.home(q))],
+        [b.home(topo.home(c)), b.home(topo.home(towards))],
+    )
+    .is_ok_and(|n| n.iter().all(|x| x.is_finite()));
+    if !defined {
         return Err(err(
             pa.span,
             format!(
@@ -104,6 +111,10 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
             ),
         ));
     }
+    if !p.active && only_a_rod_to_a_ball(topo, k, other) {
+        return Ok(());
+    }
+    let auto = b.auto_point(normal);
     let name = format!("{}_u", topo.name(c));
     let second = topo
         .points
@@ -115,6 +126,28 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
     }
     topo.joints[k].added.push(second);
     Ok(())
+}
+
+/// Whether the link carrying this U's second axis is an unnamed rod whose one other joint is an
+/// `S`. Then the U holds nothing but the rod's spin about the line through its two centres,
+/// which no other pair sees: for the rest of the mechanism the rod is the distance between its
+/// centres (Eq. 3), as between two `S`, and the second axis's point would add three unknowns and
+/// a twin of every root (the leg's half-turn, see [`spins`]) to a system no answer needs them
+/// in. A declared link may carry other pivots or meet other chains, and a U or R at the rod's
+/// other end turns with the spin: those keep the point.
+fn only_a_rod_to_a_ball(topo: &Topology, k: usize, other: usize) -> bool {
+    if topo.links[other].declared.is_some() {
+        return false;
+    }
+    let mut others = topo
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|&(i, j)| i != k && (j.before == other || j.after == other));
+    matches!(
+        (others.next(), others.next()),
+        (Some((_, j)), None) if j.pair.kind == PairKind::S
+    )
 }
 
 pub fn equation(b: &mut Builder, topo: &Topology, repr: &Reprs, k: usize) {
