@@ -476,7 +476,8 @@ pub fn general_chain(
 }
 
 /// The closed-form legs: S-P-S, U-P-S, R-S-S (a crank and a rod), P-S-S (a carriage and a
-/// rod), and for a 3-DOF platform R-P-S.
+/// rod), and for a 3-DOF platform R-P-S; and R-U-S and P-U-S, a crank's or carriage's U on an
+/// unnamed rod to the ball, which the general model takes.
 fn classic_chain(m: &mut Mech, rng: &mut Rng, five: bool) -> Chain {
     let c = m.chains.len();
     let start = m.random_base_point(rng);
@@ -575,6 +576,24 @@ fn classic_chain(m: &mut Mech, rng: &mut Rng, five: bool) -> Chain {
             );
             let crank = m.link(format!("crank{c}"), None);
             let ce = m.pivot(crank, e);
+            if chance(rng, 0.4) {
+                // A U on the crank (its first axis fixed there, in a random direction) and an
+                // unnamed rod to the ball: the general model's leg, whose U holds only the
+                // rod's spin.
+                let ce2 = m.pivot(crank, add(e, scale(20.0, random_unit(rng))));
+                let middle = Joint {
+                    centre: Some(ce),
+                    axis: Some((ce, ce2)),
+                    ..passive(Kind::U)
+                };
+                let shape = if rotary { "R*-U-S" } else { "P*-U-S" };
+                return Chain {
+                    name: format!("c{c}"),
+                    links: vec![Some(BASE), Some(crank), None, Some(PLATFORM)],
+                    joints: vec![first, middle, end_s],
+                    shape: shape.to_string(),
+                };
+            }
             let rod = m.link(format!("rod{c}"), Some(norm(sub(end, e))));
             let middle = Joint {
                 centre: Some(ce),

@@ -63,8 +63,8 @@ fn leg_end(m: &Mech, chain: usize, k: usize, centre: V3) -> Option<V3> {
             _ => {}
         }
     }
-    // The generator leaves a link unnamed only inside a closed-form leg, where a centre
-    // always follows a U.
+    // The generator leaves a link unnamed only inside a leg, where a centre always follows a
+    // U (a rod to the ball).
     let other = c.links[if after { k } else { k + 1 }]
         .expect("the other link of a U with no centre on its side is declared");
     m.pivots
