@@ -23,7 +23,9 @@
 use super::{check_inverse, point, GENERAL_MODEL};
 use linkage::modes::{AllModes, ModesOptions, Roots};
 use linkage::reference::straight_segment;
-use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Pose, Status, Tracker};
+use linkage::{
+    arc_length, det_b, pose_from_unknowns, Mechanism, Pose, Solution, Start, Status, Tracker,
+};
 use linkage_tests::vec3::{add, cross, dot, scaled, sub};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -33,6 +35,28 @@ fn norm(a: [f64; 3]) -> f64 {
 
 fn unit(a: [f64; 3]) -> [f64; 3] {
     scaled(a, 1.0 / norm(a))
+}
+
+/// `sol`, continuation's answer from `start` to `x`, against the straight input segment's own
+/// truth in `steps` fine steps: where the segment meets a sign change of det B, `sol` must not
+/// be ok (and `false` says the case has no truth to compare further); else it must have
+/// converged onto that truth, to 1e-6.
+fn against_the_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    m: &S,
+    start: &Start<N, M>,
+    x: &[f64; M],
+    sol: &Solution<N>,
+    steps: usize,
+    case: &str,
+) -> bool {
+    let (truth, flips) = straight_segment(m, start, x, steps);
+    if flips > 0 {
+        assert!(!sol.is_ok(), "{case}: ok across a fold");
+        return false;
+    }
+    assert_eq!(sol.status, Status::Converged, "{case}");
+    assert!(linkage_tests::max_diff(&sol.v, &truth) < 1e-6, "{case}");
+    true
 }
 
 /// Rodrigues: `p` turned by `q` about the unit axis `k` through the origin.
@@ -145,18 +169,9 @@ fn spherical_5r_against_its_closed_form() {
     for case in 0..30 {
         let q = [rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)];
         let sol = arc_length(&m, &start, &q, &GENERAL_MODEL).unwrap();
-        // The straight segment's own truth, fine steps: where it meets no sign change of
-        // det B, PH must be ok and agree with it; where it does, PH must not say ok.
-        let (truth, flips) = straight_segment(&m, &start, &q, 2000);
-        if flips > 0 {
-            assert!(!sol.is_ok(), "case {case} {q:?}: ok across a fold");
+        if !against_the_segment(&m, &start, &q, &sol, 2000, &format!("case {case} {q:?}")) {
             continue;
         }
-        assert_eq!(sol.status, Status::Converged, "case {case} {q:?}");
-        assert!(
-            linkage_tests::max_diff(&sol.v, &truth) < 1e-6,
-            "case {case}"
-        );
         worst = worst.max(sr_check(&sol.v, q, &format!("case {case}")));
         check_jacobians(&m, &sol.v, &q);
         check_inverse(&m, &sol.v, &q, &Spherical5R::HOME_INPUTS, 1e-8);
@@ -414,16 +429,9 @@ fn planar_3prr_against_closed_form_inverse_kinematics() {
         ];
         let Some(d) = prr_inverse(pose) else { continue };
         let sol = arc_length(&m, &start, &d, &GENERAL_MODEL).unwrap();
-        let (truth, flips) = straight_segment(&m, &start, &d, 2000);
-        if flips > 0 {
-            assert!(!sol.is_ok(), "case {case}: ok across a fold");
+        if !against_the_segment(&m, &start, &d, &sol, 2000, &format!("case {case} {d:?}")) {
             continue;
         }
-        assert_eq!(sol.status, Status::Converged, "case {case} {d:?}");
-        assert!(
-            linkage_tests::max_diff(&sol.v, &truth) < 1e-6,
-            "case {case}"
-        );
         // Every rod at its length, every hinge on its slider, the platform rigid.
         for i in 0..3 {
             let b = point::<PlanarPrr, _, 3>(&sol.v, &format!("B{}", i + 1));
@@ -613,16 +621,9 @@ fn translational_3ruu_against_closed_forms() {
         let Some(q) = ruu_inverse(p) else { continue };
         assert!(dist(ruu_forward(q).unwrap(), p) < 1e-8);
         let sol = arc_length(&m, &start, &q, &GENERAL_MODEL).unwrap();
-        let (truth, flips) = straight_segment(&m, &start, &q, 600);
-        if flips > 0 {
-            assert!(!sol.is_ok(), "case {case}: ok across a fold");
+        if !against_the_segment(&m, &start, &q, &sol, 600, &format!("case {case} {q:?}")) {
             continue;
         }
-        assert_eq!(sol.status, Status::Converged, "case {case} {q:?}");
-        assert!(
-            linkage_tests::max_diff(&sol.v, &truth) < 1e-6,
-            "case {case}"
-        );
         let pose = pose_from_unknowns(&m, &sol.v).unwrap();
         super::identity_within(&pose.rotation, 1e-8);
         worst = worst.max(dist(pose.translation, p));
@@ -764,16 +765,9 @@ fn pus_on_parallel_rails_against_closed_form_inverse() {
             continue;
         };
         let sol = arc_length(&m, &start, &d, &GENERAL_MODEL).unwrap();
-        let (truth, flips) = straight_segment(&m, &start, &d, 600);
-        if flips > 0 {
-            assert!(!sol.is_ok(), "case {case}: ok across a fold");
+        if !against_the_segment(&m, &start, &d, &sol, 600, &format!("case {case} {d:?}")) {
             continue;
         }
-        assert_eq!(sol.status, Status::Converged, "case {case} {d:?}");
-        assert!(
-            linkage_tests::max_diff(&sol.v, &truth) < 1e-6,
-            "case {case}"
-        );
         let got = pose_from_unknowns(&m, &sol.v).unwrap();
         // Every rod at its length from its slider.
         let g = pus_g();
