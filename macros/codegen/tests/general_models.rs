@@ -445,8 +445,9 @@ fn an_axis_pivot_a_third_link_declares_still_holds_that_link_on_the_axis() {
 /// A 6-PUS after the Hexaglide, each slider's U on an unnamed rod to a joint on the platform,
 /// leg k's of kind `ends[k]` (`"S"`, or `"U"` with its first axis along x on the platform; legs
 /// past the end of `ends` left out); the U's first axis from `A` to `A{first}`: `"x"` along the
-/// rail, `"g"` towards the ball at home (along the rod).
-fn pus(first: &str, ends: &[&str]) -> TokenStream {
+/// rail, `"g"` towards the ball at home (along the rod). Leg 1's rod is declared, as `link rod1
+/// { <rod1> }`, where `rod1` is given.
+fn pus(first: &str, ends: &[&str], rod1: Option<&str>) -> TokenStream {
     let (rp, h) = (60.0f64, 250.0);
     let at = [-1.4f64, -1.9, 0.3, 2.9, 1.2, 2.0];
     let g = |i: usize| {
@@ -485,8 +486,15 @@ fn pus(first: &str, ends: &[&str]) -> TokenStream {
         } else {
             String::new()
         };
+        let rod = match rod1 {
+            Some(body) if n == 1 => {
+                links += &format!("link rod1 {{ {body} }}\n");
+                "rod1 -"
+            }
+            _ => "",
+        };
         chains += &format!(
-            "chain leg{n} = base - P(active d{n}, axis = R{rail} -> R{rail}x) - s{n} - U(A{n}, axis = A{n} -> A{n}{first}) - {end}(G{n}{end_axis}) - platform;\n"
+            "chain leg{n} = base - P(active d{n}, axis = R{rail} -> R{rail}x) - s{n} - U(A{n}, axis = A{n} -> A{n}{first}) - {rod} {end}(G{n}{end_axis}) - platform;\n"
         );
     }
     format!(
@@ -511,7 +519,7 @@ fn pus(first: &str, ends: &[&str]) -> TokenStream {
 /// home is still refused, as the README says.
 #[test]
 fn a_u_on_a_rod_to_a_ball_is_reduced_to_the_rods_length() {
-    let m = build(pus("x", &["S"; 6]));
+    let m = build(pus("x", &["S"; 6], None));
     assert_eq!(m.unknowns.len(), 18, "{:?}", m.unknowns);
     assert!(
         m.unknowns.iter().all(|u| u.contains("_G")),
@@ -528,10 +536,20 @@ fn a_u_on_a_rod_to_a_ball_is_reduced_to_the_rods_length() {
     );
     // A U–U rod holds the platform by its length and by the spin the two U's share: four
     // legs to balls and one such (five slides) are square, and the rod's points stay.
-    let both = build(pus("x", &["S", "S", "S", "S", "U"]));
+    let both = build(pus("x", &["S", "S", "S", "S", "U"], None));
     let seconds: Vec<&String> = both.unknowns.iter().filter(|u| u.contains("_u")).collect();
     assert_eq!(seconds.len(), 6, "{:?}", both.unknowns);
-    let e = match model(pus("g", &["S"; 6])) {
+    // A rod declared by name only is a rod; one that carries a pivot of its own turns it with
+    // the spin, and keeps the point.
+    let named = build(pus("x", &["S"; 6], Some("")));
+    assert_eq!(named.unknowns.len(), 18, "{:?}", named.unknowns);
+    let carrying = build(pus("x", &["S"; 6], Some("Q1 = [150.0, -120.0, -100.0]")));
+    assert!(
+        carrying.unknowns.iter().any(|u| u.ends_with("A1_u")),
+        "{:?}",
+        carrying.unknowns
+    );
+    let e = match model(pus("g", &["S"; 6], None)) {
         Ok(_) => panic!("a U whose first axis lies along its rod was accepted"),
         Err(e) => e.to_string(),
     };

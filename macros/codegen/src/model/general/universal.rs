@@ -4,12 +4,12 @@
 //! is fixed in the other link, which carries the point `C_u` along it, as far from C as the leg
 //! is long (a lever of the mechanism's size: `linkage_geometry::normal_point`). The constraint:
 //! `(Q − P)·(C_u − C) = 0`, the two axes stay perpendicular — degree 2 in the points. A
-//! passive U on an unnamed rod to an `S` gets no such point: it holds only the rod's spin.
+//! passive U on a rod to an `S` gets no such point: it holds only the rod's spin.
 
 use super::points::Addition;
 use super::{err, named, PointId, Repr, Reprs, Topology};
 use crate::expr::{self, Expr};
-use crate::front::resolved::PairKind;
+use crate::front::resolved::{LinkRole, PairKind};
 use crate::model::{Auto, Builder};
 use syn::Error;
 
@@ -128,15 +128,17 @@ pub fn add_points(b: &mut Builder, topo: &mut Topology, k: usize) -> Result<(), 
     Ok(())
 }
 
-/// Whether the link carrying this U's second axis is an unnamed rod whose one other joint is an
-/// `S`. Then the U holds nothing but the rod's spin about the line through its two centres,
-/// which no other pair sees: for the rest of the mechanism the rod is the distance between its
-/// centres (Eq. 3), as between two `S`, and the second axis's point would add three unknowns and
-/// a twin of every root (the leg's half-turn, see [`spins`]) to a system no answer needs them
-/// in. A declared link may carry other pivots or meet other chains, and a U or R at the rod's
-/// other end turns with the spin: those keep the point.
+/// Whether the link carrying this U's second axis is a rod: an intermediate link (unnamed, or
+/// declared without pivots of its own) of two points, this U's centre and that of its one
+/// other joint, an `S`. Then the U holds nothing but the rod's spin about the line through its
+/// two centres, which no other pair sees: for the rest of the mechanism the rod is the distance
+/// between its centres (Eq. 3), as between two `S`, and the second axis's point would add three
+/// unknowns and a twin of every root (the leg's half-turn, see [`spins`]) to a system no answer
+/// needs them in. A link with other pivots or joints, the base or the platform, and a rod with
+/// a U or R at its other end (which turns with the spin) keep the point.
 fn only_a_rod_to_a_ball(topo: &Topology, k: usize, other: usize) -> bool {
-    if topo.links[other].declared.is_some() {
+    let link = &topo.links[other];
+    if link.role != LinkRole::Intermediate || link.members.len() != 2 {
         return false;
     }
     let mut others = topo
