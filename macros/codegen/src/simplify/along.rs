@@ -7,9 +7,8 @@
 //! The new choice replaces the first only if it crosses fewer times, so a mechanism whose
 //! kept equations stay regular along its motion keeps them.
 
-use super::derivatives::{Derivatives, Sparse, DEPENDENT};
+use super::derivatives::{condition, Derivatives, Sparse, DEPENDENT, NEARLY_SINGULAR};
 use super::motion::Ray;
-use super::rank::{condition, NEARLY_SINGULAR};
 
 /// The rows are chosen again over at most about this many configurations (with those on both
 /// sides of each crossing); the new choice is checked at all of them.

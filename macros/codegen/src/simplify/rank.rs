@@ -9,7 +9,7 @@
 //! system is then checked along the motion from home (`along`), and chosen again
 //! where it turns singular there and the mechanism does not.
 
-use super::derivatives::{Derivatives, DEPENDENT};
+use super::derivatives::{condition, Derivatives, DEPENDENT, NEARLY_SINGULAR};
 use crate::expr::{Expr, Var};
 use nalgebra::DMatrix;
 
@@ -96,23 +96,6 @@ fn select(b: &[Vec<f64>], classes: &[Vec<usize>], weak: f64) -> Vec<usize> {
     kept.sort_unstable();
     kept
 }
-
-/// The smallest singular value of the rows kept over their largest.
-pub(super) fn condition(b: &[Vec<f64>], kept: &[usize]) -> f64 {
-    if kept.is_empty() || b[0].is_empty() {
-        return 0.0;
-    }
-    let m = DMatrix::from_fn(kept.len(), b[0].len(), |i, j| b[kept[i]][j]);
-    let sv = m.singular_values();
-    sv.min() / sv.max().max(1e-300)
-}
-
-/// Below this σmin/σmax of the rows kept each in its turn, the rank test tries the other
-/// choice. Not always: the choice in turn is what the listing promises (the pairs' equations
-/// before the links'), and it decides more than the condition at home — on the planar 3-RPR
-/// and 3-RRR declared in space, the other choice, though 50× better conditioned there (1e-5
-/// against 7e-4), gave a square system of 12 roots for the mechanism's 6.
-pub(super) const NEARLY_SINGULAR: f64 = 1e-7;
 
 /// `classes`: the equations' indices in the order they are offered to the basis, class by
 /// class (a partition of the indices); of dependent ones, the later is left out. Two choices
