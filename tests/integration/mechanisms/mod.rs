@@ -22,6 +22,7 @@ mod home_by_inputs;
 mod linear_delta;
 mod linear_pentapod;
 mod literature;
+mod literature_more;
 mod motors;
 mod numerical_inverse;
 mod orthoglide;
