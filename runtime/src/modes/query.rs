@@ -28,6 +28,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         let mut ws = Workspace::new();
         out.paths = self.count();
         out.n_real = 0;
+        out.unpaired = 0;
         let path = ParameterPath::new(self.p0, target, self.gamma);
         for (i, e) in out.endpoints.iter_mut().take(self.count()).enumerate() {
             *e = self.retried_endpoint(&path, i, &target, &mut ws);
@@ -39,6 +40,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         // (see `refill.rs`).
         self.refill_failed(&target, out, &mut ws);
         self.finish(x, out);
+        out.unpaired = self.unpaired(out);
         Ok(())
     }
 

@@ -149,6 +149,20 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         }
     }
 
+    /// The complex roots of `out` whose conjugate is not among its roots. At real inputs
+    /// that conjugate is a root too, so each one counted is a root the start set lacks.
+    pub(super) fn unpaired(&self, out: &Roots<N, K>) -> usize {
+        let model = self.model();
+        out.endpoints()
+            .iter()
+            .filter(|e| e.kind == EndpointKind::Complex)
+            .filter(|e| {
+                let v = e.v.map(Complex::conj);
+                !known(&model, out, &model.enter(&v), &v)
+            })
+            .count()
+    }
+
     /// Tracks every start along `path` (another γ) and puts each new nonsingular root in the
     /// place of a path that did not end at one, until none is left.
     fn refill(

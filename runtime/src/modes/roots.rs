@@ -109,6 +109,8 @@ pub struct Roots<const N: usize, const K: usize> {
     pub(crate) paths: usize,
     pub(crate) real: [RealRoot<N>; K],
     pub(crate) n_real: usize,
+    /// Complex roots whose conjugate, a root too at real inputs, is not among them.
+    pub(crate) unpaired: usize,
 }
 
 impl<const N: usize, const K: usize> Default for Roots<N, K> {
@@ -125,6 +127,7 @@ impl<const N: usize, const K: usize> Roots<N, K> {
             paths: 0,
             real: [RealRoot::EMPTY; K],
             n_real: 0,
+            unpaired: 0,
         }
     }
 
@@ -156,7 +159,19 @@ impl<const N: usize, const K: usize> Roots<N, K> {
     /// root of the square system, real, that an equation left out as dependent refuses, so
     /// no assembly mode is missing for it (an overconstrained mechanism, such as a planar one
     /// declared in space, can have some at every input).
+    ///
+    /// And the complex roots come in conjugate pairs: the inputs are real and so are the
+    /// equations' coefficients, so the conjugate of a root is a root. A complex root found
+    /// without its conjugate ([`Roots::unpaired`]) shows that the start set lacks roots
+    /// however stable its count looked, and the list is not complete.
     pub fn is_complete(&self) -> bool {
-        self.roots() + self.count(EndpointKind::Spurious) == self.paths
+        self.roots() + self.count(EndpointKind::Spurious) == self.paths && self.unpaired == 0
+    }
+
+    /// How many complex roots were found without their conjugate (which is a root too, at
+    /// real inputs): 0 in a complete list. More than 0 says the start set is short of
+    /// the generic root count; the roots found are roots all the same.
+    pub fn unpaired(&self) -> usize {
+        self.unpaired
     }
 }
