@@ -133,6 +133,10 @@ pub struct Mech {
     /// README allows either link; its leg then looks back along the chain). Set by the seed,
     /// so that the other seeds' mechanisms stay as they were generated.
     pub u_axis_after: bool,
+    /// Whether a crank's or carriage's leg may end in a U on an unnamed rod to the ball (R*-U-S,
+    /// P*-U-S). Set by the seed, as `u_axis_after`, so that the other seeds' mechanisms (and
+    /// the tests pinned to them) stay as they were generated.
+    pub u_rods: bool,
 }
 
 /// Uniform in [lo, hi).
@@ -197,6 +201,7 @@ impl Mech {
             home,
             inputs: Vec::new(),
             u_axis_after: false,
+            u_rods: false,
         }
     }
 
@@ -576,7 +581,7 @@ fn classic_chain(m: &mut Mech, rng: &mut Rng, five: bool) -> Chain {
             );
             let crank = m.link(format!("crank{c}"), None);
             let ce = m.pivot(crank, e);
-            if chance(rng, 0.4) {
+            if m.u_rods && chance(rng, 0.4) {
                 // A U on the crank (its first axis fixed there, in a random direction) and an
                 // unnamed rod to the ball: the general model's leg, whose U holds only the
                 // rod's spin.
@@ -692,6 +697,8 @@ pub fn generate(seed: u64) -> Mech {
         // One seed in four (4 and 5 modulo 8: even and odd seeds, which the sweep's two parts
         // share out): U pairs whose first axis may be on the link after them.
         m.u_axis_after = matches!(seed % 8, 4 | 5);
+        // One in four again (0 and 7 modulo 8): legs of a U on a rod to the ball.
+        m.u_rods = matches!(seed % 8, 0 | 7);
         // Each entry: a chain's freedoms and its actives' variable counts.
         let plan: Vec<(usize, Vec<usize>)> = match family {
             "hexapod" => (0..6).map(|_| (6, vec![1])).collect(),
