@@ -247,26 +247,12 @@ fn rssr_refuses_to_pass_its_folds() {
     // sign change.
     let (_, flips) = straight_segment(&m, &start, &[hi + 0.4], 4000);
     assert!(flips >= 1, "{flips}");
-    let mut tracker = Tracker::new(m.clone(), start, GENERAL_MODEL);
-    let mut refused_at = None;
-    for k in 1..=60 {
-        let q = k as f64 * (hi + 0.5) / 60.0;
-        match tracker.update(&[q]) {
-            Ok(s) => {
-                let c = point::<Rssr, _, 1>(&s.v, "C");
-                let truth = rssr_phi(q, side).map(rssr_c);
-                assert!(
-                    truth.is_some_and(|t| dist(c, t) < 1e-6),
-                    "tracker at q = {q} (fold at {hi}): {c:?} vs {truth:?}"
-                );
-            }
-            Err(_) => {
-                refused_at = Some(q);
-                break;
-            }
-        }
-    }
-    let refused_at = refused_at.expect("the tracker passed the fold");
+    let (mut tracker, refused_at) = tracked_to_the_fold(&m, start, hi, hi + 0.5, 60, |q, v| {
+        let c = point::<Rssr, _, 1>(v, "C");
+        rssr_phi(q, side)
+            .map(rssr_c)
+            .is_some_and(|t| dist(c, t) < 1e-6)
+    });
     assert!(
         refused_at > hi - 0.05,
         "refused at {refused_at}, fold at {hi}"
@@ -465,27 +451,10 @@ fn sarrus_refuses_to_pass_its_folds_and_hostile_inputs() {
         println!("Sarrus past the fold at q = {q:.4}: {:?}", sol.status);
         assert!(!sol.is_ok(), "q = {q}: ok past a fold, {sol:?}");
     }
-    let mut tracker = Tracker::new(m.clone(), start, GENERAL_MODEL);
-    let mut refused = false;
-    for k in 1..=40 {
-        let q = k as f64 * (hi + 0.3) / 40.0;
-        match tracker.update(&[q]) {
-            Ok(s) => {
-                let h = sarrus_h(q);
-                let pose = pose_from_unknowns(&m, &s.v).unwrap();
-                assert!(
-                    h.is_some_and(|h| (pose.translation[2] - (h - sarrus_h0())).abs() < 1e-6),
-                    "tracker at q = {q} (fold at {hi}): {:?}",
-                    pose.translation
-                );
-            }
-            Err(_) => {
-                refused = true;
-                break;
-            }
-        }
-    }
-    assert!(refused);
+    tracked_to_the_fold(&m, start, hi, hi + 0.3, 40, |q, v| {
+        let pose = pose_from_unknowns(&m, v).unwrap();
+        sarrus_h(q).is_some_and(|h| (pose.translation[2] - (h - sarrus_h0())).abs() < 1e-6)
+    });
     hostile(&m, &start, [hi + 0.5]);
 }
 
@@ -703,25 +672,9 @@ fn watt_six_bar_refuses_to_pass_its_folds_and_hostile_inputs() {
     assert_eq!(sol.status, Status::Converged);
     let err = watt_err(&watt_points(&sol.v), &watt_forward(q, s1, s2).unwrap());
     assert!(err < 1e-5, "{err}");
-    let mut tracker = Tracker::new(m.clone(), start, GENERAL_MODEL);
-    let mut refused = false;
-    for k in 1..=40 {
-        let q = k as f64 * (hi + 0.4) / 40.0;
-        match tracker.update(&[q]) {
-            Ok(s) => {
-                let truth = watt_forward(q, s1, s2);
-                assert!(
-                    truth.is_some_and(|t| watt_err(&watt_points(&s.v), &t) < 1e-6),
-                    "tracker at q = {q} (fold at {hi})"
-                );
-            }
-            Err(_) => {
-                refused = true;
-                break;
-            }
-        }
-    }
-    assert!(refused);
+    tracked_to_the_fold(&m, start, hi, hi + 0.4, 40, |q, v| {
+        watt_forward(q, s1, s2).is_some_and(|t| watt_err(&watt_points(v), &t) < 1e-6)
+    });
     hostile(&m, &start, [hi + 1.0]);
 }
 
@@ -774,6 +727,32 @@ fn watt_six_bar_has_four_assembly_modes() {
 // ---------------------------------------------------------------------------------------------
 // Hostile inputs on a one-input mechanism: NaN, infinite, huge and unreachable targets to PH,
 // NH, NR and the tracker (a typed error or not ok, never a panic), and the tracker usable after.
+
+/// The tracker from home in `steps` equal samples to `beyond`, past the fold at `fold`: every
+/// answer on the home branch (`on_branch(q, v)`), and a refusal before the last sample. Returns
+/// the tracker and the first input it refused.
+fn tracked_to_the_fold<S: Mechanism<N, 1> + Clone, const N: usize>(
+    m: &S,
+    start: linkage::Start<N, 1>,
+    fold: f64,
+    beyond: f64,
+    steps: usize,
+    on_branch: impl Fn(f64, &[f64; N]) -> bool,
+) -> (Tracker<S, N, 1>, f64) {
+    let mut tracker = Tracker::new(m.clone(), start, GENERAL_MODEL);
+    for k in 1..=steps {
+        let q = k as f64 * beyond / steps as f64;
+        match tracker.update(&[q]) {
+            Ok(s) => assert!(
+                on_branch(q, &s.v),
+                "{} tracker at q = {q} (fold at {fold}): off the home branch",
+                S::NAME
+            ),
+            Err(_) => return (tracker, q),
+        }
+    }
+    panic!("{} tracker passed the fold at {fold}", S::NAME)
+}
 
 fn hostile<S: Mechanism<N, 1> + Clone, const N: usize>(
     m: &S,
@@ -983,25 +962,9 @@ fn rccc_refuses_to_pass_its_folds_and_hostile_inputs() {
         println!("RCCC past the fold at q = {q:.4}: {:?}", sol.status);
         assert!(!sol.is_ok(), "q = {q}: ok past a fold, {sol:?}");
     }
-    let mut tracker = Tracker::new(m.clone(), start, GENERAL_MODEL);
-    let mut refused = false;
-    for k in 1..=40 {
-        let q = k as f64 * (hi + 0.4) / 40.0;
-        match tracker.update(&[q]) {
-            Ok(s) => {
-                let truth = rccc_forward(q, side);
-                assert!(
-                    truth.is_some_and(|t| rccc_err(&rccc_points(&s.v), &t) < 1e-6),
-                    "tracker at q = {q} (fold at {hi})"
-                );
-            }
-            Err(_) => {
-                refused = true;
-                break;
-            }
-        }
-    }
-    assert!(refused);
+    tracked_to_the_fold(&m, start, hi, hi + 0.4, 40, |q, v| {
+        rccc_forward(q, side).is_some_and(|t| rccc_err(&rccc_points(v), &t) < 1e-6)
+    });
     hostile(&m, &start, [hi + 1.0]);
 }
 
