@@ -47,6 +47,7 @@
 //! ```
 
 mod complex;
+mod conjugation;
 mod dense;
 mod endpoint;
 mod extended;

@@ -10,6 +10,7 @@
 
 use super::Ended;
 use super::complex::Complex;
+use super::conjugation::conjugates;
 use super::inputs::Inputs;
 use super::path::ParameterPath;
 use super::polish::{SAME, contains, polish};
@@ -63,6 +64,8 @@ pub(crate) struct Found {
     pub(crate) seeds_since_new: usize,
     /// Random seeds (not the home) that brought solutions the loops had not reached.
     pub(crate) seed_finds: usize,
+    /// Conjugation steps (see `conjugation.rs`) that brought solutions.
+    pub(crate) conjugate_finds: usize,
     /// The last new solution came from a random seed or from the loops that followed one.
     pub(crate) last_after_seed: bool,
     /// Solutions known when the first loops settled.
@@ -106,6 +109,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
         loops_since_new: 0,
         seeds_since_new: 0,
         seed_finds: 0,
+        conjugate_finds: 0,
         last_after_seed: false,
         first_settled: 0,
         ending: Ended::Stable,
@@ -131,6 +135,9 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
     // the mechanism's scale (see there).
     let size = inputs.length_size(p0).min(LOOP_REACH * inputs.scale);
     let mut home_pending = true;
+    // The count at the last conjugation step: another is worth its paths only once the count
+    // has changed.
+    let mut conjugated_at = 0;
     // Loops carry out[from..count], until `stable` in a row bring nothing new.
     let (mut from, mut stable) = (0, stop.stable_loops);
     loop {
@@ -226,6 +233,23 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
                 }
             }
         }
+        // The conjugates of the roots at a real point (see `conjugation.rs`): the conjugate
+        // of a component the loops and seeds have found, which seeds seldom reach if small.
+        if !new && !done(&found) && found.count != conjugated_at {
+            conjugated_at = found.count;
+            let before = found.count;
+            new = conjugates(
+                model, inputs, p0, size, sym, out, &mut orbit, &mut found, &mut ws,
+            );
+            if new {
+                round_from = before;
+                found.conjugate_finds += 1;
+                (found.loops_since_new, found.seeds_since_new) = (0, 0);
+                found.last_after_seed = false;
+                after_seed = false;
+                (from, stable) = (before, stop.stable_loops);
+            }
+        }
         let mut stale_seeds = 0;
         // Fresh seeds land on a component about in proportion to its number of solutions;
         // one as small as the smallest found so far (m of n) is missed by k seeds in a row
@@ -269,7 +293,7 @@ pub(crate) fn monodromy<S: Mechanism<N, M>, const N: usize, const M: usize, cons
 /// Tracks a seed solution `(v, p)` to `p0` and adds it to the known solutions; `true` if it
 /// was new.
 #[allow(clippy::too_many_arguments)]
-fn carry<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
+pub(super) fn carry<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize>(
     model: &Model<'_, S, N>,
     ws: &mut Workspace<N>,
     (v, p): ([Complex; N], [Complex; M]),

@@ -30,6 +30,9 @@ use crate::mechanism::Mechanism;
 ///   small components exist, which random seeds seldom hit; the mechanism's home seeds one.
 /// - `first_settled` equal to the count, `seed_finds` 0: the loops from the first seed found
 ///   everything (a general 6-6 platform), the usual case for one irreducible family.
+/// - `conjugate_finds > 0`: a component that is not real was found without its conjugate, and
+///   the conjugate came by tracking conjugate roots back from a real point. Such components
+///   hold complex roots only (at generic real inputs), never an assembly mode.
 ///
 /// A known generic count (`expected`) ends monodromy as soon as it is reached.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -168,6 +171,11 @@ pub struct StartReport {
     /// the loops had not reached. Each is a component of the solutions that the loops from
     /// the others do not join, found by chance.
     pub seed_finds: usize,
+    /// Conjugation steps that brought solutions: the starts tracked to a real point, where
+    /// the conjugate of a complex root reached is a root too, and conjugates tracked back that
+    /// no loop or seed had reached (the conjugate of a component found; an RCCC's model has
+    /// such a pair).
+    pub conjugate_finds: usize,
     /// Whether the last new solution came from such a random seed or from the loops that
     /// followed one: the final count was reached only by a late random find.
     pub last_after_seed: bool,

@@ -107,6 +107,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
             loops_since_new: found.loops_since_new,
             seeds_since_new: found.seeds_since_new,
             seed_finds: found.seed_finds,
+            conjugate_finds: found.conjugate_finds,
             last_after_seed: found.last_after_seed,
             first_settled: found.first_settled,
             smallest_find: if found.smallest == usize::MAX {
