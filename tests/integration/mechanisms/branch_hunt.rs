@@ -20,11 +20,17 @@
 //!   from the start, in 2 000 steps (20 000 likewise): ok where that segment meets a sign
 //!   change of det B is a defect.
 //!
+//! Two more (`pus_keeps_its_branch`, `rus_hexapod_keeps_its_branch`) whose rods end in a
+//! passive U at one end and an S at the other, which the model reduces to their lengths (no
+//! second-axis point: `only_a_rod_to_a_ball` in the generator): the 6-PUS of `literature` and
+//! a 6-RUS declared here.
+//!
 //! The five-bar and the planar 3-RPR have closed forms, checked in their own files; here they
 //! get the same treatment as the rest, whose branch is defined by continuation only.
 
 use super::five_bar::FiveBar;
 use super::linear_delta::LinearDelta;
+use super::literature::Pus;
 use super::pan_tilt::PanTilt;
 use super::planar_rpr::PlanarRpr;
 use super::prs::Prs;
@@ -586,5 +592,84 @@ fn rss_hexapod_keeps_its_branch() {
         [3.0; 6],
         0x6255,
         linkage_tests::sweep(3, 30),
+    );
+}
+
+/// The 6-PUS on parallel rails (`literature::Pus`), each rod a U on its slider and a ball on the
+/// platform, which the model holds by its length alone: slides up to 60 mm from home (about a
+/// third of the curves meet a direct singularity).
+#[test]
+fn pus_keeps_its_branch() {
+    let sys = Pus::new();
+    let start = sys.home_start().unwrap();
+    run(
+        "6-PUS",
+        sys,
+        start,
+        GENERAL_MODEL,
+        [60.0; 6],
+        0x6905,
+        linkage_tests::sweep(6, 60),
+    );
+}
+
+linkage::mechanism! {
+    /// A 6-RUS rotary hexapod: the 6-RSS's motors, cranks and platform (`RssHexapod`), each
+    /// rod on a passive U at its crank (first axis along the motor's) and a ball on the
+    /// platform; the rods' lengths are what home gives them (inputs zero at home).
+    pub struct Rus;
+    base {
+        A1 = [93.969, -34.202, 0.0],   B1 = [87.129, -52.996, 0.0],
+        A2 = [93.969, 34.202, 0.0],    B2 = [87.129, 52.996, 0.0],
+        A3 = [-17.365, 98.481, 0.0],   B3 = [2.331, 101.954, 0.0],
+        A4 = [-76.604, 64.279, 0.0],   B4 = [-89.46, 48.958, 0.0],
+        A5 = [-76.604, -64.279, 0.0],  B5 = [-89.46, -48.958, 0.0],
+        A6 = [-17.365, -98.481, 0.0],  B6 = [2.331, -101.954, 0.0],
+    }
+    platform(home = [0.0, 0.0, 0.0, 0.0, 0.0, 150.0]) {
+        G1 = [49.497, -49.497, 0.0],
+        G2 = [49.497, 49.497, 0.0],
+        G3 = [18.117, 67.615, 0.0],
+        G4 = [-67.615, 18.117, 0.0],
+        G5 = [-67.615, -18.117, 0.0],
+        G6 = [18.117, -67.615, 0.0],
+    }
+    link crank1 { C1 = [131.557, -47.883, 0.0], D1 = [124.717, -66.677, 0.0] }
+    link crank2 { C2 = [131.557, 47.883, 0.0], D2 = [124.717, 66.677, 0.0] }
+    link crank3 { C3 = [-24.311, 137.873, 0.0], D3 = [-4.615, 141.346, 0.0] }
+    link crank4 { C4 = [-107.246, 89.99, 0.0], D4 = [-120.102, 74.669, 0.0] }
+    link crank5 { C5 = [-107.246, -89.99, 0.0], D5 = [-120.102, -74.669, 0.0] }
+    link crank6 { C6 = [-24.311, -137.873, 0.0], D6 = [-4.615, -141.346, 0.0] }
+    chain arm1 = base - R(active q1, axis = A1 -> B1) - crank1 - U(C1, axis = C1 -> D1) - S(G1) - platform;
+    chain arm2 = base - R(active q2, axis = A2 -> B2) - crank2 - U(C2, axis = C2 -> D2) - S(G2) - platform;
+    chain arm3 = base - R(active q3, axis = A3 -> B3) - crank3 - U(C3, axis = C3 -> D3) - S(G3) - platform;
+    chain arm4 = base - R(active q4, axis = A4 -> B4) - crank4 - U(C4, axis = C4 -> D4) - S(G4) - platform;
+    chain arm5 = base - R(active q5, axis = A5 -> B5) - crank5 - U(C5, axis = C5 -> D5) - S(G5) - platform;
+    chain arm6 = base - R(active q6, axis = A6 -> B6) - crank6 - U(C6, axis = C6 -> D6) - S(G6) - platform;
+}
+
+/// The 6-RUS: its U–S rods reduced to their lengths (18 unknowns, the platform's six balls, as
+/// the 6-RSS), home's inputs zero; cranks up to 1.2 rad from home (a few curves meet a direct
+/// singularity at `LINKAGE_STRESS=8`).
+#[test]
+fn rus_hexapod_keeps_its_branch() {
+    assert_eq!(Rus::UNKNOWNS.len(), 18, "{:?}", Rus::UNKNOWNS);
+    let sys = Rus::new();
+    assert!(
+        max_diff(&Rus::HOME_INPUTS, &[0.0; 6]) < 1e-9,
+        "{:?}",
+        Rus::HOME_INPUTS
+    );
+    let start = sys.home_start().unwrap();
+    linkage_tests::check_jacobians(&sys, start.v(), start.x());
+    super::check_inverse(&sys, start.v(), start.x(), &Rus::HOME_INPUTS, 1e-9);
+    run(
+        "6-RUS",
+        sys,
+        start,
+        GENERAL_MODEL,
+        [1.2; 6],
+        0x6905 ^ 0x52,
+        linkage_tests::sweep(6, 60),
     );
 }
