@@ -20,11 +20,14 @@
 //! angles on the home branch (between the folds the closed form locates) against the closed
 //! form, the folds refused by PH, NR, the detour and the tracker, hostile inputs, the real
 //! roots of `AllModes` against the closed form's, certified PH and tracking, and the pivots'
-//! rates against differences of the closed form. Found: `AllModes` on the RCCC settles on 3
-//! starts for some seeds (2 for others), a complex root without its conjugate at a real input
-//! while `is_complete()` holds (the ignored test below); the RCCC's certificates reach 1e-3 mm
-//! (the C pairs' unit levers between moving links), so none of its steps is proven; the Watt
-//! II's step proofs give out at q ≈ −0.85. Refusals all, no wrong answer labelled ok.
+//! rates against differences of the closed form. Found: `AllModes` on the RCCC settled on 3
+//! starts for some seeds, a complex root without its conjugate at a real input while
+//! `is_complete()` held (now the start sets are closed under conjugation: 2 or 4 starts,
+//! `rccc_start_sets_are_closed_under_conjugation`); the RCCC's pivots move up to about
+//! 1 400 mm per radian of crank at home (the slides of its C pairs), so a sample 0.058 rad on
+//! moves them about 60 mm against a point certificate's radius of 1e-3 mm, and none of its
+//! tracked steps is proven; the Watt II's step proofs give out at q ≈ −0.85. Refusals all, no
+//! wrong answer labelled ok.
 //!
 //! The dimensions are ours.
 
