@@ -67,6 +67,7 @@ mod outcome;
 mod pose;
 pub mod reference;
 mod scalar;
+mod slope;
 mod solution;
 mod start;
 mod tracker;

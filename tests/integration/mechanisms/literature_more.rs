@@ -26,8 +26,8 @@
 //! `rccc_start_sets_are_closed_under_conjugation`); the RCCC's pivots move up to about
 //! 1 400 mm per radian of crank at home (the slides of its C pairs), so a sample 0.058 rad on
 //! moves them about 60 mm against a point certificate's radius of 1e-3 mm, and none of its
-//! tracked steps is proven; the Watt II's step proofs give out at q ≈ −0.85. Refusals all, no
-//! wrong answer labelled ok.
+//! tracked steps is proven; the Watt II's step proofs gave out at q ≈ −0.85 until the step
+//! test's centred form in the inputs. Refusals all, no wrong answer labelled ok.
 //!
 //! The dimensions are ours.
 
@@ -1233,15 +1233,15 @@ fn rssr_and_sarrus_detour_certificates_and_rates() {
 #[test]
 fn watt_and_rccc_detour_certificates_and_rates() {
     let (s1, s2) = watt_home_sides();
-    // The Watt II's step proofs give out (more than 64 pieces for a step of 0.09 rad, at
-    // q ≈ −0.85, where the point certificates' radius is 1.2 mm and |det B| is 0.7 of home's),
-    // and the tracker then refuses every later sample of the sweep, each a longer step from
-    // the last proven one: refusals, never a wrong sample.
+    // The Watt II's step proofs gave out with the step test's plain form alone (more than 64
+    // pieces for a step of 0.09 rad at q ≈ −0.85, where the point certificates' radius is 1.2
+    // mm: 58 of 120 samples proven, the rest refused); the centred form in the input proves
+    // every sample (`certify::centred`).
     let m = WattSixBar::new();
     one_input_extras(
         &m,
         m.home_start().unwrap(),
-        (50, 0),
+        (120, 0),
         |q| {
             let p = watt_forward(q, s1, s2)?;
             Some(p.iter().map(|a| [a[0], a[1], 0.0]).collect())
