@@ -183,7 +183,6 @@ fn rows<S: Mechanism<N, M>, const N: usize, const M: usize>(
     c: &[f64; N],
     x_mid: &[f64; M],
     half_width: &[f64; M],
-    segment: Option<(&[f64; M], &[f64; M])>,
     yt: &mut [[f64; N]; N],
 ) -> Result<Rows<N>, CertifyError> {
     // R: a power of two at least the largest coordinate (so r = ρR is exact). Checked before
@@ -281,9 +280,6 @@ fn rows<S: Mechanism<N, M>, const N: usize, const M: usize>(
         rows.g[i] = up(up(off[i], n + 1) + up(g[i], n + 1), 1);
         rows.h[i] = up(up(h[i], n + 1) / reach, 1);
     }
-    if let Some(ends) = segment {
-        centred(sys, c, ends, yt, &mut rows);
-    }
     Ok(rows)
 }
 
@@ -353,30 +349,19 @@ fn centred<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
 }
 
-/// A step's ends: the inputs it leaves from, the root and the inputs it reaches.
+/// A step's ends: the root and inputs it leaves from, the root and inputs it reaches.
 #[derive(Clone, Copy)]
 struct Step<'a, const N: usize, const M: usize> {
+    v0: &'a [f64; N],
     x0: &'a [f64; M],
     v1: &'a [f64; N],
     x1: &'a [f64; M],
-    /// Whether to try the centred form in the inputs too (see [`centred`]).
-    centred: bool,
 }
 
-/// The Krawczyk test about `c` for inputs `x_mid ± half_width`: the smallest radius that
-/// passes for the enclosure, the largest for uniqueness.
-fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    sys: &S,
-    c: &[f64; N],
-    x_mid: &[f64; M],
-    half_width: &[f64; M],
-    step: Option<Step<'_, N, M>>,
-) -> Result<Certificate<N>, CertifyError> {
-    // Y ≈ B(c)⁻¹ (transposed), kept here for the step's end.
-    let mut yt = [[0.0; N]; N];
-    let segment = step.filter(|s| s.centred).map(|s| (s.x0, s.x1));
-    let rows = rows(sys, c, x_mid, half_width, segment, &mut yt)?;
-    let (lo, hi) = rows.predicted().ok_or(CertifyError::NotContracting)?;
+/// The smallest radius that passes (for the enclosure) and the largest (for uniqueness), the
+/// predicted ones as guides; `None` if none passes.
+fn radii<const N: usize>(rows: &Rows<N>) -> Option<(f64, f64)> {
+    let (lo, hi) = rows.predicted()?;
     // Just above the predicted smallest radius (the bounds are rounded up a few ulps).
     let mut small = None;
     let mut r = lo * (1.0 + 1e-6);
@@ -387,7 +372,7 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         r *= 4.0;
     }
-    let small = small.ok_or(CertifyError::NotContracting)?;
+    let small = small?;
     // Just below the predicted largest, shrinking while it fails.
     let mut radius = small;
     let mut r = hi * (1.0 - 1e-6);
@@ -401,6 +386,53 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
         }
         r *= 0.5;
     }
+    Some((small, radius))
+}
+
+/// The box of uniqueness c ± radius rounded inwards (never empty: c itself is inside).
+fn unique_box<const N: usize>(c: &[f64; N], radius: f64) -> [Interval; N] {
+    core::array::from_fn(|i| {
+        Interval::new(
+            (c[i] - radius).next_up().min(c[i]),
+            (c[i] + radius).next_down().max(c[i]),
+        )
+    })
+}
+
+/// The Krawczyk test about `c` for inputs `x_mid ± half_width`: the smallest radius that
+/// passes for the enclosure, the largest for uniqueness.
+fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    c: &[f64; N],
+    x_mid: &[f64; M],
+    half_width: &[f64; M],
+    step: Option<Step<'_, N, M>>,
+) -> Result<Certificate<N>, CertifyError> {
+    // Y ≈ B(c)⁻¹ (transposed), kept here for the step's end.
+    let mut yt = [[0.0; N]; N];
+    let mut rows = rows(sys, c, x_mid, half_width, &mut yt)?;
+    // A step's proof needs both its ends inside the box of uniqueness.
+    let proven = |rows: &Rows<N>| {
+        radii(rows).filter(|&(_, radius)| {
+            step.is_none_or(|s| {
+                let unique_in = unique_box(c, radius);
+                let inside = |v: &[f64; N]| unique_in.iter().zip(v).all(|(u, &vi)| u.contains(vi));
+                inside(s.v0) && inside(s.v1)
+            })
+        })
+    };
+    // The plain form first, enough for most steps; for a step where it is not, the centred
+    // form in the inputs (see `centred`) with the same Y and bounds on B. The second costs
+    // another residual in slope arithmetic, 1.6 µs on the 1 kHz Stewart trajectory's 3.7 µs
+    // samples, where every step passes without it.
+    let (small, radius) = match (proven(&rows), step) {
+        (Some(found), _) => found,
+        (None, Some(s)) => {
+            centred(sys, c, (s.x0, s.x1), &yt, &mut rows);
+            proven(&rows).ok_or(CertifyError::NotContracting)?
+        }
+        (None, None) => return Err(CertifyError::NotContracting),
+    };
     // K at the small radius: c − d ± bound, within c ± small too.
     let mut error_bound = 0.0f64;
     let enclosure = core::array::from_fn(|i| {
@@ -411,15 +443,8 @@ fn search<S: Mechanism<N, M>, const N: usize, const M: usize>(
         let x = Interval::around(c[i], small);
         Interval::new(k.lo.max(x.lo), k.hi.min(x.hi))
     });
-    // The box of uniqueness rounded inwards (never empty: c itself is inside).
-    let unique_in = core::array::from_fn(|i| {
-        Interval::new(
-            (c[i] - radius).next_up().min(c[i]),
-            (c[i] + radius).next_down().max(c[i]),
-        )
-    });
     let certificate = Certificate {
-        unique_in,
+        unique_in: unique_box(c, radius),
         enclosure,
         radius,
         error_bound: error_bound.min(small),
@@ -584,27 +609,5 @@ pub fn certify_step<S: Mechanism<N, M>, const N: usize, const M: usize>(
     // The segment's hull x_mid ± w (each end's distance rounded up).
     let w: [f64; M] =
         core::array::from_fn(|j| up((x0[j] - x_mid[j]).abs().max((x1[j] - x_mid[j]).abs()), 1));
-    let attempt = |centred| {
-        let step = Step {
-            x0,
-            v1,
-            x1,
-            centred,
-        };
-        let cert = search(sys, &c, &x_mid, &w, Some(step))?;
-        // Both ends must be inside the box of uniqueness.
-        let inside = |v: &[f64; N]| cert.unique_in.iter().zip(v).all(|(u, &vi)| u.contains(vi));
-        if inside(v0) && inside(v1) {
-            Ok(cert)
-        } else {
-            Err(CertifyError::NotContracting)
-        }
-    };
-    // The plain form first, enough for most steps; the centred form (`centred`) where it is
-    // not: it costs another residual in slope arithmetic, 1.6 µs on the 1 kHz Stewart
-    // trajectory's 3.7 µs samples, where every step passes without it.
-    match attempt(false) {
-        Err(CertifyError::NotContracting) => attempt(true),
-        done => done,
-    }
+    search(sys, &c, &x_mid, &w, Some(Step { v0, x0, v1, x1 }))
 }
