@@ -15,8 +15,8 @@
 //! on a known start.
 
 use super::complex::Complex;
+use super::found::{Found, carry};
 use super::inputs::Inputs;
-use super::monodromy::{Found, carry};
 use super::path::ParameterPath;
 use super::polish::{SAME, contains, polish};
 use super::rng::Rng;

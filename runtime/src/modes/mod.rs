@@ -51,6 +51,7 @@ mod conjugation;
 mod dense;
 mod endpoint;
 mod extended;
+mod found;
 mod inputs;
 mod monodromy;
 mod options;
