@@ -29,6 +29,7 @@ mod orthoglide;
 mod pan_tilt;
 mod partly_driven_cylinders;
 mod pcs;
+mod peaucellier;
 mod planar_rpr;
 mod planar_rrr;
 mod platform_centres;
