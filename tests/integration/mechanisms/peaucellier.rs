@@ -4,9 +4,10 @@
 //! and the rhombus ACBP of side s make P the inverse of C in the circle about O of radius
 //! √(l² − s²): |OC|·|OP| = l² − s², so P stays on the line x = (l² − s²)/(2r). Checked against
 //! that line and the inversion, which no part of the model states, and against the closed form
-//! of every joint.
+//! of every joint and P's velocity.
 
 use super::{check_inverse, point, GENERAL_MODEL};
+use linkage::velocity::pivot_rates;
 use linkage::{arc_length, det_b, Mechanism, Status, Tracker};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -120,6 +121,19 @@ fn peaucellier_point_moves_on_a_straight_line() {
                 "q = {q}: {name} at {v:?}, closed form {at:?}"
             );
         }
+        // P's velocity is along the line, and its rate the closed form's.
+        let rates = pivot_rates(&pl, &sol.v, &[q], &[1.0]).unwrap();
+        let pdot = pt(&rates, "P");
+        let h = 1e-6;
+        let fd = (closed_form(q + h)[1][1] - closed_form(q - h)[1][1]) / (2.0 * h);
+        assert!(
+            pdot[0].abs() < 1e-6 && pdot[2].abs() < 1e-9,
+            "q = {q}: Ṗ = {pdot:?}"
+        );
+        assert!(
+            (pdot[1] - fd).abs() < 1e-5 * (1.0 + fd.abs()),
+            "q = {q}: Ṗ = {pdot:?}, {fd}"
+        );
         assert!(det_b(&pl, &sol.v, &[q]) * start.det() > 0.0, "q = {q}");
         check_inverse(&pl, &sol.v, &[q], &Peaucellier::HOME_INPUTS, 1e-8);
     }
