@@ -6,7 +6,7 @@ use super::path::ParameterPath;
 use super::polish::{SAME, contains};
 use super::roots::{Endpoint, EndpointKind, RealRoot, Roots};
 use super::track::{Model, Settings, Workspace};
-use super::{AllModes, ModesError};
+use super::{AllModes, Ended, ModesError};
 use crate::mechanism::Mechanism;
 
 impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllModes<S, N, M, K> {
@@ -29,6 +29,7 @@ impl<S: Mechanism<N, M>, const N: usize, const M: usize, const K: usize> AllMode
         out.paths = self.count();
         out.n_real = 0;
         out.unpaired = 0;
+        out.capped = self.report.ended == Ended::LoopCap;
         let path = ParameterPath::new(self.p0, target, self.gamma);
         for (i, e) in out.endpoints.iter_mut().take(self.count()).enumerate() {
             *e = self.retried_endpoint(&path, i, &target, &mut ws);

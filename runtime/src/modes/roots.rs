@@ -111,6 +111,9 @@ pub struct Roots<const N: usize, const K: usize> {
     pub(crate) n_real: usize,
     /// Complex roots whose conjugate, a root too at real inputs, is not among them.
     pub(crate) unpaired: usize,
+    /// The start set's monodromy stopped at its loop cap ([`Ended::LoopCap`](super::Ended::LoopCap)): its count is
+    /// likely short, and so is every list tracked from it.
+    pub(crate) capped: bool,
 }
 
 impl<const N: usize, const K: usize> Default for Roots<N, K> {
@@ -128,6 +131,7 @@ impl<const N: usize, const K: usize> Roots<N, K> {
             real: [RealRoot::EMPTY; K],
             n_real: 0,
             unpaired: 0,
+            capped: false,
         }
     }
 
@@ -164,8 +168,23 @@ impl<const N: usize, const K: usize> Roots<N, K> {
     /// equations' coefficients, so the conjugate of a root is a root. A complex root found
     /// without its conjugate ([`Roots::unpaired`]) shows that the start set lacks roots
     /// however stable its count looked, and the list is not complete.
+    ///
+    /// Nor is a list tracked from a start set whose monodromy stopped at its loop cap
+    /// ([`Ended::LoopCap`](super::Ended::LoopCap) in [`StartReport::ended`](super::StartReport::ended)) while
+    /// roots were still coming: a Jansen leg's model, with the default options, stopped at
+    /// 25 of its 32 roots, and every one of its 8 assembly modes was found at three inputs
+    /// only by luck (`tests/integration/mechanisms/jansen.rs`). Raise
+    /// [`ModesOptions::max_loops`](super::ModesOptions::max_loops).
     pub fn is_complete(&self) -> bool {
-        self.roots() + self.count(EndpointKind::Spurious) == self.paths && self.unpaired == 0
+        self.roots() + self.count(EndpointKind::Spurious) == self.paths
+            && self.unpaired == 0
+            && !self.capped
+    }
+
+    /// Whether the start set this list was tracked from stopped at its loop cap
+    /// ([`Ended::LoopCap`](super::Ended::LoopCap)): its count, and this list, likely short.
+    pub fn start_set_capped(&self) -> bool {
+        self.capped
     }
 
     /// How many complex roots were found without their conjugate (which is a root too, at

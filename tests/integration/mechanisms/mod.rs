@@ -19,6 +19,7 @@ mod geometry_hunt;
 mod goldberg;
 mod h4;
 mod home_by_inputs;
+mod jansen;
 mod linear_delta;
 mod linear_pentapod;
 mod literature;
