@@ -1,7 +1,7 @@
 //! What `AllModes::new` says about its start set (`StartReport`): how monodromy ended and how
 //! late its last new root came, checked where the root count is known.
 
-use linkage::modes::{AllModes, Complex, Ended, ModesError, ModesOptions, StartReport};
+use linkage::modes::{AllModes, Complex, Ended, ModesError, ModesOptions, Roots, StartReport};
 use linkage_examples::rps::Rps3;
 use linkage_examples::stewart::{SixSix, StewartGeneral};
 use linkage_tests::Rng;
@@ -88,6 +88,10 @@ fn start_report_of_capped_and_given_runs() {
     assert_eq!(report.seeds_needed, 0, "{report:?}");
     // Short of the 40 (14 measured: a loop also carries the roots it finds).
     assert!(six.start_count() < 40, "{report:?}");
+    // And no list tracked from it calls itself complete.
+    let mut roots = Box::new(Roots::<18, 64>::new());
+    six.solve(&[200.0; 6], &mut roots).unwrap();
+    assert!(roots.start_set_capped() && !roots.is_complete());
 
     let expected = ModesOptions {
         expected: Some(16),
@@ -103,6 +107,9 @@ fn start_report_of_capped_and_given_runs() {
         AllModes::<_, 9, 3, 32>::from_starts(Rps3::new(), *p0, gamma, &starts, &expected).unwrap();
     assert_eq!(given.report().ended, Ended::Given);
     assert_eq!(given.report().loops, 0);
+    let mut roots = Roots::<9, 32>::new();
+    given.solve(&Rps3::HOME_INPUTS, &mut roots).unwrap();
+    assert!(!roots.start_set_capped() && roots.is_complete());
 
     // A confidence that is not a finite non-negative number is an error, not a panic.
     for confidence in [f64::NAN, -1.0, f64::INFINITY] {
