@@ -3,7 +3,7 @@
 //! against its closed form, five circle intersections in turn, over whole turns of the crank,
 //! by the tracker and by continuation from home.
 
-use super::{check_inverse, point, GENERAL_MODEL};
+use super::{check_inverse, circles, point, GENERAL_MODEL};
 use linkage::{arc_length, det_b, Mechanism, Status, Tracker};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
 
@@ -47,25 +47,20 @@ linkage::mechanism! {
     chain tie = upper - R(passive, axis = W -> Wz) - R(passive, axis = U -> Uz) - platform;
 }
 
-/// The point at distance `ra` from `a` and `rb` from `b` on the side of a→b that `side` (the
-/// sign of (b − a) × (p − a)) names.
-fn circles(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, side: f64) -> [f64; 2] {
-    let d = (b[0] - a[0]).hypot(b[1] - a[1]);
-    let along = (ra * ra - rb * rb + d * d) / (2.0 * d);
-    let h = (ra * ra - along * along).sqrt() * side;
-    let (ex, ey) = ((b[0] - a[0]) / d, (b[1] - a[1]) / d);
-    [a[0] + along * ex - h * ey, a[1] + along * ey + h * ex]
+/// Where two circles of the leg meet ([`circles`]): always, for this leg, over whole turns.
+fn meet(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, side: f64) -> [f64; 2] {
+    circles(a, ra, b, rb, side).expect("the leg's circles meet")
 }
 
 /// X, Y, V, W, U and the foot at crank angle q, on the sides they are at home.
 fn closed_form(q: f64) -> [[f64; 2]; 6] {
     let z = [-A, -L];
     let x = [M * q.cos(), M * q.sin()];
-    let y = circles(x, J, z, B, -1.0);
-    let v = circles(x, K, z, C, 1.0);
-    let w = circles(z, D, y, E, 1.0);
-    let u = circles(w, F, v, G, -1.0);
-    let foot = circles(v, I, u, H, 1.0);
+    let y = meet(x, J, z, B, -1.0);
+    let v = meet(x, K, z, C, 1.0);
+    let w = meet(z, D, y, E, 1.0);
+    let u = meet(w, F, v, G, -1.0);
+    let foot = meet(v, I, u, H, 1.0);
     [x, y, v, w, u, foot]
 }
 
@@ -169,11 +164,11 @@ fn jansen_leg_has_eight_assembly_modes_and_a_capped_start_set_is_no_complete_lis
         for sy in [1.0, -1.0] {
             for sv in [1.0, -1.0] {
                 for su in [1.0, -1.0] {
-                    let y = circles(x, J, z, B, sy);
-                    let v = circles(x, K, z, C, sv);
-                    let w = circles(z, D, y, E, 1.0);
-                    let u = circles(w, F, v, G, su);
-                    want.push([y, v, w, u, circles(v, I, u, H, 1.0)]);
+                    let y = meet(x, J, z, B, sy);
+                    let v = meet(x, K, z, C, sv);
+                    let w = meet(z, D, y, E, 1.0);
+                    let u = meet(w, F, v, G, su);
+                    want.push([y, v, w, u, meet(v, I, u, H, 1.0)]);
                 }
             }
         }

@@ -31,7 +31,7 @@
 //!
 //! The dimensions are ours.
 
-use super::{check_inverse, point, GENERAL_MODEL};
+use super::{check_inverse, circles, point, GENERAL_MODEL};
 use linkage::modes::{AllModes, EndpointKind, ModesOptions, Roots};
 use linkage::reference::straight_segment;
 use linkage::{
@@ -554,19 +554,6 @@ fn d2(a: [f64; 2], b: [f64; 2]) -> f64 {
 fn rot2(p: [f64; 2], a: f64) -> [f64; 2] {
     let (s, c) = a.sin_cos();
     [c * p[0] - s * p[1], s * p[0] + c * p[1]]
-}
-
-/// The point at r1 from c1 and r2 from c2 on the side `side` of c1 → c2 (left: +1).
-fn circles(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64, side: f64) -> Option<[f64; 2]> {
-    let d = [c2[0] - c1[0], c2[1] - c1[1]];
-    let dd = d[0].hypot(d[1]);
-    let a = (r1 * r1 - r2 * r2 + dd * dd) / (2.0 * dd);
-    let h2 = r1 * r1 - a * a;
-    if !(h2 > 0.0) {
-        return None;
-    }
-    let (e, h) = ([d[0] / dd, d[1] / dd], side * h2.sqrt());
-    Some([c1[0] + a * e[0] - h * e[1], c1[1] + a * e[1] + h * e[0]])
 }
 
 fn side_of(c1: [f64; 2], c2: [f64; 2], p: [f64; 2]) -> f64 {

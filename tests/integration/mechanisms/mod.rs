@@ -165,3 +165,17 @@ pub fn point<S: Mechanism<N, M>, const N: usize, const M: usize>(
         v[i]
     })
 }
+
+/// The point at distance `ra` from `a` and `rb` from `b` on the side of a→b that `side`
+/// (the sign of (b − a) × (p − a)) names; `None` if the circles do not meet.
+pub fn circles(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, side: f64) -> Option<[f64; 2]> {
+    let d = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let along = (ra * ra - rb * rb + d * d) / (2.0 * d);
+    let h2 = ra * ra - along * along;
+    if !(h2 > 0.0) {
+        return None;
+    }
+    let h = h2.sqrt() * side.signum();
+    let (ex, ey) = ((b[0] - a[0]) / d, (b[1] - a[1]) / d);
+    Some([a[0] + along * ex - h * ey, a[1] + along * ey + h * ex])
+}

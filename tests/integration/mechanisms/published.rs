@@ -6,8 +6,8 @@
 //! this file's own equations in joint angles (not the generated point equations); and every
 //! assembly mode `AllModes` finds against the same reference.
 
-use super::point;
 use super::{check_inverse, mobility_line, GENERAL_MODEL};
+use super::{circles, point};
 use linkage::modes::{AllModes, Complex, EndpointKind, ModesOptions, Roots};
 use linkage::{arc_length, det_b, pose_from_unknowns, Mechanism, Status, Tracker};
 use linkage_tests::{check_factorization, check_jacobians, Rng};
@@ -31,20 +31,6 @@ fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 fn dist2(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-/// The point at distance `ra` from `a` and `rb` from `b` on the side of a→b that `side`
-/// (the sign of (b − a) × (p − a)) names; `None` if the circles do not meet.
-fn circles(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, side: f64) -> Option<[f64; 2]> {
-    let d = dist2(a, b);
-    let along = (ra * ra - rb * rb + d * d) / (2.0 * d);
-    let h2 = ra * ra - along * along;
-    if !(h2 > 0.0) {
-        return None;
-    }
-    let h = h2.sqrt() * side.signum();
-    let (ex, ey) = ((b[0] - a[0]) / d, (b[1] - a[1]) / d);
-    Some([a[0] + along * ex - h * ey, a[1] + along * ey + h * ex])
 }
 
 fn xy(p: [f64; 3]) -> [f64; 2] {
