@@ -111,8 +111,9 @@ pub struct Roots<const N: usize, const K: usize> {
     pub(crate) n_real: usize,
     /// Complex roots whose conjugate, a root too at real inputs, is not among them.
     pub(crate) unpaired: usize,
-    /// The start set's monodromy stopped at its loop cap ([`Ended::LoopCap`](super::Ended::LoopCap)): its count is
-    /// likely short, and so is every list tracked from it.
+    /// The start set's monodromy stopped at its loop cap
+    /// ([`Ended::LoopCap`](super::Ended::LoopCap)): its count is likely short, and so is
+    /// every list tracked from it.
     pub(crate) capped: bool,
 }
 
@@ -171,10 +172,9 @@ impl<const N: usize, const K: usize> Roots<N, K> {
     ///
     /// Nor is a list tracked from a start set whose monodromy stopped at its loop cap
     /// ([`Ended::LoopCap`](super::Ended::LoopCap) in [`StartReport::ended`](super::StartReport::ended)) while
-    /// roots were still coming: a Jansen leg's model, with the default options, stopped at
-    /// 25 of its 32 roots, and every one of its 8 assembly modes was found at three inputs
-    /// only by luck (`tests/integration/mechanisms/jansen.rs`). Raise
-    /// [`ModesOptions::max_loops`](super::ModesOptions::max_loops).
+    /// roots were still coming: a Jansen leg's model, capped at 200 loops (the default until
+    /// 2026-12-02), stopped at 25 of its 32 roots (`tests/integration/mechanisms/jansen.rs`).
+    /// Raise [`ModesOptions::max_loops`](super::ModesOptions::max_loops).
     pub fn is_complete(&self) -> bool {
         self.roots() + self.count(EndpointKind::Spurious) == self.paths
             && self.unpaired == 0
