@@ -254,6 +254,45 @@ pub fn follow_segment<S: Mechanism<N, M>, const N: usize, const M: usize>(
     }
 }
 
+/// Whether the branch from `(v0, x0)` reaches a point at `x1` that `accepts` through a
+/// waypoint off the straight segment: the two segments `x0 → w → x1` for each of `tries`
+/// waypoints `w = (x0 + x1) / 2 + d e` (e a direction of unit largest entry, d from a tenth to
+/// ten times the segment's span, both drawn from `rng`), each followed by [`follow_segment`].
+/// A path that reaches `x1` is nonsingular, so its end is on the branch as surely as the
+/// straight segment's would be (where paths around a cusp reach different points, each is).
+/// For a straight segment that leaves the branch's region and comes back within a step too
+/// short for a solver to see (a graze of a fold surface): the point there is the branch's,
+/// but the straight segment is not the path that shows it.
+pub fn reached_via<S: Mechanism<N, M>, const N: usize, const M: usize>(
+    sys: &S,
+    (v0, x0): (&[f64; N], &[f64; M]),
+    det0: f64,
+    x1: &[f64; M],
+    max_step: f64,
+    (tries, rng): (usize, &mut linkage_tests::Rng),
+    accepts: impl Fn(&Truth<N>) -> bool,
+) -> bool {
+    let span = sup(&std::array::from_fn::<f64, M, _>(|j| x1[j] - x0[j]));
+    for k in 0..tries {
+        let d = [0.1, 0.3, 1.0, 3.0, 10.0][k % 5] * span;
+        let e: [f64; M] = std::array::from_fn(|_| rng.symmetric());
+        let size = sup(&e);
+        if !(size > 0.0) {
+            continue;
+        }
+        let w: [f64; M] = std::array::from_fn(|j| 0.5 * (x0[j] + x1[j]) + d * e[j] / size);
+        let first = follow_segment(sys, (v0, x0), det0, &w, max_step);
+        if !first.reached {
+            continue;
+        }
+        let second = follow_segment(sys, (&first.v, &w), det0, x1, max_step);
+        if second.reached && accepts(&second) {
+            return true;
+        }
+    }
+    false
+}
+
 impl<const N: usize> Truth<N> {
     /// Stopped so near the end that the end may lie within rounding of a fold: within 1e-6 of
     /// the segment, or 1e-7 of the inputs' size (a fold's place is known to about √ε of the
