@@ -38,9 +38,16 @@ impl Slope {
     }
 }
 
+// Out of line in builds with debug assertions, for the reason the ball arithmetic under it is
+// (`ball.rs`): inlined, each product of a generated `residual_in` becomes three ball products
+// and a sum written out, for every declared mechanism. The certified tracker's residual in
+// slopes was the largest single family of the integration tests' optimisation time (5.5 s of
+// 72 s by `-Z llvm-time-trace`); out of line the binary built 2.5 % faster (BENCHMARKS.md).
+// Release builds inline it; the results are the same bit for bit.
 impl Add for Slope {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add(self, o: Self) -> Self {
         Slope {
             val: self.val + o.val,
@@ -51,7 +58,8 @@ impl Add for Slope {
 
 impl Sub for Slope {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub(self, o: Self) -> Self {
         Slope {
             val: self.val - o.val,
@@ -74,7 +82,8 @@ impl Neg for Slope {
 impl Mul for Slope {
     type Output = Self;
     // (a b)′ = a′ b + a b′, with a and b enclosing the values wherever a′ and b′ are taken.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn mul(self, o: Self) -> Self {
         Slope {
             val: self.val * o.val,
@@ -89,7 +98,8 @@ impl Scalar for Slope {
         Slope::fixed(Ball::from_f64(x))
     }
 
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sq(self) -> Self {
         // (a²)′ = 2 a a′ (the doubling exact in the ball's midpoint, its rounding bounded).
         let half = self.val * self.d;
@@ -99,7 +109,8 @@ impl Scalar for Slope {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sin(self) -> Self {
         Slope {
             val: self.val.sin(),
@@ -107,7 +118,8 @@ impl Scalar for Slope {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline(never))]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn cos(self) -> Self {
         Slope {
             val: self.val.cos(),
