@@ -7,7 +7,7 @@ use linkage::{
     TrackError, Tracker,
 };
 use linkage_examples::stewart::{
-    find_start, home_start, legs_for_pose, SixSix, StartError, Stewart, HOME_LEGS,
+    find_start, home_start, legs_for_pose, SixSix, StartError, Stewart, StewartGeneral, HOME_LEGS,
 };
 use linkage_tests::{max_diff, straight_path_truth};
 
@@ -269,6 +269,69 @@ fn a_path_that_overshoots_lambda_one_lands_on_it() {
         assert_eq!(flips, 0);
         assert!(max_diff(&sol.v, &truth) < 1e-6);
     }
+}
+
+/// A last step a little longer than the path's accuracy. Found by the stress suite
+/// (`LINKAGE_STRESS=3 LINKAGE_STRESS_SEED=20261204`, `forward_kinematics_by_continuation` case
+/// 1641): a random 6-6 platform started near a singularity, so that the path's first-order
+/// length (3.0e5) and with it the accuracy its points are computed to (0.303) are large; a
+/// step stopped 0.334 short of λ = 1, and the last step's corrector measured that point's own
+/// error against a first correction allowed half of 0.334, as it did every shorter step after
+/// it: `StepTooSmall` at λ = 1 − 1.1e-6, on a segment whose |det B| never falls below the
+/// start's.
+#[test]
+fn a_last_step_near_the_paths_accuracy_lands_on_lambda_one() {
+    let base = [
+        [-22.893758589733878, -135.94672665447754, -6.023960245014178],
+        [117.53420019530398, -64.83789319465735, -6.876431732819815],
+        [155.92333988880577, 50.70269189025569, -4.907461332352867],
+        [9.612061829083313, 159.52005983226917, 14.691794900365187],
+        [-101.19356633425893, 95.01387103727576, 7.7822669444817105],
+        [-132.40737145084623, -93.22802724184919, -9.173486668317569],
+    ];
+    let platform = [
+        [61.23939821346778, -50.684453265851445, 10.85278203907448],
+        [65.35523133417117, 40.62342410958232, -1.4376987049648664],
+        [19.002333653366055, 74.04897285466352, 9.130345017845881],
+        [-60.13823127264163, 42.67937441283655, -4.966971423366066],
+        [-73.67304266450526, -27.262018443480162, -11.06687874777868],
+        [-5.894621608626364, -81.94997336204533, 2.432928431721317],
+    ];
+    let home = Pose::from_euler(
+        -0.06044572028591441,
+        0.08294525149213715,
+        0.03211895078089375,
+        [9.302648962850201, 10.182248552040669, 129.4631724888228],
+    );
+    let sys = StewartGeneral::with_joints(&base, &platform).unwrap();
+    let (x0, v0) = legs_for_pose(&sys, &home).unwrap();
+    let start = Start::new(&sys, v0, x0).unwrap();
+    let target = [
+        279.9691897534621,
+        119.83123056974833,
+        153.5835776713524,
+        296.2111138099129,
+        395.92116092759164,
+        409.9544210400379,
+    ];
+    let options = Options {
+        tolerance: 1e-9,
+        max_iterations: 50,
+        max_steps: 2000,
+        ..Options::default()
+    };
+    let sol = arc_length(&sys, &start, &target, &options).unwrap();
+    assert!(sol.is_ok(), "{:?}", sol.status);
+    // The root fine continuation along the segment reaches, det B of the start's sign on the
+    // way (and at least the start's |det B|: the segment is far from any singularity).
+    let (truth, flips) = straight_path_truth(&sys, &start, &target, 4000);
+    assert_eq!(flips, 0);
+    assert!(
+        max_diff(&sol.v, &truth) < 1e-6,
+        "{}",
+        max_diff(&sol.v, &truth)
+    );
+    assert!(sol.min_det_ratio >= 1.0, "{}", sol.min_det_ratio);
 }
 
 /// The randomized reproduction behind [`OVERSHOT`]: reachable targets (nonsingular pose paths

@@ -45,6 +45,11 @@ use step::{Previous, StepControl, det_dips};
 
 /// Below this cosine between successive tangents (about 37°) a step is rejected.
 const MIN_TANGENT_COS: f64 = 0.8;
+/// A last step of at most this many times the path's accuracy is Newton's at λ = 1 rather
+/// than a corrector's: the corrector passes a point in error by up to the accuracy only on a
+/// step of at least twice it (its first correction may be half the step), and four leaves room
+/// for the predictor's own error.
+const LAST_STEP_IN_TOL: f64 = 4.0;
 /// How far behind the start, as a share of the path's length, det B is taken to see its slope
 /// before the first step (a thousandth of the first step, a quarter of the path).
 const FIRST_PROBE: f64 = 2.5e-4;
@@ -204,13 +209,15 @@ fn from<S: Mechanism<N, M>, const N: usize, const M: usize>(
     };
     while account.accepted + account.rejected < options.max_steps {
         let step = control.next(length, &p, &t, previous.as_ref());
-        // A last step shorter than the accuracy the path's points are computed to (the step
-        // before ended within it of λ = 1) has nothing for continuation to resolve, as a path
-        // that short has not: the final Newton run is the step. Its corrector would measure
-        // the accepted point's own error against a step far shorter, and refuse it (seen: a
+        // A last step within a few times the accuracy the path's points are computed to (the
+        // step before ended that near λ = 1) has nothing for continuation to resolve, as a
+        // path that short has not: the final Newton run is the step. Its corrector would
+        // measure the accepted point's own error (up to `path.tol`) against a first correction
+        // allowed only half the step, and refuse it, and every shorter step after it (seen: a
         // last step of 4.7e-4 on a path whose points are computed to 3.2, refused at λ = 1 −
-        // 1.5e-10 with StepTooSmall).
-        if step.end && !(step.length > path.tol) {
+        // 1.5e-10; and one of 0.334 on a path computed to 0.303, left by a step that stopped
+        // that short of the end, refused at λ = 1 − 1.1e-6, both with StepTooSmall).
+        if step.end && !(step.length > LAST_STEP_IN_TOL * path.tol) {
             account.lambda = 1.0;
             return Ok(polish(sys, start, p.v, target, options, account));
         }
