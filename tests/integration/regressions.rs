@@ -326,11 +326,8 @@ fn a_last_step_near_the_paths_accuracy_lands_on_lambda_one() {
     // way (and at least the start's |det B|: the segment is far from any singularity).
     let (truth, flips) = straight_path_truth(&sys, &start, &target, 4000);
     assert_eq!(flips, 0);
-    assert!(
-        max_diff(&sol.v, &truth) < 1e-6,
-        "{}",
-        max_diff(&sol.v, &truth)
-    );
+    let off = max_diff(&sol.v, &truth);
+    assert!(off < 1e-6, "{off}");
     assert!(sol.min_det_ratio >= 1.0, "{}", sol.min_det_ratio);
 }
 
