@@ -201,6 +201,10 @@ impl Contraction {
     const FIRST: f64 = 0.5;
     /// Largest ratio of a correction to the one before.
     const RATIO: f64 = 0.25;
+    /// The shortest predictor step, as a multiple of the error of the point it leaves, whose
+    /// corrector can pass the first test: its first correction is about that error, and may be
+    /// at most `FIRST` of the step.
+    pub(crate) const SHORTEST_STEP_PER_ERROR: f64 = 1.0 / Self::FIRST;
 
     /// For a corrector that starts from a predictor step of length `step`.
     pub(crate) fn new(step: f64, tolerance: f64) -> Self {

@@ -33,6 +33,7 @@ mod corrector;
 mod path;
 mod step;
 
+use crate::convergence::Contraction;
 use crate::correction::det_b;
 use crate::math::norm;
 use crate::mechanism::Mechanism;
@@ -47,9 +48,9 @@ use step::{Previous, StepControl, det_dips};
 const MIN_TANGENT_COS: f64 = 0.8;
 /// A last step of at most this many times the path's accuracy is Newton's at λ = 1 rather
 /// than a corrector's: the corrector passes a point in error by up to the accuracy only on a
-/// step of at least twice it (its first correction may be half the step), and four leaves room
-/// for the predictor's own error.
-const LAST_STEP_IN_TOL: f64 = 4.0;
+/// step of at least [`Contraction::SHORTEST_STEP_PER_ERROR`] times it (2), and twice that
+/// leaves room for the predictor's own error (4).
+const LAST_STEP_IN_TOL: f64 = 2.0 * Contraction::SHORTEST_STEP_PER_ERROR;
 /// How far behind the start, as a share of the path's length, det B is taken to see its slope
 /// before the first step (a thousandth of the first step, a quarter of the path).
 const FIRST_PROBE: f64 = 2.5e-4;
