@@ -399,7 +399,7 @@ fn delta_has_forty_complex_roots_two_of_them_translations() {
 /// apart in v) closed under conjugation (the crank angles are real); prints the incomplete
 /// ones with their closest pair of crank angles (roots run off to infinity as two become
 /// equal).
-/// `cargo test -p linkage-tests --test integration delta_completeness_sweep -- --ignored --nocapture`
+/// `cargo test -p linkage-tests --features catalogue --test integration delta_completeness_sweep -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement (seconds): the rate behind the delta's count test"]
 fn delta_completeness_sweep() {

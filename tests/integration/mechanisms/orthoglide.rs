@@ -516,7 +516,7 @@ fn revolute_orthoglides_have_sixteen_translating_modes() {
 /// parallelograms' own flips are the extra modes); 112 real roots of the square system at
 /// which equations left out as dependent fail (`Spurious`, not the mechanism); the rest
 /// complex.
-/// `cargo test -p linkage-tests --test integration revolute_orthoglide_all_modes -- --ignored --nocapture`
+/// `cargo test -p linkage-tests --features catalogue --test integration revolute_orthoglide_all_modes -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement (minutes): every assembly mode of the revolute Orthoglide"]
 fn revolute_orthoglide_all_modes() {

@@ -158,8 +158,8 @@ fn mirror(t: [f64; 3], s: &[f64; 3]) -> [f64; 3] {
 /// Every assembly mode of the 3-PUU: 672 complex roots, in octets (each leg's rod spun half a
 /// turn about its own axis: the generated candidate symmetries, all three kept), found by
 /// every seed tried (2015, 7, 99, 12345) under the default stopping rule, in 4.5-5.7 s each.
-/// The count and its queries run with `LINKAGE_STRESS` set, as `.ci/run` does; a plain
-/// `cargo test` checks the symmetries only (monodromy stopped at 64 roots, eight octets).
+/// The count and its queries run with `LINKAGE_STRESS` set, as `.ci/run` does; a catalogue
+/// run without it checks the symmetries only (monodromy stopped at 64 roots, eight octets).
 /// At the slides of three random translations: every path ends at a root; both translations
 /// the three spheres allow (the platform unturned) are among the real roots, each with the 8
 /// spins of its rods; every real root has a tiny residual and gives its slides back (128 real

@@ -36,7 +36,7 @@ fn upu_has_624_roots_in_octets() {
 fn upu_count() {
     let upu = TranslationalUpu::new();
     // The count (624, also stable under ten times the rule) takes 10 s and runs with
-    // LINKAGE_STRESS set, as `.ci/run` does. A plain `cargo test` checks the symmetries only:
+    // LINKAGE_STRESS set, as `.ci/run` does. A run without it checks the symmetries only:
     // all three candidates kept, and monodromy stopped at 64 roots, eight whole octets.
     if std::env::var_os("LINKAGE_STRESS").is_none() {
         let few = ModesOptions {
@@ -122,7 +122,7 @@ const WIDE: usize = 2048;
 /// Start counts for the seeds in `UPU_SEEDS` (comma-separated; default 2015,7,99), under the
 /// default stopping rule or, with `UPU_STRICT=k`, k times it (and `UPU_CONFIDENCE`, see
 /// `ModesOptions::confidence`); prints count, report and time.
-/// `cargo test -p linkage-tests --test integration upu_seeds -- --ignored --nocapture`
+/// `cargo test -p linkage-tests --features catalogue --test integration upu_seeds -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement (minutes): the counts over seeds behind the count test"]
 fn upu_seeds() {
