@@ -34,7 +34,7 @@ fn take() -> [u32; 3] {
 }
 
 crate::mechanism! {
-    /// The integration tests' SCARA with a wrist (`tests/integration/mechanisms/scara.rs`).
+    /// The integration tests' SCARA with a wrist (`tests/integration/mechanisms/catalogue/scara.rs`).
     pub struct ScaraWrist;
     base { O = [0.0, 0.0, 0.0], Oz = [0.0, 0.0, 1.0] }
     platform { T = [350.0, 0.0, -50.0], Tx = [360.0, 0.0, -50.0], Q = [350.0, 30.0, -80.0] }

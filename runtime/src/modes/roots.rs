@@ -173,7 +173,7 @@ impl<const N: usize, const K: usize> Roots<N, K> {
     /// Nor is a list tracked from a start set whose monodromy stopped at its loop cap
     /// ([`Ended::LoopCap`](super::Ended::LoopCap) in [`StartReport::ended`](super::StartReport::ended)) while
     /// roots were still coming: a Jansen leg's model, capped at 200 loops (the default until
-    /// 2026-12-02), stopped at 25 of its 32 roots (`tests/integration/mechanisms/jansen.rs`).
+    /// 2026-12-02), stopped at 25 of its 32 roots (`tests/integration/mechanisms/catalogue/jansen.rs`).
     /// Raise [`ModesOptions::max_loops`](super::ModesOptions::max_loops).
     pub fn is_complete(&self) -> bool {
         self.roots() + self.count(EndpointKind::Spurious) == self.paths

@@ -15,85 +15,13 @@ mod planar_rpr;
 mod prs;
 mod spherical_wrist;
 
-// The catalogue: the published mechanisms beyond those, the branch and geometry hunts across
-// them, calibrated homes, every declared mechanism's generic root count. Each declaration
-// instantiates the solvers for its own type, and together they were most of the integration
-// binary's build (about 100 s of 125 s alone on 2 cores; BENCHMARKS.md, forty-fifth session),
-// so they build with `--features linkage-tests/catalogue`, as `.ci/run` does.
+// The catalogue (`catalogue/`): the published mechanisms beyond those, the branch and geometry
+// hunts across them, calibrated homes, every declared mechanism's generic root count. Each
+// declaration instantiates the solvers for its own type, and together they were most of the
+// integration binary's build (BENCHMARKS.md, forty-fifth session), so they build with
+// `--features linkage-tests/catalogue`, as `.ci/run` does.
 #[cfg(feature = "catalogue")]
-mod all_modes;
-#[cfg(feature = "catalogue")]
-mod bennett;
-#[cfg(feature = "catalogue")]
-mod branch_hunt;
-#[cfg(feature = "catalogue")]
-mod calibrated_home;
-#[cfg(feature = "catalogue")]
-mod delta_tracking;
-#[cfg(feature = "catalogue")]
-mod delta_universal;
-#[cfg(feature = "catalogue")]
-mod exechon;
-#[cfg(feature = "catalogue")]
-mod four_bar;
-#[cfg(feature = "catalogue")]
-mod geometry_hunt;
-#[cfg(feature = "catalogue")]
-mod goldberg;
-#[cfg(feature = "catalogue")]
-mod h4;
-#[cfg(feature = "catalogue")]
-mod home_by_inputs;
-#[cfg(feature = "catalogue")]
-mod jansen;
-#[cfg(feature = "catalogue")]
-mod linear_delta;
-#[cfg(feature = "catalogue")]
-mod linear_pentapod;
-#[cfg(feature = "catalogue")]
-mod literature;
-#[cfg(feature = "catalogue")]
-mod literature_more;
-#[cfg(feature = "catalogue")]
-mod motors;
-#[cfg(feature = "catalogue")]
-mod numerical_inverse;
-#[cfg(feature = "catalogue")]
-mod orthoglide;
-#[cfg(feature = "catalogue")]
-mod pan_tilt;
-#[cfg(feature = "catalogue")]
-mod partly_driven_cylinders;
-#[cfg(feature = "catalogue")]
-mod pcs;
-#[cfg(feature = "catalogue")]
-mod peaucellier;
-#[cfg(feature = "catalogue")]
-mod planar_rrr;
-#[cfg(feature = "catalogue")]
-mod platform_centres;
-#[cfg(feature = "catalogue")]
-mod published;
-#[cfg(feature = "catalogue")]
-mod puu;
-#[cfg(feature = "catalogue")]
-mod rrs;
-#[cfg(feature = "catalogue")]
-mod scara;
-#[cfg(feature = "catalogue")]
-mod slider_crank;
-#[cfg(feature = "catalogue")]
-mod translational_upu;
-#[cfg(feature = "catalogue")]
-mod triangle_platforms;
-#[cfg(feature = "catalogue")]
-mod tricept;
-#[cfg(feature = "catalogue")]
-mod tripteron;
-#[cfg(feature = "catalogue")]
-mod upu_modes;
-#[cfg(feature = "catalogue")]
-mod upu_wrist;
+mod catalogue;
 
 use linkage::{Mechanism, Options};
 
@@ -175,20 +103,6 @@ pub fn mobility_line(listing: &str) -> &str {
         .unwrap_or("")
 }
 
-/// The distances from `base[k]` to `platform[k]` placed by `pose`: the legs' lengths of a
-/// platform on straight legs, in closed form.
-#[cfg(feature = "catalogue")]
-pub fn leg_lengths<const K: usize>(
-    pose: &linkage::Pose,
-    base: &[[f64; 3]; K],
-    platform: &[[f64; 3]; K],
-) -> [f64; K] {
-    std::array::from_fn(|k| {
-        let d = linkage_tests::vec3::sub(pose.apply(platform[k]), base[k]);
-        linkage_tests::vec3::dot(d, d).sqrt()
-    })
-}
-
 /// Panics unless `r` is the identity to `tol`.
 pub fn identity_within(r: &[[f64; 3]; 3], tol: f64) {
     for (i, row) in r.iter().enumerate() {
@@ -197,35 +111,4 @@ pub fn identity_within(r: &[[f64; 3]; 3], tol: f64) {
             assert!((x - id).abs() <= tol, "the platform turned: {r:?}");
         }
     }
-}
-
-/// The point `name` at `v`, in the base frame.
-#[cfg(feature = "catalogue")]
-pub fn point<S: Mechanism<N, M>, const N: usize, const M: usize>(
-    v: &[f64; N],
-    name: &str,
-) -> [f64; 3] {
-    ["x", "y", "z"].map(|c| {
-        let u = format!("{c}_{name}");
-        let i = S::UNKNOWNS
-            .iter()
-            .position(|n| *n == u)
-            .unwrap_or_else(|| panic!("{}: no unknown {u} in {:?}", S::NAME, S::UNKNOWNS));
-        v[i]
-    })
-}
-
-/// The point at distance `ra` from `a` and `rb` from `b` on the side of a→b that `side`
-/// (the sign of (b − a) × (p − a)) names; `None` if the circles do not meet.
-#[cfg(feature = "catalogue")]
-pub fn circles(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, side: f64) -> Option<[f64; 2]> {
-    let d = (b[0] - a[0]).hypot(b[1] - a[1]);
-    let along = (ra * ra - rb * rb + d * d) / (2.0 * d);
-    let h2 = ra * ra - along * along;
-    if !(h2 > 0.0) {
-        return None;
-    }
-    let h = h2.sqrt() * side.signum();
-    let (ex, ey) = ((b[0] - a[0]) / d, (b[1] - a[1]) / d);
-    Some([a[0] + along * ex - h * ey, a[1] + along * ey + h * ex])
 }

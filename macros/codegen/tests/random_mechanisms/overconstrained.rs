@@ -235,7 +235,7 @@ fn then(f: &([V3; 3], V3), g: &([V3; 3], V3)) -> ([V3; 3], V3) {
     (rr, add(*t, [0, 1, 2].map(|i| dot(r[i], *t2))))
 }
 
-/// A Bennett linkage (tests/integration/mechanisms/bennett.rs): four R pairs on skew axes,
+/// A Bennett linkage (tests/integration/mechanisms/catalogue/bennett.rs): four R pairs on skew axes,
 /// links of lengths a, b, a, b and twists α, β, α, β with a / sin α = b / sin β, at a random
 /// crank angle, placed anywhere; one of its three moving links the platform, one joint driven.
 /// One freedom where Grübler–Kutzbach counts −2.
